@@ -1,0 +1,87 @@
+"""Input checks shared by the public entry points (private).
+
+Every check raises ``ValueError`` (or ``TypeError``) with a message that
+names the parameter, shows the offending value and says what is expected.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def _show(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def real_array(name: str, value, *, ndim: int | None = None, min_size: int = 0) -> np.ndarray:
+    """Return ``value`` as a finite float64 array, or raise naming ``name``."""
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be an array of real numbers, got {_show(value)}") from None
+    if ndim is not None and arr.ndim != ndim:
+        raise ValueError(f"{name} must be {ndim}-D, got shape {arr.shape}")
+    if arr.size < min_size:
+        raise ValueError(f"{name} must have at least {min_size} value(s), got {arr.size}")
+    if not np.isfinite(arr).all():
+        bad = np.flatnonzero(~np.isfinite(arr.ravel()))[0]
+        raise ValueError(
+            f"{name} must be finite, got {arr.ravel()[bad]!r} at flat index {bad}"
+        )
+    return arr
+
+
+def positive_array(name: str, value, *, ndim: int | None = None, min_size: int = 0,
+                   allow_zero: bool = False) -> np.ndarray:
+    """Finite array whose entries are all > 0 (or >= 0 with ``allow_zero``)."""
+    arr = real_array(name, value, ndim=ndim, min_size=min_size)
+    bad = arr < 0 if allow_zero else arr <= 0
+    if bad.any():
+        i = int(np.flatnonzero(bad.ravel())[0])
+        what = "non-negative" if allow_zero else "positive"
+        raise ValueError(f"{name} must be {what}, got {arr.ravel()[i]!r} at flat index {i}")
+    return arr
+
+
+def real_scalar(name: str, value) -> float:
+    """A finite Python float, or raise naming ``name``."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a real number, got {_show(value)}")
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a real number, got {_show(value)}") from None
+    if not np.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {x!r}")
+    return x
+
+
+def positive_scalar(name: str, value, *, allow_zero: bool = False) -> float:
+    """A finite float > 0 (or >= 0 with ``allow_zero``)."""
+    x = real_scalar(name, value)
+    if x < 0 or (x == 0 and not allow_zero):
+        what = "non-negative" if allow_zero else "positive"
+        raise ValueError(f"{name} must be {what}, got {x!r}")
+    return x
+
+
+def in_range(name: str, value, lo: float, hi: float, *, lo_open=False, hi_open=False) -> float:
+    """A finite float in the interval ``[lo, hi]`` (ends open as asked)."""
+    x = real_scalar(name, value)
+    below = x <= lo if lo_open else x < lo
+    above = x >= hi if hi_open else x > hi
+    if below or above:
+        left = "(" if lo_open else "["
+        right = ")" if hi_open else "]"
+        raise ValueError(f"{name} must lie in {left}{lo}, {hi}{right}, got {x!r}")
+    return x
+
+
+def positive_int(name: str, value, *, minimum: int = 1) -> int:
+    """An integer >= ``minimum``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {_show(value)}")
+    if value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value}")
+    return int(value)

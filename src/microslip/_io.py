@@ -1,0 +1,67 @@
+"""File writing that never leaves a half-written file behind (private)."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+
+def atomic_write(path, data: str | bytes) -> Path:
+    """Write ``data`` to ``path`` through a temporary file and a rename.
+
+    The temporary file lives in the destination folder so the final
+    ``os.replace`` is atomic; on any error it is removed and ``path`` is
+    left as it was.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    mode = "wb" if isinstance(data, bytes) else "w"
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8"})) as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    return path
+
+
+def save_figure(fig, path, **kwargs) -> Path:
+    """Save a Matplotlib figure atomically (format from the suffix of ``path``)."""
+    import io
+
+    path = Path(path)
+    buf = io.BytesIO()
+    fig.savefig(buf, format=path.suffix.lstrip(".") or "png", **kwargs)
+    return atomic_write(path, buf.getvalue())
+
+
+def write_csv(path, columns: dict, *, header_comment: str | None = None) -> Path:
+    """Write equal-length columns (name -> 1-D sequence) as CSV, atomically.
+
+    Columns shorter than the longest are padded with empty cells.
+    """
+    import numpy as np
+
+    names = list(columns)
+    arrays = [np.asarray(columns[k]).ravel() for k in names]
+    rows = max((a.size for a in arrays), default=0)
+    lines = []
+    if header_comment:
+        lines += [f"# {line}" for line in header_comment.splitlines()]
+    lines.append(",".join(names))
+    for r in range(rows):
+        cells = []
+        for a in arrays:
+            if r < a.size:
+                v = a[r]
+                cells.append(repr(float(v)) if isinstance(v, (float, np.floating)) else str(v))
+            else:
+                cells.append("")
+        lines.append(",".join(cells))
+    return atomic_write(path, "\n".join(lines) + "\n")

@@ -1,0 +1,130 @@
+"""Compiled time-marching kernels of the microslip array (private).
+
+Plain float64 arrays in, arrays out; no input checks here: the public
+wrappers in :mod:`microslip.model` check everything before calling.
+
+Each step follows the return mapping of DESIGN.md section 2 exactly::
+
+    N_i   = kn_i * max(n - gaps_i, 0)
+    trial = kt_i * (t - s_i)
+    if |trial| > mu * N_i:  T_i = sign(trial) mu N_i,  s_i = t - T_i / kt_i   (slip)
+    else:                   T_i = trial                                       (stick)
+
+An element with ``N_i = 0`` is reported as open; numerically it follows the
+same rule (its force is zero and its slider sits at ``t``).
+"""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+OPEN = 0
+STICK = 1
+SLIP = 2
+
+
+@nb.njit(cache=True, nogil=True)
+def march_totals(kt, kn, gaps, mu, t, n, s, T, N):  # pragma: no cover - compiled
+    """March ``t``, ``n`` from slider state ``s`` (updated in place).
+
+    Writes the total forces into ``T`` and ``N`` (shape ``(steps,)``).
+    """
+    J = kt.shape[0]
+    for k in range(t.shape[0]):
+        tk = t[k]
+        nk = n[k]
+        tsum = 0.0
+        nsum = 0.0
+        for i in range(J):
+            pen = nk - gaps[i]
+            Ni = kn[i] * pen if pen > 0.0 else 0.0
+            lim = mu * Ni
+            trial = kt[i] * (tk - s[i])
+            if trial > lim:
+                trial = lim
+                s[i] = tk - lim / kt[i]
+            elif trial < -lim:
+                trial = -lim
+                s[i] = tk + lim / kt[i]
+            tsum += trial
+            nsum += Ni
+        T[k] = tsum
+        N[k] = nsum
+
+
+@nb.njit(cache=True, nogil=True)
+def march_elements(kt, kn, gaps, mu, t, n, s, T, N, Ti, cond):  # pragma: no cover
+    """As :func:`march_totals`, also recording each element's force and condition.
+
+    ``Ti`` has shape ``(steps, J)`` (float64), ``cond`` shape ``(steps, J)``
+    (int8: 0 open, 1 stick, 2 slip).
+    """
+    J = kt.shape[0]
+    for k in range(t.shape[0]):
+        tk = t[k]
+        nk = n[k]
+        tsum = 0.0
+        nsum = 0.0
+        for i in range(J):
+            pen = nk - gaps[i]
+            Ni = kn[i] * pen if pen > 0.0 else 0.0
+            lim = mu * Ni
+            trial = kt[i] * (tk - s[i])
+            c = STICK
+            if trial > lim:
+                trial = lim
+                s[i] = tk - lim / kt[i]
+                c = SLIP
+            elif trial < -lim:
+                trial = -lim
+                s[i] = tk + lim / kt[i]
+                c = SLIP
+            if Ni == 0.0:
+                c = OPEN
+            Ti[k, i] = trial
+            cond[k, i] = c
+            tsum += trial
+            nsum += Ni
+        T[k] = tsum
+        N[k] = nsum
+
+
+def march_reference(kt, kn, gaps, mu, t, n, s):
+    """Slow, obviously correct pure-Python twin of :func:`march_elements`.
+
+    Used only by the tests. Returns ``(T, N, Ti, cond, s)`` as lists of
+    Python floats and ints; ``s`` is not modified.
+    """
+    s = [float(v) for v in s]
+    T, N, Ti_all, cond_all = [], [], [], []
+    for tk, nk in zip(t, n):
+        row_T, row_c = [], []
+        for i in range(len(kt)):
+            Ni = kn[i] * max(nk - gaps[i], 0.0)
+            trial = kt[i] * (tk - s[i])
+            if abs(trial) > mu * Ni:
+                Ti = mu * Ni if trial > 0 else -mu * Ni
+                s[i] = tk - Ti / kt[i]
+                c = SLIP
+            else:
+                Ti = trial
+                c = STICK
+            if Ni == 0.0:
+                c = OPEN
+            row_T.append(Ti)
+            row_c.append(c)
+        Ti_all.append(row_T)
+        cond_all.append(row_c)
+        T.append(sum(row_T))
+        N.append(sum(kn[i] * max(nk - gaps[i], 0.0) for i in range(len(kt))))
+    return T, N, Ti_all, cond_all, s
+
+
+def warm_up() -> None:
+    """Compile (or load from cache) both kernels on a tiny input."""
+    one = np.ones(1)
+    z = np.zeros(1)
+    march_totals(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1))
+    march_elements(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1),
+                   np.empty((1, 1)), np.empty((1, 1), dtype=np.int8))
