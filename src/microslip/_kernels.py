@@ -29,6 +29,9 @@ def march_totals(kt, kn, gaps, mu, t, n, s, T, N):  # pragma: no cover - compile
     """March ``t``, ``n`` from slider state ``s`` (updated in place).
 
     Writes the total forces into ``T`` and ``N`` (shape ``(steps,)``).
+    Branch-free form of the return mapping: clipping the trial force to
+    ``[-mu N_i, mu N_i]`` is the slip rule, and the slider moves only when
+    the clip changed the force. Same arithmetic as the pure-Python twin.
     """
     J = kt.shape[0]
     for k in range(t.shape[0]):
@@ -37,17 +40,12 @@ def march_totals(kt, kn, gaps, mu, t, n, s, T, N):  # pragma: no cover - compile
         tsum = 0.0
         nsum = 0.0
         for i in range(J):
-            pen = nk - gaps[i]
-            Ni = kn[i] * pen if pen > 0.0 else 0.0
+            Ni = kn[i] * max(nk - gaps[i], 0.0)
             lim = mu * Ni
             trial = kt[i] * (tk - s[i])
-            if trial > lim:
-                trial = lim
-                s[i] = tk - lim / kt[i]
-            elif trial < -lim:
-                trial = -lim
-                s[i] = tk + lim / kt[i]
-            tsum += trial
+            Ti = min(max(trial, -lim), lim)
+            s[i] = s[i] if Ti == trial else tk - Ti / kt[i]
+            tsum += Ti
             nsum += Ni
         T[k] = tsum
         N[k] = nsum
@@ -67,24 +65,15 @@ def march_elements(kt, kn, gaps, mu, t, n, s, T, N, Ti, cond):  # pragma: no cov
         tsum = 0.0
         nsum = 0.0
         for i in range(J):
-            pen = nk - gaps[i]
-            Ni = kn[i] * pen if pen > 0.0 else 0.0
+            Ni = kn[i] * max(nk - gaps[i], 0.0)
             lim = mu * Ni
             trial = kt[i] * (tk - s[i])
-            c = STICK
-            if trial > lim:
-                trial = lim
-                s[i] = tk - lim / kt[i]
-                c = SLIP
-            elif trial < -lim:
-                trial = -lim
-                s[i] = tk + lim / kt[i]
-                c = SLIP
-            if Ni == 0.0:
-                c = OPEN
-            Ti[k, i] = trial
-            cond[k, i] = c
-            tsum += trial
+            Tk = min(max(trial, -lim), lim)
+            slipped = Tk != trial
+            s[i] = tk - Tk / kt[i] if slipped else s[i]
+            Ti[k, i] = Tk
+            cond[k, i] = (Ni > 0.0) * (1 + slipped)
+            tsum += Tk
             nsum += Ni
         T[k] = tsum
         N[k] = nsum
