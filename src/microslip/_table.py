@@ -1,0 +1,78 @@
+"""Delimited text tables whose header names each column and its unit (private).
+
+A header cell reads ``name [unit]`` (``t [um]``, ``T [N]``) or just ``name``;
+cells are separated by commas, semicolons, tabs or runs of spaces; lines
+starting with ``#`` are comments. Values are converted to SI with
+:func:`microslip.units.unit_factor`.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from .units import unit_factor
+
+_HEADER_CELL = re.compile(r"^\s*([^\[\]]+?)\s*(?:\[\s*([^\]]*)\s*\])?\s*$")
+
+
+def _split(line: str) -> list[str]:
+    for sep in (",", ";", "\t"):
+        if sep in line:
+            return [c.strip() for c in line.split(sep)]
+    return line.split()
+
+
+def read_table(path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
+    """Read a table into ``{name: values}`` (raw, not converted) and ``{name: unit}``.
+
+    Raises
+    ------
+    FileNotFoundError
+        No such file.
+    ValueError
+        Empty file, ragged rows, or a cell that is not a number (row and
+        column named).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"table file {str(path)!r} does not exist")
+    lines = [ln for ln in path.read_text(encoding="utf-8").splitlines()
+             if ln.strip() and not ln.lstrip().startswith("#")]
+    if not lines:
+        raise ValueError(f"{path}: the file holds no header and no data")
+    names, units = [], {}
+    for cell in _split(lines[0]):
+        m = _HEADER_CELL.match(cell)
+        if not m:
+            raise ValueError(f"{path}: cannot read the header cell {cell!r}; expected 'name [unit]'")
+        names.append(m.group(1))
+        units[m.group(1)] = (m.group(2) or "").strip()
+    rows = []
+    for number, line in enumerate(lines[1:], start=2):
+        cells = _split(line)
+        if len(cells) != len(names):
+            raise ValueError(f"{path}: data line {number} has {len(cells)} cells, the header names {len(names)}")
+        row = []
+        for name, cell in zip(names, cells):
+            try:
+                row.append(float(cell))
+            except ValueError:
+                raise ValueError(f"{path}: data line {number}, column {name!r}: {cell!r} is not a number") from None
+        rows.append(row)
+    data = np.array(rows, dtype=float).reshape(len(rows), len(names))
+    return {name: data[:, i] for i, name in enumerate(names)}, units
+
+
+def column_si(columns, units, name: str, kind: str, *, path="table", unit: str | None = None) -> np.ndarray:
+    """Column ``name`` converted to SI; ``unit`` overrides the header's unit."""
+    if name not in columns:
+        raise ValueError(f"{path}: no column {name!r}; the columns are {list(columns)}")
+    u = unit if unit is not None else units.get(name, "")
+    try:
+        factor = unit_factor(u, kind) if u else 1.0
+    except ValueError as exc:
+        raise ValueError(f"{path}: column {name!r}: {exc}") from None
+    return columns[name] * factor

@@ -1,0 +1,38 @@
+"""Argument types shared by the sub-commands (private)."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..units import parse_quantity
+
+
+def quantity(kind: str, default_unit: str | None = None):
+    """An argparse ``type`` that reads ``"10mm"``-style values into SI floats."""
+
+    def convert(text):
+        try:
+            return parse_quantity(text, kind, name="value", default_unit=default_unit)
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+    convert.__name__ = f"{kind} quantity"
+    return convert
+
+
+def add_sphere_options(parser) -> None:
+    """Options that describe a sphere on a plane (defaults: the paper's benchmark)."""
+    g = parser.add_argument_group("sphere on a plane (defaults: the paper's benchmark)")
+    g.add_argument("--radius", type=quantity("length"), default=5e-3,
+                   help="sphere radius, e.g. 5mm (default 5mm: d = 10 mm)")
+    g.add_argument("--E", dest="E", type=quantity("pressure"), default=200e9,
+                   help="Young's modulus of both bodies, e.g. 200GPa (default 200GPa; "
+                        "the paper's '200 MPa' is a typo)")
+    g.add_argument("--nu", type=float, default=0.3, help="Poisson's ratio (default 0.3)")
+    g.add_argument("--mu", type=float, default=0.4, help="friction coefficient (default 0.4)")
+
+
+def sphere_from(args):
+    from ..reference import Sphere
+
+    return Sphere(radius=args.radius, E=args.E, nu=args.nu, mu=args.mu)

@@ -1,0 +1,53 @@
+"""``microslip simulate``: march a saved model through a displacement history from a file."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._args import quantity
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "simulate", help="run a saved model through a history of t (and n) read from a table",
+        description="Run a model (JSON from 'microslip tune') through the tangential displacement "
+                    "history in a CSV/text table whose header names columns with units, e.g. "
+                    "'t [um], n [um]'. Writes the forces as CSV (SI units).")
+    p.add_argument("model", help="model JSON file")
+    p.add_argument("history", help="table with a column of tangential displacement and, optionally, "
+                                   "of normal approach")
+    p.add_argument("--t-column", default="t", help="name of the tangential displacement column (default t)")
+    p.add_argument("--n-column", default="n", help="name of the normal approach column (default n)")
+    p.add_argument("--unit", default=None, help="unit of both columns when the header gives none (default m)")
+    normal = p.add_mutually_exclusive_group()
+    normal.add_argument("--n", dest="n_const", type=quantity("length"), default=None,
+                        help="constant normal approach instead of a column, e.g. 2um")
+    normal.add_argument("--load", type=quantity("force"), default=None,
+                        help="constant normal load instead of a column, e.g. 30N (converted with the model's "
+                             "own normal curve)")
+    p.add_argument("-o", "--output", default="forces.csv", help="CSV to write (default forces.csv)")
+    p.add_argument("--plot", default=None, help="also save the T-t curve to this image (PNG/PDF/SVG)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from .._io import save_figure, write_csv
+    from .._table import column_si, read_table
+    from ..model import MicroslipModel
+
+    model = MicroslipModel.load(args.model)
+    columns, units = read_table(args.history)
+    t = column_si(columns, units, args.t_column, "length", path=args.history, unit=args.unit)
+    if args.n_const is not None:
+        n = np.full_like(t, args.n_const)
+    elif args.load is not None:
+        n = np.full_like(t, float(model.approach(args.load)))
+    else:
+        n = column_si(columns, units, args.n_column, "length", path=args.history, unit=args.unit)
+    r = model.simulate(t, n, per_element=False)
+    write_csv(args.output, {"t [m]": r.t, "n [m]": r.n, "T [N]": r.T, "N [N]": r.N})
+    if args.plot:
+        ax = r.plot()
+        save_figure(ax.figure, args.plot, dpi=150, bbox_inches="tight")
+    print(f"wrote {args.output} ({t.size} steps, dissipation {r.dissipation:.6g} J)")
+    return 0

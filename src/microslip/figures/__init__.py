@@ -1,0 +1,26 @@
+"""The paper's figures, one module each, and the sections of ``microslip reproduce``.
+
+Every module in :data:`SECTIONS` follows one contract:
+
+``NAME``
+    file stem of its outputs (``fig2a`` -> ``fig2a.png``, ``fig2a.csv``);
+``CAPTION``
+    what it shows, naming the paper figure it reproduces;
+``compute(case) -> data``
+    the numbers, from a :class:`~microslip.figures.case.PaperCase`;
+``plot(data) -> matplotlib.figure.Figure``
+    the figure;
+``columns(data) -> dict``
+    the plotted data, written as CSV;
+``error_rows(data) -> list``
+    rows ``(quantity, discrete, continuous, error %, bound)`` of the
+    report's error table (may be empty).
+"""
+
+from . import fig2a
+from .case import PaperCase
+from .reproduce import reproduce
+
+SECTIONS = [fig2a]
+
+__all__ = ["PaperCase", "SECTIONS", "reproduce"]

@@ -1,0 +1,81 @@
+"""Units: SI conversion factors and quantities written with a unit suffix.
+
+The API works in SI (m, N, Pa, s, J). Files and the command line may use
+other units; these helpers turn ``"10mm"``, ``"2.5 um"``, ``"30N"``,
+``"200GPa"`` into SI floats and name what is wrong when they cannot.
+"""
+
+from __future__ import annotations
+
+import re
+
+# factor to SI, by unit symbol; grouped by dimension
+_UNITS = {
+    "length": {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9, "cm": 1e-2,
+               "in": 0.0254, "mil": 2.54e-5},
+    "force": {"N": 1.0, "kN": 1e3, "mN": 1e-3, "lbf": 4.4482216152605, "lb": 4.4482216152605,
+              "kip": 4448.2216152605, "kips": 4448.2216152605},
+    "pressure": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "psi": 6894.757293168},
+    "time": {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0},
+    "stiffness": {"N/m": 1.0, "N/mm": 1e3, "N/um": 1e6, "N/µm": 1e6},
+    "frequency": {"Hz": 1.0, "kHz": 1e3, "rad/s": 1.0},
+    "energy": {"J": 1.0, "mJ": 1e-3, "uJ": 1e-6, "µJ": 1e-6},
+    "dimensionless": {"-": 1.0, "": 1.0, "1": 1.0},
+}
+
+_NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S*)\s*$")
+
+
+def unit_factor(unit: str, kind: str | None = None) -> float:
+    """SI factor of ``unit`` (e.g. ``"um"`` -> 1e-6), optionally of a given ``kind``.
+
+    Parameters
+    ----------
+    unit : str
+        Unit symbol, such as ``"mm"``, ``"N"``, ``"GPa"``, ``"in"``, ``"kip"``.
+    kind : str, optional
+        One of ``length``, ``force``, ``pressure``, ``time``, ``stiffness``,
+        ``frequency``, ``energy``, ``dimensionless``; the unit must be of it.
+
+    Raises
+    ------
+    ValueError
+        Unknown unit, or a unit of another kind (the message lists the known ones).
+    """
+    kinds = [kind] if kind else list(_UNITS)
+    if kind is not None and kind not in _UNITS:
+        raise ValueError(f"kind must be one of {sorted(_UNITS)}, got {kind!r}")
+    for k in kinds:
+        if unit in _UNITS[k]:
+            return _UNITS[k][unit]
+    known = ", ".join(u for k in kinds for u in _UNITS[k] if u)
+    what = f"{kind} unit" if kind else "unit"
+    raise ValueError(f"unknown {what} {unit!r}; expected one of: {known}")
+
+
+def parse_quantity(text, kind: str, *, name: str = "value", default_unit: str | None = None) -> float:
+    """Parse ``"10mm"`` (or a bare number with ``default_unit``) into an SI float.
+
+    Parameters
+    ----------
+    text : str or float
+        The quantity: a number followed by a unit symbol, spaces allowed.
+    kind : str
+        Dimension expected (see :func:`unit_factor`).
+    name : str
+        What the quantity is, for error messages (e.g. ``"--length"``).
+    default_unit : str, optional
+        Unit assumed for a bare number; without it a bare number is SI.
+    """
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
+        return float(text) * (unit_factor(default_unit, kind) if default_unit else 1.0)
+    match = _NUMBER.match(str(text))
+    if not match:
+        raise ValueError(f"{name}: cannot read {text!r} as a number with a {kind} unit (e.g. '10mm')")
+    number, unit = match.groups()
+    if not unit:
+        return float(number) * (unit_factor(default_unit, kind) if default_unit else 1.0)
+    try:
+        return float(number) * unit_factor(unit, kind)
+    except ValueError as exc:
+        raise ValueError(f"{name}: {exc}") from None
