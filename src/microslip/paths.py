@@ -303,7 +303,7 @@ LEVELS = (0.1, 0.325, 0.55, 0.775, 1.0)
 
 
 def default_family(reference, normal_load, *, ratios=RATIOS, phases_deg=PHASES_DEG, amplitudes=AMPLITUDES,
-                   levels=LEVELS, cycles: int = 3, steps_per_cycle: int = 360) -> list[Path]:
+                   levels=LEVELS, cycles: int = 2, steps_per_cycle: int = 360) -> list[Path]:
     """The family of variable-normal-load cycles the accuracy report runs.
 
     One path per combination of

@@ -39,6 +39,10 @@ from .profiles import SphereProfile, as_profile
 _APPROACH_RTOL = 1e-9
 
 
+_DECREASING = ("profile: its MDR profile g(x) decreases somewhere in the contact; the method needs a "
+               "non-decreasing g (an indenter whose contact grows with the load)")
+
+
 class LoadLimitError(ValueError):
     """An MDR model was asked for an approach (load) beyond what it was built for."""
 
@@ -126,9 +130,11 @@ def contact_radius(profile, E_star: float, normal_load: float) -> float:
         return 2.0 * E_star * (a * float(profile.mdr(a)) - 0.5 * a * float(np.dot(weights, profile.mdr(x))))
 
     hi = 1e-3 * profile.scale
-    for _ in range(200):
+    for _ in range(80):
         if force(hi) >= load:
             break
+        if float(profile.mdr(2.0 * hi)) < float(profile.mdr(hi)):
+            raise ValueError(_DECREASING)
         hi *= 2.0
     else:  # pragma: no cover - only for profiles that never carry the load
         raise ValueError(f"normal_load: the profile does not carry {load:g} N at any contact radius up to {hi:g} m")
@@ -191,8 +197,7 @@ def mdr(reference, *, max_load, elements: int = 2000, profile=None) -> MDRModel:
     x = (np.arange(J) + 0.5) * dx
     gaps = np.asarray(profile.mdr(x), dtype=float)
     if np.any(np.diff(gaps) < 0):
-        raise ValueError("profile: its MDR profile g(x) decreases somewhere in 0..a; "
-                         "the method needs a non-decreasing profile (a convex-ish indenter)")
+        raise ValueError(_DECREASING)
     return MDRModel(kt=np.full(J, 2.0 * G_P * dx), kn=np.full(J, 2.0 * E_star * dx), gaps=gaps,
                     mu=float(reference.mu), max_load=load, max_approach=float(profile.mdr(a)),
                     contact_radius=a, profile=profile)

@@ -112,6 +112,10 @@ class AxisymmetricProfile:
     slope : callable, optional
         ``f'(r)`` (-). Default: a central finite difference of ``shape``
         with step ``1e-6 * scale`` (the profile is taken as even in ``r``).
+    breaks : sequence of float, optional
+        Radii (m) where ``f'`` jumps or has a kink; the quadrature splits
+        there (without them it still converges, more slowly, and SciPy may
+        warn).
 
     Examples
     --------
@@ -123,6 +127,7 @@ class AxisymmetricProfile:
     shape: Callable
     scale: float
     slope: Callable | None = None
+    breaks: tuple = ()
 
     def __post_init__(self):
         if not callable(self.shape):
@@ -130,6 +135,8 @@ class AxisymmetricProfile:
         if self.slope is not None and not callable(self.slope):
             raise TypeError(f"slope must be a callable f'(r) or None, got {type(self.slope).__name__}")
         object.__setattr__(self, "scale", _checks.positive_scalar("scale", self.scale))
+        breaks = _checks.positive_array("breaks", self.breaks, ndim=1)
+        object.__setattr__(self, "breaks", tuple(float(b) for b in np.sort(breaks)))
 
     def height(self, r):
         """Height ``f(|r|)`` (m) at radius ``r`` (m)."""
@@ -156,8 +163,9 @@ class AxisymmetricProfile:
             if xk == 0.0:
                 out[k] = 0.0
                 continue
+            inner = [float(np.arcsin(b / xk)) for b in self.breaks if b < xk]
             value, _ = integrate.quad(lambda th: float(self._slope(xk * np.sin(th))), 0.0, np.pi / 2,
-                                      limit=200, epsabs=0.0, epsrel=1e-10)
+                                      points=inner or None, limit=200, epsabs=0.0, epsrel=1e-10)
             if not np.isfinite(value):
                 raise ValueError(f"shape: the slope of the profile is not finite below r = {xk:.6g} m")
             out[k] = xk * value
