@@ -313,7 +313,8 @@ class AccuracyReport:
         rows = []
         for name, label in METRICS.items():
             w, k = self.worst(name)
-            rows.append((label, w, float(np.nanmedian(np.abs(self.metric(name)))),
+            v = np.abs(self.metric(name))
+            rows.append((label, w, float(np.median(v[~np.isnan(v)])) if np.any(~np.isnan(v)) else float("nan"),
                          self.paths[k].label if k >= 0 else ""))
         return rows
 
@@ -354,23 +355,23 @@ class AccuracyReport:
                                                               "metrics relative to the reference model")
 
     def threshold_amplitude(self, limit: float = 0.10) -> float:
-        """Smallest amplitude factor at and above which every path's ``|energy_error| <= limit``.
+        """Smallest amplitude factor at and above which every path has ``|energy_error| <= limit``.
 
-        ``nan`` when even the largest amplitude exceeds it. Uses the ``amplitude``
-        parameter of the paths (the default family's factor of the gross-slip
-        displacement at the path's lowest load).
+        Paths that shake down in the reference (no energy error defined) are
+        ignored. ``nan`` when even the largest amplitude exceeds the limit.
+        Uses the ``amplitude`` parameter of the paths (the default family's
+        multiple of the gross-slip displacement at the path's lowest load).
         """
         limit = _checks.positive_scalar("limit", limit)
         amp = self.param("amplitude")
         err = np.abs(self.energy_error)
-        levels = np.unique(amp[~np.isnan(amp)])
-        ok = [a for a in levels if np.all(np.nan_to_num(err[amp == a], nan=np.inf) <= limit)]
-        bad_above = [a for a in levels if not np.all(np.nan_to_num(err[amp == a], nan=np.inf) <= limit)]
-        if not ok:
-            return float("nan")
-        last_bad = max(bad_above) if bad_above else -np.inf
-        good = [a for a in ok if a > last_bad]
-        return float(min(good)) if good else float("nan")
+        answer = float("nan")
+        for a in np.unique(amp[~np.isnan(amp)])[::-1]:
+            e = err[(amp == a) & ~np.isnan(err)]
+            if e.size and e.max() > limit:
+                break
+            answer = float(a)
+        return answer
 
     # -- figures ------------------------------------------------------------
     def plot(self, metrics=("energy_error", "force_difference")):
@@ -398,7 +399,7 @@ class AccuracyReport:
                 for a_i, a in enumerate(amps):
                     for r_i, r in enumerate(ratios):
                         sel = (amp == a) & (ratio == r) & ((phase == ph) | (r == 0))
-                        if sel.any():
+                        if np.any(sel & ~np.isnan(v)):
                             grid[r_i, a_i] = np.nanmax(v[sel])
                 ax = axes[i, j]
                 im = ax.imshow(grid, origin="lower", aspect="auto", cmap="magma_r",
@@ -431,7 +432,7 @@ class AccuracyReport:
             _, ax = plt.subplots(figsize=(5.5, 4))
         levels = np.unique(amp[~np.isnan(amp)])
         err = np.abs(self.energy_error) * 100
-        worst = [np.nanmax(err[amp == a]) for a in levels]
+        worst = [np.nanmax(err[amp == a]) if np.any(~np.isnan(err[amp == a])) else np.nan for a in levels]
         ax.loglog(levels, worst, "o-", label=label, **kwargs)
         ax.axhline(10, color="0.5", ls=":", lw=1)
         ax.set_xlabel("tangential amplitude t_a / t_gs(N_min) (-)")
