@@ -406,14 +406,17 @@ class AccuracyReport:
                                norm=_log_norm(grid))
                 for (r_i, a_i), val in np.ndenumerate(grid):
                     if np.isfinite(val):
-                        ax.text(a_i, r_i, f"{val:.2g}", ha="center", va="center", fontsize=6.5,
+                        ax.text(a_i, r_i, f"{val:.0f}" if val >= 9.5 else f"{val:.2g}", ha="center", va="center",
+                                fontsize=6.5,
                                 color="white" if val > np.nanpercentile(grid, 60) else "black")
                 ax.set_xticks(range(amps.size), [f"{a:g}" for a in amps], fontsize=7)
                 ax.set_yticks(range(ratios.size), [f"{r:g}" for r in ratios], fontsize=7)
                 ax.set_xlabel("t_a / t_gs(N_min) (-)")
                 ax.set_ylabel("N_a / N_m (-)")
-                ax.set_title(f"|{name}| (%), φ = {ph:g}°", fontsize=9)
+                ax.set_title(f"worst |{name}| (%), φ = {ph:g}°", fontsize=9)
                 fig.colorbar(im, ax=ax, shrink=0.85)
+        fig.suptitle("worst over the load levels; blank: the reference shakes down (no energy error defined)",
+                     fontsize=9)
         return fig
 
     def plot_amplitude(self, ax=None, *, label: str | None = None, **kwargs):

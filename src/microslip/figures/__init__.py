@@ -14,7 +14,9 @@ Every module in :data:`SECTIONS` follows one contract:
     the plotted data, written as CSV;
 ``error_rows(data) -> list``
     rows ``(quantity, discrete, continuous, error %, bound)`` of the
-    report's error table (may be empty).
+    report's error table (may be empty);
+``tables(data) -> list`` (optional)
+    extra tables ``(caption, headers, rows)`` shown under the figure.
 """
 
 from . import fig2a
