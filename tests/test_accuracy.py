@@ -160,3 +160,54 @@ def test_bad_input(reference, call, exc, message):
 def test_load_beyond_the_reference_is_refused(reference):
     with pytest.raises(ValueError, match="max_load = 37.5 N this MDR model was built for"):
         accuracy(J4, reference, paths.loop(SPHERE, 40.0, 1e-7))
+
+
+def test_cli_accuracy(tmp_path, capsys):
+    from microslip.cli import main
+
+    model = tmp_path / "j4.json"
+    J4.save(model)
+    out = tmp_path / "acc"
+    status = main(["accuracy", str(model), "--out", str(out), "--mdr-elements", "200", "--steps-per-cycle", "16",
+                   "--min-load", "7.5N", "--quiet"])
+    assert status == 0
+    printed = capsys.readouterr().out
+    assert "all paths:" in printed and "paths with N >= 7.5 N" in printed and "450 paths" in printed
+    for name in ("accuracy.csv", "summary.txt", "accuracy-maps.png", "accuracy-amplitude.png"):
+        assert (out / name).stat().st_size > 0
+    assert (out / "summary.txt").read_text().strip().splitlines()[-1] == printed.strip().splitlines()[-1]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["missing.json"], "model file 'missing.json' does not exist"),
+    (["{model}", "--mdr-elements", "0"], "--mdr-elements must be an integer >= 1, got 0"),
+    (["{model}", "--steps-per-cycle", "4"], "--steps-per-cycle must be an integer >= 8, got 4"),
+])
+def test_cli_accuracy_errors(tmp_path, capsys, args, message):
+    from microslip.cli import main
+
+    model = tmp_path / "j4.json"
+    J4.save(model)
+    assert main(["accuracy"] + [a.format(model=model) for a in args] + ["--quiet"]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_reproduce_sections(tmp_path):
+    """The three accuracy sections of 'microslip reproduce' run, and their Markdown tables stay well formed."""
+    from microslip.figures import accuracy as acc_section
+    from microslip.figures import accuracy_amplitude, accuracy_sweep, reproduce
+
+    reproduce(tmp_path, sections=[acc_section, accuracy_sweep, accuracy_amplitude], progress=False)
+    md = (tmp_path / "report.md").read_text()
+    for name in ("accuracy", "accuracy_sweep", "accuracy_amplitude"):
+        assert (tmp_path / f"{name}.png").exists() and (tmp_path / f"{name}.csv").exists()
+    assert "smallest J with both worst errors <= 2 %, optimal points | 13 |" in md
+    table = [line for line in md.splitlines() if line.startswith("|")]
+    header_cells = {}
+    for line in table:  # every row of a table has as many cells as its header
+        if line.startswith("|---"):
+            continue
+        cells = line.count("|")
+        header_cells.setdefault(cells, 0)
+        header_cells[cells] += 1
+    assert set(header_cells) <= {3, 5, 6}, header_cells

@@ -145,4 +145,36 @@ def test_stored_optimal_points_meet_the_target(paper_problem):
 
 
 #: smallest J meeting 2 % / 2 % with the stored optimised points (README, "Accuracy" section)
-STORED_SMALLEST = 12
+STORED_SMALLEST = 13
+
+
+def test_cli_target_elements(tmp_path, capsys):
+    import json
+
+    from microslip import MicroslipModel
+    from microslip.cli import main
+
+    out = tmp_path / "opt.json"
+    assert main(["target", "--elements", "2", "-o", str(out), "--quiet"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    model = MicroslipModel.load(out)
+    assert model.elements == 2 and summary["elements"] == 2 and len(summary["points_um"]) == 2
+    assert summary["meets_target"] is False  # two elements are far from 2 %
+
+
+def test_cli_target_sweep_reusing_points(tmp_path, capsys):
+    from microslip.cli import main
+
+    assert main(["target", "--sweep", "2-3", "--reuse-points", "--out", str(tmp_path), "--quiet"]) == 0
+    printed = capsys.readouterr().out
+    assert "smallest J meeting the target with optimal points" in printed
+    assert (tmp_path / "sweep.csv").exists() and (tmp_path / "sweep.png").exists()
+
+
+@pytest.mark.parametrize("args", [["--load-range", "37.5N"], ["--sweep", "0-3"], ["--sweep", "a"]])
+def test_cli_target_bad_options(args, capsys):
+    from microslip.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["target"] + args)
+    assert "expected" in capsys.readouterr().err

@@ -31,12 +31,12 @@ from ._io import write_csv
 from ._progress import Progress
 from .paths import Path
 
-#: the metrics, their labels and whether their sign matters when looking for the worst
+#: the metrics and their labels (no '|', which would break Markdown tables)
 METRICS = {
-    "energy_error": "energy per cycle, W/W_ref - 1",
-    "peak_error": "peak |T|, max|T|/max|T_ref| - 1",
-    "force_difference": "max |T - T_ref| / max|T_ref|",
-    "normal_difference": "mean (N - N_ref) / mean N_ref",
+    "energy_error": "energy per cycle: W/W_ref - 1",
+    "peak_error": "peak force: max abs T / max abs T_ref - 1",
+    "force_difference": "force: max abs(T - T_ref) / max abs T_ref",
+    "normal_difference": "normal force: mean(N - N_ref) / mean N_ref",
 }
 
 #: reference dissipation below this fraction of the elastic work scale counts as none (round-off is ~1e-15)
@@ -309,7 +309,7 @@ class AccuracyReport:
         return float(v[k]), k
 
     def summary(self) -> list[tuple]:
-        """Rows ``(metric, worst, median |.|, path of the worst)``; values as fractions."""
+        """Rows ``(metric, worst, median of the magnitudes, path of the worst)``; values as fractions."""
         rows = []
         for name, label in METRICS.items():
             w, k = self.worst(name)
@@ -320,9 +320,9 @@ class AccuracyReport:
 
     def summary_text(self) -> str:
         """The summary as a plain-text table (values in %)."""
-        lines = [f"{'metric':<36} {'worst %':>9} {'median |.| %':>13}  where the worst occurs"]
+        lines = [f"{'metric':<44} {'worst %':>9} {'median abs %':>13}  where the worst occurs"]
         for label, w, med, where in self.summary():
-            lines.append(f"{label:<36} {100 * w:>9.3f} {100 * med:>13.3f}  {where}")
+            lines.append(f"{label:<44} {100 * w:>9.3f} {100 * med:>13.3f}  {where}")
         lines.append(f"{len(self)} paths")
         sd = self.shakedown
         if sd.any():

@@ -32,12 +32,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from . import _checks
-
-
-def _frozen(a) -> np.ndarray:
-    a = np.array(a, dtype=np.float64, copy=True)
-    a.setflags(write=False)
-    return a
+from .model import _frozen
 
 
 @dataclass(frozen=True, eq=False)

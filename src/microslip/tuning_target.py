@@ -222,6 +222,12 @@ def _log_spacings(u):
     return d[:-1] - d[-1]
 
 
+def _resample(u, J):
+    """Fractions of another J resampled to J points (same shape of the spacing)."""
+    x = np.arange(len(u) + 1) / len(u)
+    return np.interp(np.arange(1, J + 1) / J, x, np.concatenate([[0.0], u]))
+
+
 def _starts(J):
     """Candidate fractions: power and offset warps of even spacing (even displacement is p = 1, c = 0)."""
     j = np.arange(1, J + 1)
@@ -231,7 +237,7 @@ def _starts(J):
 
 
 def optimal_points(problem: TargetProblem, elements: int, *, start=None, maxfev: int | None = None,
-                   restarts: int = 2) -> TargetTuning:
+                   restarts: int = 3) -> TargetTuning:
     """Optimise the ``elements`` tuning points of ``problem`` (see the module docstring).
 
     Parameters
@@ -239,12 +245,12 @@ def optimal_points(problem: TargetProblem, elements: int, *, start=None, maxfev:
     problem : TargetProblem
     elements : int
         ``J >= 1``.
-    start : array_like, shape (J,), optional
-        Fractions of ``t_gs(N_hi)`` to start from (increasing, last 1);
-        default the best of a few warps of even spacing.
+    start : array_like, shape (J,), or list of them, optional
+        Fractions of ``t_gs(N_hi)`` to start from (increasing, last 1); the
+        best of these and of a few warps of even spacing is the start.
     maxfev : int, optional
         Evaluations per Nelder--Mead round (default ``150 J``).
-    restarts : int, default 2
+    restarts : int, default 3
         Nelder--Mead rounds (each restarts the simplex at the best point).
 
     Returns
@@ -269,13 +275,18 @@ def optimal_points(problem: TargetProblem, elements: int, *, start=None, maxfev:
     if J == 1:
         model, pts = problem.tune_fractions([1.0])
         return problem.result(model, pts, "optimal", 1)
+    candidates = list(_starts(J))
     if start is None:
-        candidates = list(_starts(J))
+        given = []
+    elif isinstance(start, (list, tuple)) and start and np.ndim(start[0]) == 1:
+        given = list(start)  # several starts
     else:
-        u0 = _checks.positive_array("start", start, ndim=1)
+        given = [start]
+    for u0 in given:
+        u0 = _checks.positive_array("start", u0, ndim=1)
         if u0.size != J:
             raise ValueError(f"start must have {J} fractions, got {u0.size}")
-        candidates = [u0 / u0[-1]]
+        candidates.append(u0 / u0[-1])
     best = min(candidates, key=score)
     z = _log_spacings(best)
     for _ in range(restarts):
@@ -477,7 +488,8 @@ def element_sweep(problem: TargetProblem, elements=range(2, 33), *, spacings=SPA
                 model, pts = problem.tune_fractions(known[J])
                 res = problem.result(model, pts, "optimal")
             else:
-                res = optimal_points(problem, J, **options)
+                previous = [_resample(u, J) for u in found.values()][-1:]
+                res = optimal_points(problem, J, start=previous or None, **options)
             energy[s][k], force[s][k] = res.energy_error, res.force_difference
             if s == "optimal":
                 found[int(J)] = res.points.t / res.points.t[-1]

@@ -16,7 +16,7 @@ from ..tuning_target import TargetProblem
 from .accuracy_common import problem, stored_points, sweep
 
 NAME = "accuracy_amplitude"
-CAPTION = ("Energy error against tangential amplitude (beyond the paper): worst |W/W_ref - 1| over the "
+CAPTION = ("Energy error against tangential amplitude (beyond the paper): worst abs(W/W_ref - 1) over the "
            "variable-load family with N >= 0.2 N_tot, for the paper's J = 4 model and the arrays of the "
            "smallest J meeting the target")
 
@@ -27,12 +27,14 @@ def _models(case):
     s = sweep(case)
     known = stored_points(case)
     for spacing in s.energy_error:
-        J = s.smallest(spacing) or int(s.elements[-1])
+        J = s.smallest(spacing)
+        note = "" if J else " (none meets the target)"
+        J = J or int(s.elements[-1])
         if spacing == "optimal":
             model, _ = pb.tune_fractions(known[J])
         else:
             model = pb.tune_spacing(spacing, J).model
-        out.append((f"J = {J}, {spacing} points", model))
+        out.append((f"J = {J}, {spacing} points{note}", model))
     return out
 
 
@@ -48,7 +50,7 @@ def plot(data):
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for label, rep in data["reports"]:
         rep.plot_amplitude(ax, label=label)
-    ax.set_title("worst |energy error| over the family (N >= 0.2 N_tot)", fontsize=10)
+    ax.set_title("worst energy error magnitude over the family (N >= 0.2 N_tot)", fontsize=10)
     fig.tight_layout()
     return fig
 
@@ -70,7 +72,7 @@ def tables(data) -> list:
     for label, rep in data["reports"]:
         a = rep.threshold_amplitude(0.10)
         rows.append([label, "exceeds 10 % at every amplitude" if np.isnan(a) else f"{a:g}"])
-    return [("smallest amplitude (multiple of t_gs(N_min)) from which every path's |energy error| <= 10 %",
+    return [("smallest amplitude (multiple of t_gs(N_min)) from which every path's energy error is within 10 %",
              ["model", "t_a / t_gs(N_min)"], rows)]
 
 
