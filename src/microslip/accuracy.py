@@ -23,6 +23,7 @@ All are fractions (the report shows them in %).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -68,17 +69,19 @@ class PathBatch:
         self.t = np.concatenate([np.append(p.t, 0.0) for p in self.paths])
         self._n = np.concatenate([np.append(p.n, 0.0) for p in self.paths])
         self._sep = self.starts + sizes  # separator samples
-        steady = np.zeros(self.t.size, dtype=bool)
-        weight = np.zeros(self.t.size)  # trapezoid weights of each sample over its steady part
+        # the steady samples, gathered: index into the batch, trapezoid weights, first of each path
+        index, weight, first = [], [], [0]
         for p, k0 in zip(self.paths, self.starts):
-            a, b = k0 + p.steady.start, k0 + p.steady.stop
-            steady[a:b] = True
-            dt = np.diff(self.t[a:b])
-            weight[a:b - 1] += 0.5 * dt
-            weight[a + 1:b] += 0.5 * dt
-        self.steady = steady
-        self.weight = weight
-        self.count = np.add.reduceat(steady.astype(float), self.starts)
+            t = p.t[p.steady]
+            w = np.zeros(t.size)
+            w[:-1] += 0.5 * np.diff(t)
+            w[1:] += 0.5 * np.diff(t)
+            index.append(k0 + np.arange(p.steady.start, p.steady.stop))
+            weight.append(w)
+            first.append(first[-1] + t.size)
+        self.steady_index = np.concatenate(index)
+        self.steady_weight = np.concatenate(weight)
+        self.steady_starts = np.array(first[:-1])
 
     def __len__(self) -> int:
         return len(self.paths)
@@ -105,9 +108,18 @@ class PathBatch:
         return T, N
 
     def per_path(self, values, how: str = "sum") -> np.ndarray:
-        """Reduce ``values`` (shape ``(samples,)``, already zero outside the steady parts) per path."""
+        """Sum (``how='sum'``) or maximum (``'max'``) per path of ``values`` on the steady samples.
+
+        ``values`` has shape ``(steady samples,)``: a batch array indexed with ``steady_index``.
+        """
         op = np.add if how == "sum" else np.maximum
-        return op.reduceat(values, self.starts)
+        return op.reduceat(values, self.steady_starts)
+
+    def steady_metrics(self, T, N):
+        """``(energy, peak |T|, sum N)`` per path over the steady parts of batch forces ``T``, ``N``."""
+        Ts = T[self.steady_index]
+        return (self.per_path(self.steady_weight * Ts), self.per_path(np.abs(Ts), "max"),
+                self.per_path(N[self.steady_index]))
 
     def split(self, values) -> list:
         """``values`` over the batch cut back into one array per path."""
@@ -135,6 +147,11 @@ class ReferenceRun:
     @property
     def paths(self) -> tuple:
         return self.batch.paths
+
+    @cached_property
+    def metrics(self):
+        """``(energy, peak |T|, sum N)`` per path over the steady parts (J, N, N)."""
+        return self.batch.steady_metrics(self.T, self.N)
 
 
 def reference_run(reference_model, paths, *, progress: Progress | None = None, chunks: int = 1) -> ReferenceRun:
@@ -208,17 +225,16 @@ def accuracy(model, reference_model, paths=None, *, progress: bool = False) -> "
         ref = reference_run(reference_model, paths, progress=bar, chunks=4)
     b = ref.batch
     T, N = b.run(model, chunks=4 if progress else 1, progress=bar)
-    absT, absTr = np.where(b.steady, np.abs(T), 0.0), np.where(b.steady, np.abs(ref.T), 0.0)
-    peak_ref = b.per_path(absTr, "max")
+    energy, peak, sum_N = b.steady_metrics(T, N)
+    energy_ref, peak_ref, sum_N_ref = ref.metrics
+    k = b.steady_index
     with np.errstate(invalid="ignore", divide="ignore"):
-        force = b.per_path(np.where(b.steady, np.abs(T - ref.T), 0.0), "max") / peak_ref
-        normal = b.per_path(np.where(b.steady, N - ref.N, 0.0)) / b.per_path(np.where(b.steady, ref.N, 0.0))
+        force = b.per_path(np.abs(T[k] - ref.T[k]), "max") / peak_ref
+        normal = (sum_N - sum_N_ref) / sum_N_ref
     if bar is not None:
         bar.done("accuracy measured")
-    return AccuracyReport(paths=b.paths, energy=b.per_path(b.weight * T),
-                          energy_reference=b.per_path(b.weight * ref.T),
-                          peak=b.per_path(absT, "max"), peak_reference=peak_ref, force_difference=force,
-                          normal_difference=normal)
+    return AccuracyReport(paths=b.paths, energy=energy, energy_reference=energy_ref, peak=peak,
+                          peak_reference=peak_ref, force_difference=force, normal_difference=normal)
 
 
 @dataclass(frozen=True, eq=False)
