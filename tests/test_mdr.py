@@ -141,12 +141,12 @@ def test_lowering_n_at_constant_T_erases_memory(arrays):
             lo, hi = (mid, hi) if m.trial(state, mid, n).T < TA else (lo, mid)
         t = 0.5 * (lo + hi)
         state = m.trial(state, t, n).state
-    # the displacement is the virgin one at N2 (memory of N erased); measured error 2e-7 of it
+    # the displacement is the virgin one at N2 (memory of N erased); measured error 2.6e-7 of it
     assert t == pytest.approx(float(SPHERE.backbone_displacement(TA, N2)), rel=2e-6)
     # and raising t from there follows the virgin curve at N2
     more = np.linspace(t, 1.2 * float(SPHERE.gross_slip_displacement(N2)), 200)
     T = m.simulate(more, n2, state, per_element=False).T
-    assert np.max(np.abs(T - SPHERE.backbone(more, N2))) < 2e-6 * SPHERE.mu * N2
+    assert np.max(np.abs(T - SPHERE.backbone(more, N2))) < 2e-6 * SPHERE.mu * N2  # measured 2.0e-7
 
 
 @settings(max_examples=25, deadline=None)
