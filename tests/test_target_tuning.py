@@ -56,6 +56,8 @@ def test_optimised_points_beat_their_start_and_stay_a_paper_model(small):
     assert np.all(np.diff(res.points.t) > 0) and res.points.t[-1] == pytest.approx(
         float(SPHERE.gross_slip_displacement(37.5)))
     assert "spacing='optimal'" in repr(res)
+    ax = res.plot(SPHERE)
+    assert "t (µm)" in ax.get_xlabel() and "T (N)" in ax.get_ylabel()
 
 
 def test_tune_to_target_returns_an_optimised_model(small):

@@ -320,11 +320,25 @@ def default_family(reference, normal_load, *, ratios=RATIOS, phases_deg=PHASES_D
     normal_load : float
         The tuning load ``N_tot`` (N).
 
+    cycles : int, default 2
+        Cycles per path; the last is measured. The first cycle already
+        brings both the exact contact and the paper's array to their
+        periodic state (a third cycle repeats the second to round-off,
+        checked in ``tests/test_paths.py``).
+    steps_per_cycle : int, default 360
+        Samples per cycle.
+
     Returns
     -------
     list of Path
         Each with ``params`` ``ratio``, ``phase_deg``, ``level``,
         ``amplitude`` (the factor), ``N_m``, ``N_a``, ``t_a``.
+
+    Notes
+    -----
+    For a unidirectional ``t``, the phases ``phi`` and ``phi + 180°`` give
+    mirror-image steady cycles (``t -> -t`` half a cycle later), so their
+    metrics coincide.
     """
     N_tot = _checks.positive_scalar("normal_load", normal_load)
     ratios = _checks.positive_array("ratios", ratios, ndim=1, min_size=1, allow_zero=True)

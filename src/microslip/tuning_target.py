@@ -87,6 +87,38 @@ class TargetTuning:
     def elements(self) -> int:
         return self.model.elements
 
+    def plot(self, reference, ax=None):
+        """The reference backbone at the tuning load, the model's, and the tuning points.
+
+        Parameters
+        ----------
+        reference : Sphere or similar
+            The reference it was tuned on.
+        ax : matplotlib Axes, optional
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 4))
+        N = self.points.normal_load
+        t = np.linspace(0.0, 1.2 * self.points.t[-1], 400)
+        ax.plot(t * 1e6, reference.backbone(t, N), "k-", lw=2, label="reference backbone")
+        ax.plot(t * 1e6, self.model.backbone(t, self.points.approach), "--", color="tab:red",
+                label=f"tuned array, J = {self.elements}")
+        ax.plot(self.points.t * 1e6, self.points.T, "s", mfc="none", color="tab:green",
+                label=f"{self.spacing} points")
+        ax.set_xlabel("tangential displacement t (µm)")
+        ax.set_ylabel("tangential force T (N)")
+        ax.set_title(f"N = {N:g} N: worst energy error {100 * self.energy_error:.3g} %, "
+                     f"force {100 * self.force_difference:.3g} %", fontsize=9)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        return ax
+
     def __repr__(self) -> str:
         return (f"TargetTuning(J={self.elements}, spacing={self.spacing!r}, "
                 f"energy_error={100 * self.energy_error:.3g} %, "
@@ -237,7 +269,7 @@ def _starts(J):
 
 
 def optimal_points(problem: TargetProblem, elements: int, *, start=None, maxfev: int | None = None,
-                   restarts: int = 3) -> TargetTuning:
+                   restarts: int = 3, progress: bool = False) -> TargetTuning:
     """Optimise the ``elements`` tuning points of ``problem`` (see the module docstring).
 
     Parameters
@@ -252,6 +284,8 @@ def optimal_points(problem: TargetProblem, elements: int, *, start=None, maxfev:
         Evaluations per Nelder--Mead round (default ``150 J``).
     restarts : int, default 3
         Nelder--Mead rounds (each restarts the simplex at the best point).
+    progress : bool, default False
+        Show progress (one line per round) on standard error.
 
     Returns
     -------
@@ -287,13 +321,17 @@ def optimal_points(problem: TargetProblem, elements: int, *, start=None, maxfev:
         if u0.size != J:
             raise ValueError(f"start must have {J} fractions, got {u0.size}")
         candidates.append(u0 / u0[-1])
+    bar = Progress(restarts + 1, enabled=progress)
+    bar.step(f"J = {J}: {len(candidates)} starting spacings")
     best = min(candidates, key=score)
     z = _log_spacings(best)
-    for _ in range(restarts):
+    for k in range(restarts):
+        bar.step(f"J = {J}: Nelder-Mead round {k + 1} of {restarts} (up to {maxfev} models)")
         res = optimize.minimize(lambda zz: score(_fractions(zz)), z, method="Nelder-Mead",
                                 options={"maxfev": maxfev, "xatol": 1e-5, "fatol": 1e-6, "adaptive": True})
         z = res.x
     model, pts = problem.tune_fractions(_fractions(z))
+    bar.done(f"J = {J}: {count} models evaluated")
     return problem.result(model, pts, "optimal", count)
 
 

@@ -88,7 +88,7 @@ def run(args) -> int:
     if args.sweep is not None:
         return _sweep(args, problem)
     if args.elements is not None:
-        res = optimal_points(problem, args.elements)
+        res = optimal_points(problem, args.elements, progress=not args.quiet)
     else:
         try:
             res = smallest_elements(reference, args.load_range, problem=problem, max_elements=args.max_elements,

@@ -1,5 +1,7 @@
 """Continuous reference contacts, the exact answers a tuned array is measured against."""
 
+from .mdr import LoadLimitError, MDRModel, mdr
+from .profiles import AxisymmetricProfile, RoundedPunch, SphereProfile
 from .sphere import Sphere
 
-__all__ = ["Sphere"]
+__all__ = ["AxisymmetricProfile", "LoadLimitError", "MDRModel", "RoundedPunch", "Sphere", "SphereProfile", "mdr"]
