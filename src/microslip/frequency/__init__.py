@@ -1,0 +1,34 @@
+"""Frequency domain: alternating frequency--time contact forces and harmonic balance.
+
+* :func:`aft`, :func:`aft_batch` -- periodic forces of microslip contacts from
+  the Fourier coefficients of their displacements, with exact Jacobians;
+* :class:`Structure` -- a linear structure (dense or sparse ``M, C, K``) with
+  contacts attached to linear combinations of its degrees of freedom;
+* :func:`frequency_response` -- harmonic balance with pseudo-arclength
+  continuation, returning a :class:`FrequencyResponse`;
+* :func:`static_solution` -- the static equilibrium under preloads.
+"""
+
+from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
+from .continuation import ConvergenceError, StepControl
+from .hbm import HarmonicBalance
+from .response import FrequencyResponse, frequency_response, static_solution
+from .structure import Contact, Structure
+
+__all__ = [
+    "AFTResult",
+    "Contact",
+    "ConvergenceError",
+    "FrequencyResponse",
+    "HarmonicBalance",
+    "NotPeriodicError",
+    "StepControl",
+    "Structure",
+    "aft",
+    "aft_batch",
+    "cycle_work",
+    "default_samples",
+    "frequency_response",
+    "static_solution",
+    "synthesise",
+]
