@@ -6,13 +6,18 @@ Works on any problem ``R(x, omega) = 0`` that provides
 All arclength geometry is done in scaled variables ``(x / x_scale, omega / omega_scale)``
 so that displacements (µm) and frequencies (rad/s) weigh alike.
 
-Predictor: the unit tangent of the curve. Corrector: Newton on ``R = 0``
-plus the hyperplane orthogonal to the tangent through the predicted point,
-so turning points (folds in ``omega``) pass. Step control: the step grows
-when the corrector needs few iterations, shrinks when it needs many, and a
-step is refused (and halved) when the corrector fails or the tangent turns
-by more than ``max_angle`` (which keeps points dense where the curve bends,
-at peaks and folds).
+Predictor: along the secant through the last two points (the tangent at the
+first point). The contact forces are only piecewise smooth (each element
+that starts to slip or to open at one more time sample puts a kink in the
+curve), so the local tangent jumps from facet to facet while the secant
+follows the curve's shape at the scale of the step. Corrector: Newton on
+``R = 0`` plus the hyperplane orthogonal to the predictor through the
+predicted point, so turning points (folds in ``omega``) pass. Step control:
+the step grows when the corrector needs few iterations, shrinks when it
+needs many, and a step is refused (and halved) when the corrector fails or
+the secant turns by more than ``max_angle`` (which keeps points dense where
+the curve bends, at peaks and folds) -- unless halving does not reduce the
+turn, which marks a kink.
 """
 
 from __future__ import annotations
@@ -44,8 +49,8 @@ class StepControl:
 
     ds_initial: float = 0.02
     ds_min: float = 1e-7
-    ds_max: float = 0.1
-    max_angle: float = 0.15
+    ds_max: float = 0.05
+    max_angle: float = 0.1
     target_iterations: int = 3
     max_iterations: int = 12
     max_points: int = 5000
@@ -102,6 +107,26 @@ def _tangent(problem, Jx, R_omega, row, scale) -> np.ndarray:
     return z / np.linalg.norm(z)
 
 
+def _correct(problem, y_pred, tau, scale, r_scale, ctl):
+    """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``."""
+    yc = y_pred.copy()
+    step = np.inf
+    for it in range(ctl.max_iterations + 1):
+        R, Jx, Rw = problem.evaluate(yc[:-1], yc[-1])
+        res = np.linalg.norm(R) / r_scale
+        if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
+            return yc, it
+        if it == ctl.max_iterations or not np.isfinite(res):
+            break
+        g = np.append(R, tau @ ((yc - y_pred) / scale))
+        dz = problem.solve(_scaled_system(problem, Jx, Rw, tau, scale), -g)
+        if not np.all(np.isfinite(dz)):
+            break
+        yc = yc + dz * scale
+        step = float(np.max(np.abs(dz)))
+    return None, it
+
+
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
                  control: StepControl | None = None, callback=None):
     """Follow the solution curve of ``R(x, omega) = 0`` from ``omega_start`` to ``omega_end``.
@@ -147,40 +172,29 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
     ds = ctl.ds_initial
     while len(omegas) < ctl.max_points:
-        accepted = False
-        while not accepted:
+        refused_angle = np.inf  # turn at the last step refused for turning too much
+        while True:
             if ds < ctl.ds_min:
                 raise ConvergenceError(
                     f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
                     f"ds_min = {ctl.ds_min:g}")
-            y_pred = y + ds * tau * scale
-            yc = y_pred.copy()
-            ok = False
-            step = np.inf
-            for it in range(ctl.max_iterations + 1):
-                R, Jx, Rw = problem.evaluate(yc[:-1], yc[-1])
-                res = np.linalg.norm(R) / r_scale
-                if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
-                    ok = True
-                    break
-                if it == ctl.max_iterations or not np.isfinite(res):
-                    break
-                g = np.append(R, tau @ ((yc - y_pred) / scale))
-                dz = problem.solve(_scaled_system(problem, Jx, Rw, tau, scale), -g)
-                if not np.all(np.isfinite(dz)):
-                    break
-                yc = yc + dz * scale
-                step = float(np.max(np.abs(dz)))
-            if not ok:
+            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl)
+            if yc is None:
                 ds *= 0.5
                 continue
-            new_tau = _tangent(problem, Jx, Rw, tau, scale)
-            angle = float(np.arccos(np.clip(new_tau @ tau, -1.0, 1.0)))
-            if angle > ctl.max_angle and ds > ctl.ds_min * 2:
+            secant = (yc - y) / scale
+            secant /= np.linalg.norm(secant)
+            angle = float(np.arccos(np.clip(secant @ tau, -1.0, 1.0)))
+            # On a smooth curve the turn shrinks with the step; where it does not, the
+            # step crosses a kink (an element starts to slip or to open: the contact
+            # force is only piecewise smooth) and a smaller step would not help.
+            kink = angle > 0.75 * refused_angle
+            if angle > ctl.max_angle and ds > 2 * ctl.ds_min and not kink:
+                refused_angle = angle
                 ds *= 0.5
                 continue
-            accepted = True
-        y, tau = yc, new_tau
+            break
+        y, tau = yc, secant
         if not lo <= y[-1] <= hi:
             # left the range: end exactly on its edge (or stop if it turned back out)
             edge = hi if y[-1] > hi else lo
@@ -199,6 +213,7 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         if callback is not None:
             callback(float(y[-1]), len(omegas))
         # grow when the corrector was quick and the curve straight, shrink otherwise
-        factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(angle, 1e-12))
+        turn = 0.0 if kink else angle
+        factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(turn, 1e-12))
         ds = float(np.clip(ds * max(factor, 0.5), ctl.ds_min, ctl.ds_max))
     return np.array(xs), np.array(omegas), np.array(iters)
