@@ -363,15 +363,17 @@ def aft_reference(kt, kn, gaps, mu, xt, xn, Ns, max_periods=1000):
     e0 = np.eye(nbasis)[0]
     worst = 0
     for i in range(len(kt)):
+        # the return mapping of DESIGN.md divided by kt_i: slip when |t - s| > r = mu N_i / kt_i
+        rk = mu * kn[i] / kt[i]
         # static step from the virgin state: slider 0, gradient 0
         s, ds_t, ds_n = 0.0, zero.copy(), zero.copy()
-        Ni = kn[i] * max(xn[0] - gaps[i], 0.0)
-        if Ni == 0.0:
+        r = rk * max(xn[0] - gaps[i], 0.0)
+        if xn[0] <= gaps[i]:
             s, ds_t, ds_n = xt[0], e0.copy(), zero.copy()
-        elif abs(kt[i] * xt[0]) > mu * Ni:
+        elif abs(xt[0]) > r:
             sign = 1.0 if xt[0] > 0 else -1.0
-            s = xt[0] - sign * mu * Ni / kt[i]
-            ds_t, ds_n = e0.copy(), -sign * mu * kn[i] / kt[i] * e0
+            s = xt[0] - sign * r
+            ds_t, ds_n = e0.copy(), -sign * rk * e0
         periods = 0
         while True:
             start = (s, ds_t.copy(), ds_n.copy())
@@ -383,14 +385,14 @@ def aft_reference(kt, kn, gaps, mu, xt, xn, Ns, max_periods=1000):
                     Ti, dTt, dTn = 0.0, zero, zero
                     s, ds_t, ds_n = t[k], E[k].copy(), zero.copy()
                 else:
-                    trial = kt[i] * (t[k] - s)
-                    if abs(trial) > mu * Ni:  # slip
-                        sign = 1.0 if trial > 0 else -1.0
+                    r = rk * (n[k] - gaps[i])
+                    if abs(t[k] - s) > r:  # slip
+                        sign = 1.0 if t[k] > s else -1.0
                         Ti, dTt, dTn = sign * mu * Ni, zero, sign * mu * dNi
-                        s = t[k] - Ti / kt[i]
-                        ds_t, ds_n = E[k].copy(), -dTn / kt[i]
+                        s = t[k] - sign * r
+                        ds_t, ds_n = E[k].copy(), -sign * rk * E[k]
                     else:  # stick
-                        Ti, dTt, dTn = trial, kt[i] * (E[k] - ds_t), -kt[i] * ds_n
+                        Ti, dTt, dTn = kt[i] * (t[k] - s), kt[i] * (E[k] - ds_t), -kt[i] * ds_n
                 rows.append((Ti, dTt, dTn, Ni, dNi))
             periods += 1
             if s == start[0] and np.array_equal(ds_t, start[1]) and np.array_equal(ds_n, start[2]):
