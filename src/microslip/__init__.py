@@ -6,6 +6,7 @@ tangential stiffness, a normal stiffness and a normal gap, so the normal load
 shifts between elements as the normal approach changes. SI units throughout.
 """
 
+from .frequency import FrequencyResponse, Structure, frequency_response
 from .model import MicroslipModel, Response, State, Step
 from .reference import Sphere
 from .tuning import ContactReference, TuningError, TuningPoints, tune, tuning_points
@@ -14,13 +15,16 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ContactReference",
+    "FrequencyResponse",
     "MicroslipModel",
     "Response",
     "Sphere",
     "State",
     "Step",
+    "Structure",
     "TuningError",
     "TuningPoints",
+    "frequency_response",
     "tune",
     "tuning_points",
 ]

@@ -10,7 +10,7 @@ import argparse
 import importlib
 import sys
 
-COMMANDS = ["reproduce", "tune", "simulate"]
+COMMANDS = ["reproduce", "tune", "simulate", "frf"]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -206,6 +206,8 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 xs.append(x_edge)
                 omegas.append(edge)
                 iters.append(k)
+                if callback is not None:
+                    callback(edge, len(omegas))
             break
         xs.append(y[:-1].copy())
         omegas.append(float(y[-1]))
