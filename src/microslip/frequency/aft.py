@@ -222,8 +222,15 @@ def aft(model: MicroslipModel, t, n, *, samples: int | None = None,
         raise ValueError(f"t must be 1-D (2H+1 coefficients), got shape {t.shape}")
     if n.shape != t.shape:
         raise ValueError(f"n must have the same shape as t {t.shape}, got {n.shape}")
-    r = _run([model], t[None], n[None], H, samples, max_periods)
-    return AFTResult(r.T[0], r.N[0], r.dT_dt[0], r.dT_dn[0], r.dN_dn[0], int(r.periods[0]), r.samples)
+    Ns = check_samples(samples, H)
+    max_periods = _checks.positive_int("max_periods", max_periods)
+    nb = t.size
+    T, N = np.empty(nb), np.empty(nb)
+    dT_dt, dT_dn, dN_dn = np.empty((nb, nb)), np.empty((nb, nb)), np.empty((nb, nb))
+    periods = _aft.aft_contact(model.kt, model.kn, model.gaps, model.mu, t, n, *_aft.tables(H, Ns), max_periods,
+                               T, N, dT_dt, dT_dn, dN_dn)
+    check_periodic(periods, max_periods)
+    return AFTResult(T, N, dT_dt, dT_dn, dN_dn, int(periods), Ns)
 
 
 def aft_batch(models: Sequence[MicroslipModel], t, n, *, samples: int | None = None,

@@ -147,11 +147,6 @@ class HarmonicBalance:
         xn[:, 0] += self.n0
         return xt, xn
 
-    def contact_forces(self, x) -> tuple[np.ndarray, np.ndarray]:
-        """Coefficients of every contact's ``T`` and ``N`` (N), each ``(nc, 2H+1)`` (fresh arrays)."""
-        self._aft(x)
-        return self.FT.copy(), self.FN.copy()
-
     def _aft(self, x) -> None:
         if not self.nc:
             return
@@ -235,25 +230,32 @@ class HarmonicBalance:
         A[-1] = row
         return A
 
-    # -- energy -------------------------------------------------------------------
-    def energies(self, x, omega: float) -> dict:
-        """Work per cycle (J): of the excitation, dissipated by viscous damping and by each contact.
+    # -- quantities along a curve ------------------------------------------------------
+    def curve_quantities(self, xs, omegas) -> dict:
+        """Contact displacements and forces and the work per cycle at solutions ``xs`` ``(points, n)``.
 
-        Returns ``{"excitation": float, "viscous": float, "contacts": ndarray (nc,)}``.
-        With harmonic balance these balance exactly at a solution: the work
-        of the harmonics kept.
+        Returns a dict of arrays: ``t, n, T, N`` (m, N), shape ``(points, nc, 2H+1)``;
+        ``excitation``, ``viscous`` (J, ``(points,)``): work of the excitation and energy
+        dissipated by ``C`` per cycle; ``contacts`` (J, ``(points, nc)``): energy dissipated by
+        each contact. With harmonic balance these balance exactly at a solution (the work
+        of the harmonics kept).
         """
-        X = np.reshape(x, (self.nb, self.ndof))
-        work_ext = float(cycle_work(self.f_ext.T, X.T).sum())
+        xs = np.asarray(xs, dtype=float)
+        P = xs.shape[0]
+        X = xs.reshape(P, self.nb, self.ndof)
+        excitation = cycle_work(self.f_ext.T, X.transpose(0, 2, 1)).sum(axis=-1)
         # viscous: int q'^T C q' dtime = pi omega sum_h h^2 (a^T C a + b^T C b)
-        C = self.structure.C
-        visc = 0.0
-        for h in range(1, self.H + 1):
-            a, b = X[2 * h - 1], X[2 * h]
-            visc += np.pi * omega * h * h * float(a @ (C @ a) + b @ (C @ b))
-        contacts = np.zeros(self.nc)
-        if self.nc:
-            self._aft(x)
-            xt, xn = self.local(x)
-            contacts = cycle_work(self.FT, xt) + cycle_work(self.FN, xn)
-        return {"excitation": work_ext, "viscous": visc, "contacts": contacts}
+        V = X[:, 1:, :].reshape(-1, self.ndof)
+        quad = np.einsum("ki,ki->k", V, np.asarray((self.structure.C @ V.T).T)).reshape(P, 2 * self.H)
+        h2 = np.repeat(np.arange(1, self.H + 1) ** 2, 2)
+        viscous = np.pi * np.asarray(omegas) * (quad @ h2)
+        out = {"t": np.zeros((P, self.nc, self.nb)), "n": np.zeros((P, self.nc, self.nb)),
+               "T": np.zeros((P, self.nc, self.nb)), "N": np.zeros((P, self.nc, self.nb))}
+        for k in range(P):
+            if self.nc:
+                out["t"][k], out["n"][k] = self.local(xs[k])
+                self._aft(xs[k])
+                out["T"][k], out["N"][k] = self.FT, self.FN
+        out["contacts"] = cycle_work(out["T"], out["t"]) + cycle_work(out["N"], out["n"])
+        out["excitation"], out["viscous"] = excitation, viscous
+        return out

@@ -8,7 +8,7 @@ pseudo-arclength continuation (:mod:`~microslip.frequency.continuation`).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Mapping
 
 import numpy as np
@@ -320,8 +320,9 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
 
     xs, omegas, iters = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale, control=control,
                                      callback=tick)
+    result = _collect(hb, xs, omegas, iters)
     report.done(f"frequency response: {omegas.size} points")
-    return _collect(hb, xs, omegas, iters, time.perf_counter() - start)
+    return replace(result, elapsed=time.perf_counter() - start)
 
 
 def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> float:
@@ -337,21 +338,7 @@ def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> fl
     return best if best > 0 else max(float(np.max(np.abs(x_static))), 1e-12)
 
 
-def _collect(hb: HarmonicBalance, xs, omegas, iters, elapsed) -> FrequencyResponse:
-    points = omegas.size
-    nc, nb = hb.nc, hb.nb
-    ct = np.zeros((points, nc, nb))
-    cn = np.zeros((points, nc, nb))
-    cT = np.zeros((points, nc, nb))
-    cN = np.zeros((points, nc, nb))
-    work = np.zeros(points)
-    visc = np.zeros(points)
-    diss = np.zeros((points, nc))
-    for k, (x, w) in enumerate(zip(xs, omegas)):
-        e = hb.energies(x, w)
-        work[k], visc[k], diss[k] = e["excitation"], e["viscous"], e["contacts"]
-        if nc:
-            ct[k], cn[k] = hb.local(x)
-            cT[k], cN[k] = hb.contact_forces(x)
-    return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(points, nb, hb.ndof),
-                             ct, cn, cT, cN, work, visc, diss, iters, elapsed)
+def _collect(hb: HarmonicBalance, xs, omegas, iters) -> FrequencyResponse:
+    q = hb.curve_quantities(xs, omegas)
+    return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(omegas.size, hb.nb, hb.ndof),
+                             q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters)
