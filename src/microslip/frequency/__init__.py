@@ -6,13 +6,16 @@
   contacts attached to linear combinations of its degrees of freedom;
 * :func:`frequency_response` -- harmonic balance with pseudo-arclength
   continuation, returning a :class:`FrequencyResponse`;
-* :func:`static_solution` -- the static equilibrium under preloads.
+* :func:`frequency_point` -- the solution at one frequency;
+* :func:`static_solution` -- the static equilibrium under preloads;
+* :func:`~microslip.frequency.transient.steady_state` -- direct time integration
+  to the periodic steady state (an independent check).
 """
 
 from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
 from .continuation import ConvergenceError, StepControl
 from .hbm import HarmonicBalance
-from .response import FrequencyResponse, frequency_response, static_solution
+from .response import FrequencyResponse, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
 
 __all__ = [
@@ -28,6 +31,7 @@ __all__ = [
     "aft_batch",
     "cycle_work",
     "default_samples",
+    "frequency_point",
     "frequency_response",
     "static_solution",
     "synthesise",

@@ -342,7 +342,6 @@ def aft_reference(kt, kn, gaps, mu, xt, xn, Ns, max_periods=1000):
     ``(FT, FN, JTt, JTn, JNn, periods)``.
     """
     nbasis = len(xt)
-    H = (nbasis - 1) // 2
     tau = [2.0 * np.pi * k / Ns for k in range(Ns)]
 
     def phi(q, x):

@@ -297,18 +297,9 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     """
     start = time.perf_counter()
     lo, hi = _omega_range(omega)
-    H = _checks.positive_int("harmonics", harmonics, minimum=1)
     if control is not None and not isinstance(control, StepControl):
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
-    hb = HarmonicBalance(structure, force, H, samples=samples, max_periods=max_periods)
-    if not np.any(hb.f_ext[1:]):
-        raise ValueError("force must have a non-zero dynamic part (harmonic >= 1)")
-    r_scale = float(np.max(np.abs(hb.f)))
-    x = np.zeros(hb.n)
-    x[:hb.ndof] = static_solution(structure, force)
-    x_scale = _response_scale(hb, x, lo, hi)
-    x, _ = newton(hb, x, lo, r_scale=r_scale, x_scale=x_scale)
-    x_scale = max(x_scale, float(np.max(np.abs(x[hb.ndof:]))))
+    hb, x, x_scale, r_scale = _first_point(structure, force, harmonics, samples, max_periods, lo, hi)
     report = Progress(10, enabled=progress)
     reached = [0]
 
@@ -322,6 +313,47 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
                                      callback=tick)
     result = _collect(hb, xs, omegas, iters)
     report.done(f"frequency response: {omegas.size} points")
+    return replace(result, elapsed=time.perf_counter() - start)
+
+
+def _first_point(structure, force, harmonics, samples, max_periods, lo, hi):
+    """The equations, the solution at ``lo`` (from the static state) and the scales of x and R."""
+    H = _checks.positive_int("harmonics", harmonics, minimum=1)
+    hb = HarmonicBalance(structure, force, H, samples=samples, max_periods=max_periods)
+    if not np.any(hb.f_ext[1:]):
+        raise ValueError("force must have a non-zero dynamic part (harmonic >= 1)")
+    r_scale = float(np.max(np.abs(hb.f)))
+    x = np.zeros(hb.n)
+    x[:hb.ndof] = static_solution(structure, force)
+    x_scale = _response_scale(hb, x, lo, hi, grid=1 if lo == hi else 24)
+    x, _ = newton(hb, x, lo, r_scale=r_scale, x_scale=x_scale)
+    return hb, x, max(x_scale, float(np.max(np.abs(x[hb.ndof:])))), r_scale
+
+
+def frequency_point(structure: Structure, force, omega: float, *, harmonics: int = 5, samples: int | None = None,
+                    max_periods: int = MAX_PERIODS) -> FrequencyResponse:
+    """The harmonic balance solution at one frequency, reached from the static state by Newton's method.
+
+    Where the response has several solutions at ``omega`` (past a fold) this is
+    the one Newton's method finds from the response of the stuck structure; use
+    :func:`frequency_response` to follow a branch.
+
+    Parameters
+    ----------
+    structure, force, harmonics, samples, max_periods
+        As in :func:`frequency_response`.
+    omega : float
+        Excitation frequency (rad/s).
+
+    Returns
+    -------
+    FrequencyResponse
+        With one point.
+    """
+    start = time.perf_counter()
+    omega = _checks.positive_scalar("omega", omega)
+    hb, x, _, _ = _first_point(structure, force, harmonics, samples, max_periods, omega, omega)
+    result = _collect(hb, x[None, :], np.array([omega]), np.array([0]))
     return replace(result, elapsed=time.perf_counter() - start)
 
 
