@@ -13,7 +13,8 @@ import scipy.sparse as sp
 from scipy.optimize import brentq
 
 from microslip import MicroslipModel, Sphere, tune
-from microslip.frequency import FrequencyResponse, HarmonicBalance, Structure, frequency_response, static_solution
+from microslip.frequency import (FrequencyResponse, HarmonicBalance, Structure, frequency_point,
+                                 frequency_response, static_solution)
 from microslip.frequency import _transient
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
@@ -218,3 +219,33 @@ def test_amplitude_input_errors(inclined_curve):
         inclined_curve.time_history(10**6)
     with pytest.raises(ValueError, match="unit must be one of"):
         inclined_curve.plot(unit="ft")
+
+
+def test_large_sparse_structure_matches_dense_solution(monkeypatch):
+    """A 60-DOF chain (915 unknowns at H = 7: the sparse path) with a contact at its free end."""
+    import microslip.frequency.hbm as hbm
+
+    n = 60
+    k = 2e7 * (np.eye(n) * 2 - np.eye(n, k=1) - np.eye(n, k=-1))
+    k[-1, -1] = 2e7
+    M, K = sp.identity(n, format="csr") * 0.01, sp.csr_matrix(k)
+    s = Structure(M, 1e-6 * K, K)
+    s.add_contact(JENKINS, tangential=n - 1, approach=3e-6)
+    f = np.zeros(n)
+    f[-1] = 5.0
+    sparse = frequency_point(s, f, 2000.0, harmonics=7)
+    monkeypatch.setattr(hbm, "DENSE_LIMIT", 10**6)
+    dense = frequency_point(s, f, 2000.0, harmonics=7)
+    assert sparse.structure.sparse
+    np.testing.assert_allclose(sparse.coefficients, dense.coefficients, rtol=1e-7, atol=1e-9 * np.abs(
+        dense.coefficients).max())
+    assert sparse.contact_dissipation[0, 0] > 0
+
+
+def test_linear_structure_without_contacts():
+    s = Structure([[1.0]], [[2.0]], [[1e4]])
+    r = frequency_response(s, [1.0], (50, 150), harmonics=2)
+    w = r.omega
+    exact = 1.0 / np.abs(1e4 - w**2 + 2j * w)
+    np.testing.assert_allclose(r.amplitude(0, 1), exact, rtol=1e-9)
+    assert np.allclose(r.amplitude(0, 2), 0.0)

@@ -8,7 +8,7 @@
   continuation, returning a :class:`FrequencyResponse`;
 * :func:`frequency_point` -- the solution at one frequency;
 * :func:`static_solution` -- the static equilibrium under preloads;
-* :func:`~microslip.frequency.transient.steady_state` -- direct time integration
+* :func:`steady_state` -- direct time integration
   to the periodic steady state (an independent check).
 """
 
@@ -17,6 +17,7 @@ from .continuation import ConvergenceError, StepControl
 from .hbm import HarmonicBalance
 from .response import FrequencyResponse, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
+from .transient import SteadyState, steady_state
 
 __all__ = [
     "AFTResult",
@@ -26,6 +27,7 @@ __all__ = [
     "HarmonicBalance",
     "NotPeriodicError",
     "StepControl",
+    "SteadyState",
     "Structure",
     "aft",
     "aft_batch",
@@ -34,5 +36,6 @@ __all__ = [
     "frequency_point",
     "frequency_response",
     "static_solution",
+    "steady_state",
     "synthesise",
 ]

@@ -112,6 +112,7 @@ class HarmonicBalance:
         self.f = self.f_ext.ravel()
         D, W = harmonic_operators(H)
         self.dense = self.n <= DENSE_LIMIT
+        self.sparse_storage = not self.dense
         if self.dense:
             dense = [A.toarray() if sp.issparse(A) else np.asarray(A) for A in
                      (structure.K, structure.C, structure.M)]

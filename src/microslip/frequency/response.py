@@ -12,6 +12,8 @@ from dataclasses import dataclass, field, replace
 from typing import Mapping
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from .. import _checks
 from .._io import write_csv
@@ -241,13 +243,18 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
     # start from the structure with every contact element closed and stuck
     x = np.zeros(hb.n)
     r_scale = max(float(np.max(np.abs(hb.f))), 1e-30)
-    K = hb.Kx.toarray() if hasattr(hb.Kx, "toarray") else np.array(hb.Kx)
+    K = hb.Kx.copy()
     rhs = hb.f.copy()
     for c in structure.contacts:
         m = c.model
-        K += m.kt.sum() * np.outer(c.tangential, c.tangential) + m.kn.sum() * np.outer(c.normal, c.normal)
+        for b, k in ((c.tangential, m.kt.sum()), (c.normal, m.kn.sum())):
+            K = K + k * (sp.csr_matrix(b[:, None]) @ sp.csr_matrix(b[None, :]) if hb.sparse_storage
+                         else np.outer(b, b))
         rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * c.normal
-    x = np.linalg.lstsq(K, rhs, rcond=None)[0]
+    if hb.sparse_storage:
+        x = spla.lsqr(K.tocsc(), rhs, atol=1e-14, btol=1e-14)[0]
+    else:
+        x = np.linalg.lstsq(K, rhs, rcond=None)[0]
     x_scale = max(float(np.max(np.abs(x))), 1e-12)
     x, _ = newton(hb, x, 1.0, r_scale=r_scale, x_scale=x_scale, tolerance=tolerance)
     return x
