@@ -13,8 +13,10 @@ Contacts: a Jenkins element (kt = 1e4 N/m, slip force 1 N) and the paper's spher
 
 from __future__ import annotations
 
+import sys
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 
@@ -129,4 +131,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from bench_frf import in_temporary_directory
+
+    in_temporary_directory(main)

@@ -82,22 +82,14 @@ def pyharm_input(ds):
 def pyharm_curve(ds):
     """(seconds, omega, first-harmonic amplitude, points) of a pyHarm run."""
     import logging
-    import os
-    import tempfile
 
     import pyHarm
 
     logging.disable(logging.CRITICAL)
-    here = os.getcwd()
-    with tempfile.TemporaryDirectory() as tmp:  # pyHarm writes a log folder in the working directory
-        os.chdir(tmp)
-        try:
-            maestro = pyHarm.Maestro(pyharm_input(ds))
-            t0 = time.perf_counter()
-            maestro.operate()
-            elapsed = time.perf_counter() - t0
-        finally:
-            os.chdir(here)
+    maestro = pyHarm.Maestro(pyharm_input(ds))
+    t0 = time.perf_counter()
+    maestro.operate()
+    elapsed = time.perf_counter() - t0
     X = np.array([s.x for s in maestro.nls["frf"].SolList if s.flag_accepted])
     omega = X[:, -1] * 100.0  # undo the nondimensionalisation (wc = 100 rad/s, lc = 5 mm)
     amp = np.hypot(X[:, 1], X[:, 2]) * 5e-3
@@ -155,5 +147,19 @@ def main():
     print(f"blade with a 16-element damper (F = 1 N, H = 7, 128 samples): {t16 * 1e3:.1f} ms for {r16.points} points")
 
 
+def in_temporary_directory(fn):
+    """Run ``fn()`` from a temporary working directory: pyHarm writes a '.pyHarm' folder there."""
+    import os
+    import tempfile
+
+    here = os.getcwd()
+    with tempfile.TemporaryDirectory() as tmp:
+        os.chdir(tmp)
+        try:
+            return fn()
+        finally:
+            os.chdir(here)
+
+
 if __name__ == "__main__":
-    main()
+    in_temporary_directory(main)
