@@ -249,3 +249,13 @@ def test_linear_structure_without_contacts():
     exact = 1.0 / np.abs(1e4 - w**2 + 2j * w)
     np.testing.assert_allclose(r.amplitude(0, 1), exact, rtol=1e-9)
     assert np.allclose(r.amplitude(0, 2), 0.0)
+
+
+def test_descending_sweep_and_progress(capsys):
+    up = frequency_response(jenkins_oscillator(), [2.0], (60, 160), harmonics=3)
+    down = frequency_response(jenkins_oscillator(), [2.0], (160, 60), harmonics=3, progress=True)
+    assert down.omega[0] == 160 and down.omega[-1] == 60
+    # same curve: the peaks agree to the resolution of the two point sets
+    assert down.peak(0, 1)[1] == pytest.approx(up.peak(0, 1)[1], rel=1e-3)
+    err = capsys.readouterr().err
+    assert "[10/10] omega = 60 rad/s" in err and "frequency response:" in err
