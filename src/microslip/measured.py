@@ -66,7 +66,7 @@ from .tuning import TuningError
 _BINS = 160
 _KNOTS = 8
 _MICROSLIP_MIN = 1.05  # k0 x_gs / T_gs below this: no microslip region (1 for a single Jenkins element)
-_BACKLASH_RATIO = 0.5  # first-window stiffness below this fraction of the largest: convex start
+_BACKLASH_RATIO = 2.0  # a branch step stiffer than this x the softest before it: backlash
 _MASING_TOLERANCE = 0.1
 
 
@@ -452,41 +452,45 @@ def _check_representable(ref: Loops, masing_tolerance):
                           f"({ref.masing_basis}) by {100 * ref.masing_error:.3g} % of the force amplitude (RMS), "
                           f"more than the {100 * masing_tolerance:g} % allowed; the paper's array obeys Masing's "
                           f"rule and cannot represent them")
-    ratio, first, largest, band = backlash(ref)
-    if ratio < _BACKLASH_RATIO:
-        raise TuningError(f"{src}: the branches are convex after the reversals (backlash): the stiffness over "
-                          f"the first 10 % of the force excursion is {first:.4g} N/m, only {100 * ratio:.3g} % of "
-                          f"the largest further along ({largest:.4g} N/m); dead band about {band * 1e6:.4g} µm. "
-                          f"The paper's array is concave and cannot represent it")
+    ratio, soft, stiff, band = backlash(ref)
+    if ratio > _BACKLASH_RATIO:
+        raise TuningError(f"{src}: the branches are not concave (backlash): after softening to {soft:.4g} N/m "
+                          f"(over {band * 1e6:.4g} µm of the branch) they stiffen again to {stiff:.4g} N/m, "
+                          f"{ratio:.3g} times stiffer (a concave branch only softens; allowed up to "
+                          f"{_BACKLASH_RATIO:g} for noise). The paper's array is concave and cannot represent it")
 
 
 def backlash(loops: Loops) -> tuple[float, float, float, float]:
-    """Convexity of the steady branches after reversals.
+    """How much the steady branches stiffen again after softening (backlash, a dead band).
 
-    The branch ``2 * backbone`` is split into ten equal steps of force; the
-    secant stiffness of each step is measured on the binned branch.
+    The rise of the backbone points up to 90 % of their top force is split
+    into 18 equal steps of force; the secant stiffness of each is measured
+    on the binned points. A concave branch only softens; with backlash it
+    softens (free play) and then stiffens again.
 
     Returns
     -------
     ratio : float
-        Stiffness of the first step / largest step stiffness (1 for a concave
-        branch, small with backlash).
-    first, largest : float
-        Those stiffnesses (N/m).
+        Largest ``stiffness of a step / least stiffness of the steps before
+        it`` (<= 1 for a concave branch, up to noise).
+    soft, stiff : float
+        Those two stiffnesses (N/m).
     dead_band : float
-        Displacement lost before the stiff part (m): where the largest
-        stiffness line through the first step would start.
+        Displacement travelled on the branch in the soft step (m).
     """
     x, y = loops.backbone_points()
-    edges = np.linspace(0.0, x.max(), 41)
-    which = np.minimum(np.digitize(x, edges) - 1, 39)
-    count = np.bincount(which, minlength=40)
+    edges = np.linspace(0.0, x.max(), 81)
+    which = np.minimum(np.digitize(x, edges) - 1, 79)
+    count = np.bincount(which, minlength=80)
     keep = count > 0
-    xb = np.bincount(which, weights=x, minlength=40)[keep] / count[keep]
-    yb = np.maximum.accumulate(np.bincount(which, weights=y, minlength=40)[keep] / count[keep])
-    levels = np.linspace(0.0, yb.max(), 11)
-    xl = np.interp(levels, yb, xb)  # first crossing of each force level (yb is made non-decreasing)
+    xb = np.bincount(which, weights=x, minlength=80)[keep] / count[keep]
+    yb = np.maximum.accumulate(np.bincount(which, weights=y, minlength=80)[keep] / count[keep])
+    levels = np.linspace(0.0, 0.9 * yb.max(), 19)
+    xl = np.interp(levels, yb, xb)  # first crossing of each force level (yb made non-decreasing)
     dx = np.maximum(np.diff(xl), 1e-300)
-    k = (levels[1] - levels[0]) / dx  # secant stiffness of branch/2 = backbone; branch stiffness is the same
-    largest = float(k.max())
-    return float(k[0] / largest), float(k[0]), largest, float(max(xl[1] - levels[1] / largest, 0.0) * 2)
+    k = (levels[1] - levels[0]) / dx  # secant stiffness of backbone steps = of branch steps
+    softest = np.minimum.accumulate(k)
+    ratios = k[1:] / softest[:-1]
+    j = int(np.argmax(ratios))
+    i = int(np.argmin(k[:j + 1]))
+    return float(ratios[j]), float(k[i]), float(k[j + 1]), float(2 * dx[i])
