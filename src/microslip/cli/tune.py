@@ -94,19 +94,14 @@ def run(args) -> int:
 
 def normal_law(args):
     """The cylinder of the command line, its law a name or a table file."""
-    from .._table import column_si, read_table
     from ..reference import Cylinder
 
     law = args.normal_law
-    if law not in ("palmgren", "lundberg"):
-        if not Path(law).is_file():
-            raise ValueError(f"--normal-law must be 'palmgren', 'lundberg' or an existing table file, got {law!r}")
-        import numpy as np
-
-        columns, units = read_table(law)
-        law = np.column_stack([column_si(columns, units, "n", "length", path=law),
-                               column_si(columns, units, "N", "force", path=law)])
-    return Cylinder(length=args.length, radius=args.radius, E=args.E, nu=args.nu, mu=args.mu, law=law)
+    if law in ("palmgren", "lundberg"):
+        return Cylinder(length=args.length, radius=args.radius, E=args.E, nu=args.nu, mu=args.mu, law=law)
+    if not Path(law).is_file():
+        raise ValueError(f"--normal-law must be 'palmgren', 'lundberg' or an existing table file, got {law!r}")
+    return Cylinder.from_file(law, args.length, args.radius, args.E, args.nu, args.mu)
 
 
 def _split_load(item: str):

@@ -88,6 +88,21 @@ class Cylinder:
             object.__setattr__(self, "_table", _Table(self.law))
             object.__setattr__(self, "law", "table")
 
+    @classmethod
+    def from_file(cls, path, length, radius, E, nu, mu=None) -> "Cylinder":
+        """A cylinder whose normal law is the table in ``path``.
+
+        The file is CSV/text with a header naming the columns ``n`` (approach)
+        and ``N`` (load) with their units, e.g. ``n [um], N [N]``; values are
+        converted to SI. The other parameters are as for :class:`Cylinder`.
+        """
+        from .._table import column_si, read_table
+
+        columns, units = read_table(path)
+        rows = np.column_stack([column_si(columns, units, "n", "length", path=path),
+                                column_si(columns, units, "N", "force", path=path)])
+        return cls(length, radius, E, nu, mu, rows)
+
     @property
     def law_name(self) -> str:
         """Readable name of the normal law."""
