@@ -18,7 +18,9 @@ energy
 stick stiffness
     Least-squares slope of ``T`` against ``t`` from a reversal until the force
     has changed by ``stick_fraction`` of the branch's force excursion (at
-    least 3 samples): the stiffness of the stick portion just after it.
+    least 3 samples), with the variance of ``t`` corrected for its noise
+    (estimated from second differences): the stiffness of the stick portion
+    just after it.
 slip force
     Mean force over the last ``slip_fraction`` of the displacement stroke of
     a branch (positive on ascending, negative on descending branches); the
@@ -333,7 +335,7 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     R = index.size if index.size % 2 == 1 else index.size - 1  # end on a complete cycle
     index, kind = index[:R], kind[:R]
     w = max(1, int(round(0.015 * np.median(np.diff(index)))))
-    rt, rT = _refine(t, T, index, kind, w)
+    rt, rT = _refine(t, T, index, w)
     branch = _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction)
     C = (R - 1) // 2
     energy = _cycle_energy(t, T, index[0:R - 2:2], index[2:R:2])
@@ -360,30 +362,42 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     return loops
 
 
-def _refine(t, T, index, kind, w):
-    """Reversal points refined: vertex of a quadratic fit of ``t`` over ±w samples, mean ``T`` there."""
-    k = np.arange(-w, w + 1)
-    rows = np.clip(index[:, None] + k[None, :], 0, t.size - 1)
-    X, F = t[rows], T[rows]
-    n, s2, s4 = k.size, float(np.sum(k**2)), float(np.sum(k**4))
-    b = X @ k / s2
-    c = (n * (X @ k**2) - s2 * X.sum(axis=1)) / (n * s4 - s2**2)
-    a = (X.sum(axis=1) - c * s2) / n
-    with np.errstate(divide="ignore", invalid="ignore"):
-        vertex = np.clip(-b / (2.0 * c), -w, w)
-    ok = (c * kind < 0) & np.isfinite(vertex)  # curvature of the right sign
-    rt = np.where(ok, a + b * vertex + c * vertex**2, t[index])
-    return rt, F.mean(axis=1)
+def _refine(t, T, index, w):
+    """Reversal points refined: the means of ``t`` and ``T`` over ±w samples around each one.
+
+    Near a reversal ``t`` is stationary, so the mean lies within ``c w^2`` of
+    the peak (``c`` its curvature per sample squared, 0.05 % of the amplitude
+    for 400 samples per cycle) while the noise drops by ``sqrt(2w + 1)``.
+    """
+    rows = np.clip(index[:, None] + np.arange(-w, w + 1)[None, :], 0, t.size - 1)
+    return t[rows].mean(axis=1), T[rows].mean(axis=1)
 
 
-def _slopes(t, T, a, b):
-    """Least-squares slope of T on t over the inclusive sample windows [a, b] (vectorised)."""
+def noise_level(x) -> float:
+    """Robust standard deviation of the sample-to-sample noise of a smooth, densely sampled signal.
+
+    From the second differences, ``var(d2 x) = 6 sigma^2`` for white noise,
+    with the median absolute deviation (the smooth part contributes
+    ``x'' dt^2``, negligible at tens of samples per cycle).
+    """
+    d2 = np.diff(x, 2)
+    return float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0)) if d2.size else 0.0
+
+
+def _slopes(t, T, a, b, sigma_t=0.0):
+    """Least-squares slope of T on t over the inclusive sample windows [a, b] (vectorised).
+
+    The variance of ``t`` is corrected for its noise ``sigma_t`` (errors in
+    variables), which would otherwise flatten the slope by
+    ``var(t) / (var(t) + sigma_t^2)``.
+    """
     tc = t - t.mean()
     Tc = T - T.mean()
     cs = [np.concatenate([[0.0], np.cumsum(v)]) for v in (tc, Tc, tc * tc, tc * Tc)]
     n = (b - a + 1).astype(float)
     sx, sy, sxx, sxy = (c[b + 1] - c[a] for c in cs)
-    den = n * sxx - sx * sx
+    raw = n * sxx - sx * sx
+    den = np.maximum(raw - n * n * sigma_t**2, 0.25 * raw)  # never correct by more than a factor 4
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(den > 0, (n * sxy - sx * sy) / np.where(den > 0, den, 1.0), 0.0)
 
@@ -394,7 +408,7 @@ def _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction):
     out = np.empty(a.size, dtype=np.int64)
     _kernels.window_ends(T, a, b, stick_fraction * np.abs(np.diff(rT)), out)
     stick_end = np.minimum(np.maximum(out, a + 2), b)
-    stiffness = _slopes(t, T, a, stick_end)
+    stiffness = _slopes(t, T, a, stick_end, noise_level(t))
     _kernels.window_ends(t, b, a, slip_fraction * np.abs(np.diff(rt)), out)
     slip_start = np.maximum(np.minimum(out, b - 2), a)
     csT = np.concatenate([[0.0], np.cumsum(T)])
