@@ -16,7 +16,7 @@ half the force change from each reversal) are averaged in 160 bins of
 ``x`` and fitted, by weighted non-negative least squares, with
 
     ``y(x) = c0 + sum_{m,q} w_mq (c_m / p_q) (1 - (1 - min(x / c_m, 1))^p_q)``,  ``w_mq >= 0``,
-    knots ``c_m = m x_gs / M`` (m = 1..M), exponents ``p_q`` in 1.1, 1.25, 1.5, 2, 3,
+    knots ``c_m = m x_gs / M`` (m = 1..M), exponents ``p_q`` in 1.02, 1.1, 1.25, 1.5, 2, 3,
 
 a sum of Cattaneo--Mindlin-like ramps, each increasing, strictly concave
 below its knot and flat beyond it, with unit initial slope (``c0`` absorbs
@@ -24,9 +24,12 @@ the bias of the reversal points and is dropped). Any such sum is increasing
 and concave with a continuous slope, strictly so up to its last knot (whose
 ramp spans the whole range), where it reaches its plateau, the gross-slip
 force. The family holds Cattaneo--Mindlin's curve (``p = 1.5``) and the
-curve of any contact with a power normal law ``N ~ n^p`` exactly. The gross-slip displacement
-``x_gs`` is found by minimising the residual over it (a scan on a
-logarithmic grid refined by a bounded 1-D search). The RMS residual of the
+curve of any contact with a power normal law ``N ~ n^p`` exactly. The last knot ``x_gs`` is found by
+minimising the residual over it (a scan on a logarithmic grid refined by a
+bounded 1-D search). Where a curve meets its plateau tangentially its end
+is ill-determined by noisy data, so the fitted curve is cut where it comes
+within 0.1 % of its plateau: that point is the gross-slip displacement and
+the force there the gross-slip force (the cut keeps it concave). The RMS residual of the
 binned points is reported (:attr:`FittedBackbone.residual`).
 
 The backbone at a lower load
@@ -68,9 +71,10 @@ _KNOTS = 8
 _MICROSLIP_MIN = 1.05  # k0 x_gs / T_gs below this: no microslip region (1 for a single Jenkins element)
 _BACKLASH_RATIO = 2.0  # a branch step stiffer than this x the softest before it: backlash
 _MASING_TOLERANCE = 0.1
+_PLATEAU_CUT = 1e-3  # gross slip: where the fit comes within this fraction of its plateau
 
 
-_EXPONENTS = np.array([1.1, 1.25, 1.5, 2.0, 3.0])
+_EXPONENTS = np.array([1.02, 1.1, 1.25, 1.5, 2.0, 3.0])
 
 
 def _ramps(x, knots, exponents):
@@ -132,13 +136,15 @@ class FittedBackbone:
         """Force (N) at displacement ``x`` (m), odd in ``x``, flat beyond gross slip."""
         x = np.asarray(x, dtype=float)
         flat = np.abs(x).ravel()
+        flat = np.minimum(flat, self.gross_slip_displacement)
         return (np.sign(x).ravel() * (_ramps(flat, self.knots, self.exponents) @ self.weights)).reshape(x.shape)
 
     def slope(self, x):
         """Slope (N/m) at ``x >= 0`` (m)."""
         x = np.asarray(x, dtype=float)
         u = np.minimum(x.ravel()[:, None] / self.knots[None, :], 1.0)
-        return ((1.0 - u) ** (self.exponents - 1.0) @ self.weights).reshape(x.shape)
+        slope = (1.0 - u) ** (self.exponents - 1.0) @ self.weights
+        return np.where(x.ravel() < self.gross_slip_displacement, slope, 0.0).reshape(x.shape)
 
     def inverse(self, T):
         """Displacement (m) at force ``T`` (N), ``0 <= T <= plateau`` (bisection, to round-off)."""
@@ -228,9 +234,13 @@ def fit_backbone(x, y, *, knots: int = _KNOTS) -> FittedBackbone:
     if not active.any():
         raise TuningError("the backbone points do not rise: the fitted curve is flat (no stick stiffness)")
     c, p, w = c[active], p[active], w[active]
-    return FittedBackbone(knots=c, exponents=p, weights=w, gross_slip_displacement=float(c.max()),
-                          plateau=float(w @ (c / p)), offset=float(coef[0] - coef[1]), residual=residual,
-                          points=(xb, yb, count[keep]))
+    full = float(w @ (c / p))
+    grid = np.linspace(0.0, float(c.max()), 4001)
+    values = _ramps(grid, c, p) @ w
+    cut = float(grid[np.argmax(values >= (1.0 - _PLATEAU_CUT) * full)])
+    return FittedBackbone(knots=c, exponents=p, weights=w, gross_slip_displacement=cut,
+                          plateau=float((_ramps(np.array([cut]), c, p) @ w)[0]), offset=float(coef[0] - coef[1]),
+                          residual=residual, points=(xb, yb, count[keep]))
 
 
 def _evaluate(x, c, p, coef):

@@ -286,7 +286,7 @@ def find_reversals(t, threshold) -> tuple[np.ndarray, np.ndarray]:
 
 
 def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0.1,
-            slip_fraction: float = 0.1, steady_tolerance: float = 0.05) -> Loops:
+            slip_fraction: float = 0.1, steady_tolerance: float = 0.05, noise_correction: bool = True) -> Loops:
     """Analyse the hysteresis loops of a record.
 
     Parameters
@@ -306,6 +306,11 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     steady_tolerance : float, default 0.05
         Relative tolerance on energy and amplitude for a cycle to count as
         steady.
+    noise_correction : bool, default True
+        Correct the stick stiffness for the noise of ``t`` (errors in
+        variables). Turn it off when ``T`` was computed from the noisy ``t``
+        itself (a model driven by a measured displacement), where there is
+        nothing to correct.
 
     Returns
     -------
@@ -336,7 +341,8 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     index, kind = index[:R], kind[:R]
     w = max(1, int(round(0.015 * np.median(np.diff(index)))))
     rt, rT = _refine(t, T, index, w)
-    branch = _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction)
+    branch = _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction,
+                              noise_level(t) if noise_correction else 0.0)
     C = (R - 1) // 2
     energy = _cycle_energy(t, T, index[0:R - 2:2], index[2:R:2])
     amplitude = 0.25 * (np.abs(np.diff(rt))[0::2] + np.abs(np.diff(rt))[1::2])
@@ -354,7 +360,7 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
         is_steady=is_steady,
         masing_error=np.nan, masing_basis="",
         options={"threshold": threshold, "stick_fraction": stick_fraction, "slip_fraction": slip_fraction,
-                 "steady_tolerance": steady_tolerance},
+                 "steady_tolerance": steady_tolerance, "noise_correction": bool(noise_correction)},
     )
     error, basis = _masing(loops)
     object.__setattr__(loops, "masing_error", error)
@@ -402,13 +408,13 @@ def _slopes(t, T, a, b, sigma_t=0.0):
         return np.where(den > 0, (n * sxy - sx * sy) / np.where(den > 0, den, 1.0), 0.0)
 
 
-def _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction):
+def _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction, sigma_t):
     """Stick stiffness after each reversal, slip force at each branch end, gross-slip flag."""
     a, b = index[:-1], index[1:]
     out = np.empty(a.size, dtype=np.int64)
     _kernels.window_ends(T, a, b, stick_fraction * np.abs(np.diff(rT)), out)
     stick_end = np.minimum(np.maximum(out, a + 2), b)
-    stiffness = _slopes(t, T, a, stick_end, noise_level(t))
+    stiffness = _slopes(t, T, a, stick_end, sigma_t)
     _kernels.window_ends(t, b, a, slip_fraction * np.abs(np.diff(rt)), out)
     slip_start = np.maximum(np.minimum(out, b - 2), a)
     csT = np.concatenate([[0.0], np.cumsum(T)])
