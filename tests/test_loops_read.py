@@ -43,6 +43,11 @@ def test_whitespace_table_and_column_and_unit_overrides(tmp_path):
     assert r.time[1] == pytest.approx(1e-6)
 
 
+def test_whitespace_table_with_spaced_units(tmp_path):
+    r = loops.read(_write(tmp_path, _sine_table(sep="  ", header="time [s]   t [um]   T [N]"), "ws.txt"))
+    assert r.t.max() == pytest.approx(0.5e-6, rel=1e-3) and r.time[1] == pytest.approx(1e-3)
+
+
 def test_normal_load_from_argument_comment_and_column(tmp_path):
     base = _sine_table()
     assert loops.read(_write(tmp_path, base), normal_load="36.6N").normal_load == pytest.approx(36.6)

@@ -25,6 +25,20 @@ def _split(line: str) -> list[str]:
     return line.split()
 
 
+def _split_header(line: str) -> list[str]:
+    """Header cells; with whitespace separators a ``[unit]`` token belongs to the name before it."""
+    cells = _split(line)
+    if any(sep in line for sep in (",", ";", "\t")):
+        return cells
+    merged: list[str] = []
+    for cell in cells:
+        if cell.startswith("[") and merged:
+            merged[-1] += " " + cell
+        else:
+            merged.append(cell)
+    return merged
+
+
 def _fast_rows(lines: list[str], width: int):
     """All data lines parsed at C speed, or None when any line is unusual (then the slow path names it)."""
     if not lines:
@@ -56,7 +70,7 @@ def read_table(path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
     if not lines:
         raise ValueError(f"{path}: the file holds no header and no data")
     names, units = [], {}
-    for cell in _split(lines[0]):
+    for cell in _split_header(lines[0]):
         m = _HEADER_CELL.match(cell)
         if not m:
             raise ValueError(f"{path}: cannot read the header cell {cell!r}; expected 'name [unit]'")

@@ -128,7 +128,8 @@ def read(path, *, columns=None, units=None, normal_load=None) -> Record:
         names the columns and their units, e.g. ``time [s], t [um], T [N]``;
         or a ``.json`` file in the layout of the ARTS-Lab friction damper data
         (displacement in inches, friction force in kips; the normal load is
-        taken as the sum of its two band-tensioning actuator forces).
+        taken as the sum of its two band-tensioning actuator forces; that data
+        set is CC BY-SA 4.0 and is not shipped with microslip).
     columns : dict, optional
         Column name for each role, overriding the defaults: ``{"t": ...}``
         tangential displacement, ``{"T": ...}`` tangential force,
