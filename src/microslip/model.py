@@ -266,7 +266,7 @@ class MicroslipModel:
         slope = np.cumsum(k)  # slope of the curve beyond each gap
         Nk = np.concatenate([[0.0], np.cumsum(slope[:-1] * np.diff(g))])  # force at each gap
         j = np.searchsorted(Nk, N, side="right") - 1
-        return g[j] + (N - Nk[j]) / ks[j]
+        return g[j] + (N - Nk[j]) / slope[j]
 
     def backbone(self, t, n) -> np.ndarray:
         """Virgin tangential force (N) at displacement ``t`` (m) and constant approach ``n`` (m).
