@@ -131,8 +131,11 @@ class Response:
         """Work done on the contact along the record, ``∫ T dt`` (J).
 
         Over a closed path (equal first and last ``t`` and ``n`` with the
-        same state) this is the energy dissipated, and it is never negative.
-        Evaluated with the trapezoidal rule on the samples.
+        same state) this is the energy dissipated. Evaluated with the
+        trapezoidal rule on the samples: never negative when ``n`` is constant
+        over the steps where ``t`` moves; when both move in one step it may
+        fall below zero by at most ``sum(kt) * sum(dt**2) / 2``, which
+        vanishes as the path is refined.
         """
         return float(np.trapezoid(self.T, self.t)) if self.t.size > 1 else 0.0
 
