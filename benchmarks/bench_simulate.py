@@ -78,7 +78,7 @@ def main(argv=None) -> int:
     parser.add_argument("--steps", type=int, default=1_000_000, help="steps of the compiled march (default 1e6)")
     parser.add_argument("--baseline-steps", type=int, default=20_000,
                         help="steps of the NumPy baseline (default 2e4)")
-    parser.add_argument("--repeat", type=int, default=3, help="repeats, best time kept (default 3)")
+    parser.add_argument("--repeat", type=int, default=5, help="repeats, best time kept (default 5)")
     parser.add_argument("--elements", type=int, nargs="+", default=[4, 16, 256], help="values of J")
     args = parser.parse_args(argv)
 
