@@ -44,7 +44,7 @@ def run(args) -> int:
     reference = sphere_from(args)
     points_given = args.forces is not None or args.displacements is not None
     model = tune(reference, args.load, forces=args.forces, displacements=args.displacements,
-                 elements=None if points_given else (args.elements or 4))
+                 elements=None if points_given else (4 if args.elements is None else args.elements))
     model.save(args.output)
     print(json.dumps({"written": args.output, "elements": model.elements, "mu": model.mu}))
     return 0
