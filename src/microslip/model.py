@@ -17,7 +17,7 @@ The public objects are
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -197,7 +197,6 @@ class MicroslipModel:
     kn: np.ndarray
     gaps: np.ndarray
     mu: float
-    _inv_kt: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         kt = _checks.positive_array("kt", self.kt, ndim=1, min_size=1)
