@@ -83,14 +83,14 @@ def test_column_without_unit_is_refused(tmp_path):
 def test_non_numeric_cell_names_row_and_column(tmp_path):
     text = _sine_table().splitlines()
     text[5] = "0.004,oops,3.0"
-    with pytest.raises(ValueError, match=r"data line 6, column 't': 'oops' is not a number"):
+    with pytest.raises(ValueError, match=r"line 6, column 't': 'oops' is not a number"):
         loops.read(_write(tmp_path, "\n".join(text)))
 
 
 def test_non_finite_cell_names_row_and_column(tmp_path):
     text = _sine_table().splitlines()
     text[3] = "0.002,0.1,nan"
-    with pytest.raises(ValueError, match=r"data line 4 \(the header is line 1\), column 'T': nan is not a finite"):
+    with pytest.raises(ValueError, match=r"data row 3 \(counting rows of numbers\), column 'T': nan is not"):
         loops.read(_write(tmp_path, "\n".join(text)))
 
 

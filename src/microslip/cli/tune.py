@@ -86,7 +86,8 @@ def run(args) -> int:
     reference = sphere_from(args)
     points_given = args.forces is not None or args.displacements is not None
     model = tune(reference, 37.5 if args.load is None else args.load, forces=args.forces,
-                 displacements=args.displacements, elements=None if points_given else (args.elements or 4))
+                 displacements=args.displacements,
+                 elements=None if points_given else (4 if args.elements is None else args.elements))
     model.save(args.output)
     print(json.dumps({"written": args.output, "elements": model.elements, "mu": model.mu}))
     return 0
@@ -128,7 +129,8 @@ def _run_loops(args) -> int:
         analysed.append(loops.analyse(loops.read(path, columns=columns, units=units, normal_load=load)))
     bar.step("fitting the branch, tuning, validating")
     points_given = args.forces is not None or args.displacements is not None
-    result = tune_on_loops(analysed, normal_law(args), elements=None if points_given else (args.elements or 4),
+    result = tune_on_loops(analysed, normal_law(args),
+                           elements=None if points_given else (4 if args.elements is None else args.elements),
                            forces=args.forces, displacements=args.displacements, normal_load=args.load)
     result.model.save(args.output)
     out = Path(args.output)

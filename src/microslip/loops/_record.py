@@ -223,7 +223,7 @@ def _pick_column(path, table, role, given, defaults, *, required):
 def _finite(path, name, values):
     bad = np.flatnonzero(~np.isfinite(values))
     if bad.size:
-        raise ValueError(f"{path}: data line {int(bad[0]) + 2} (the header is line 1), column {name!r}: "
+        raise ValueError(f"{path}: data row {int(bad[0]) + 1} (counting rows of numbers), column {name!r}: "
                          f"{float(values[bad[0]])!r} is not a finite number")
 
 
