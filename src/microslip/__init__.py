@@ -6,16 +6,28 @@ tangential stiffness, a normal stiffness and a normal gap, so the normal load
 shifts between elements as the normal approach changes. SI units throughout.
 """
 
+from . import loops
 from .frequency import FrequencyResponse, Structure, frequency_response
+from .loop_tuning import LoopTuning, Validation, tune_on_loops, validate
+from .measured import FittedBackbone, MeasuredContact, fit_backbone
 from .model import MicroslipModel, Response, State, Step
-from .reference import Sphere
+from .reference import Cylinder, Sphere
 from .tuning import ContactReference, TuningError, TuningPoints, tune, tuning_points
 
 __version__ = "0.1.0"
 
 __all__ = [
     "ContactReference",
+    "Cylinder",
+    "FittedBackbone",
     "FrequencyResponse",
+    "LoopTuning",
+    "MeasuredContact",
+    "Validation",
+    "fit_backbone",
+    "loops",
+    "tune_on_loops",
+    "validate",
     "MicroslipModel",
     "Response",
     "Sphere",

@@ -27,7 +27,7 @@ def real_array(name: str, value, *, ndim: int | None = None, min_size: int = 0) 
     if not np.isfinite(arr).all():
         bad = np.flatnonzero(~np.isfinite(arr.ravel()))[0]
         raise ValueError(
-            f"{name} must be finite, got {arr.ravel()[bad]!r} at flat index {bad}"
+            f"{name} must be finite, got {float(arr.ravel()[bad])!r} at flat index {bad}"
         )
     return arr
 
@@ -40,7 +40,7 @@ def positive_array(name: str, value, *, ndim: int | None = None, min_size: int =
     if bad.any():
         i = int(np.flatnonzero(bad.ravel())[0])
         what = "non-negative" if allow_zero else "positive"
-        raise ValueError(f"{name} must be {what}, got {arr.ravel()[i]!r} at flat index {i}")
+        raise ValueError(f"{name} must be {what}, got {float(arr.ravel()[i])!r} at flat index {i}")
     return arr
 
 

@@ -17,10 +17,10 @@ Every module in :data:`SECTIONS` follows one contract:
     report's error table (may be empty).
 """
 
-from . import fig2a
+from . import fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6
 from .case import PaperCase
 from .reproduce import reproduce
 
-SECTIONS = [fig2a]
+SECTIONS = [fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6]
 
 __all__ = ["PaperCase", "SECTIONS", "reproduce"]
