@@ -112,6 +112,54 @@ def _dft(cos2, sin2, d, C, S):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
+def _project(P, x, y, X, Y):  # pragma: no cover - compiled
+    """``X = P @ x``, ``Y = P @ y``, each sum in sample order (no reassociation).
+
+    Four rows at a time: eight independent sums overlap in the pipeline.
+    """
+    nrow = P.shape[0]
+    Ns = P.shape[1]
+    p = 0
+    while p + 3 < nrow:
+        a0 = 0.0
+        a1 = 0.0
+        a2 = 0.0
+        a3 = 0.0
+        b0 = 0.0
+        b1 = 0.0
+        b2 = 0.0
+        b3 = 0.0
+        for k in range(Ns):
+            xk = x[k]
+            yk = y[k]
+            a0 += P[p, k] * xk
+            b0 += P[p, k] * yk
+            a1 += P[p + 1, k] * xk
+            b1 += P[p + 1, k] * yk
+            a2 += P[p + 2, k] * xk
+            b2 += P[p + 2, k] * yk
+            a3 += P[p + 3, k] * xk
+            b3 += P[p + 3, k] * yk
+        X[p] = a0
+        X[p + 1] = a1
+        X[p + 2] = a2
+        X[p + 3] = a3
+        Y[p] = b0
+        Y[p + 1] = b1
+        Y[p + 2] = b2
+        Y[p + 3] = b3
+        p += 4
+    for p in range(p, nrow):
+        a = 0.0
+        b = 0.0
+        for k in range(Ns):
+            a += P[p, k] * x[k]
+            b += P[p, k] * y[k]
+        X[p] = a
+        Y[p] = b
+
+
+@nb.njit(cache=True, nogil=True)
 def _diagonal_jacobian(C, S, Ns, out):  # pragma: no cover - compiled
     """``out = P diag(d) E`` (shape ``(nb, nb)``) from the DFT ``C, S`` of ``d`` at ``0..2H``.
 
@@ -146,23 +194,26 @@ def _aft_contact(kt, kn, gaps, mu, xt, xn, E, P, cos2, sin2, cum, max_periods,
     nbasis = xt.shape[0]
     Ns = E.shape[0]
     J = kt.shape[0]
-    t = np.empty(Ns)
-    n = np.empty(Ns)
+    work = np.zeros((8, Ns))  # one allocation for the per-sample work arrays
+    t = work[0]
+    n = work[1]
     _synthesise(E, xt, t)
     _synthesise(E, xn, n)
-    Tsum = np.zeros(Ns)
-    Nsum = np.zeros(Ns)
-    dstick = np.zeros(Ns)   # sum of kt over sticking elements
-    dslip = np.zeros(Ns)    # sum of sign mu kn over slipping elements
-    dclosed = np.zeros(Ns)  # sum of kn over closed elements
-    Ut = np.zeros((Ns + 1, nbasis))
-    Un = np.zeros((Ns + 1, nbasis))
+    Tsum = work[2]
+    Nsum = work[3]
+    dstick = work[4]   # sum of kt over sticking elements
+    dslip = work[5]    # sum of sign mu kn over slipping elements
+    dclosed = work[6]  # sum of kn over closed elements
+    U = np.empty((2, Ns + 1, nbasis))  # rows zeroed when first used
+    Ut = U[0]
+    Un = U[1]
     used = np.zeros(Ns + 1, dtype=np.bool_)
     code = np.empty(Ns, dtype=np.int8)  # 0 open, 1 stick, 2 slip with T > 0, 3 slip with T < 0
-    run_a = np.empty(Ns, dtype=np.int64)  # stick runs of one element: samples a <= k < b,
-    run_b = np.empty(Ns, dtype=np.int64)  # slider set at sample m with slip force derivative c
-    run_m = np.empty(Ns, dtype=np.int64)
-    run_c = np.empty(Ns)
+    runs = np.empty((3, Ns), dtype=np.int64)
+    run_a = runs[0]  # stick runs of one element: samples a <= k < b,
+    run_b = runs[1]  # slider set at sample m with slip force derivative c
+    run_m = runs[2]
+    run_c = work[7]
     t0 = xt[0]
     n0 = xn[0]
     worst = 0
@@ -276,22 +327,19 @@ def _aft_contact(kt, kn, gaps, mu, xt, xn, E, P, cos2, sin2, cum, max_periods,
             a = run_a[j]
             b = run_b[j]
             cj = run_c[j]
-            used[col] = True
+            if not used[col]:
+                used[col] = True
+                Ut[col] = 0.0
+                Un[col] = 0.0
             for q in range(nbasis):
                 seg = cum[b, q] - cum[a, q]
                 Ut[col, q] -= kti * seg
                 Un[col, q] += cj * seg
     # -- back to Fourier coefficients -------------------------------------
-    for p in range(nbasis):
-        a = 0.0
-        b = 0.0
-        for k in range(Ns):
-            a += P[p, k] * Tsum[k]
-            b += P[p, k] * Nsum[k]
-        FT[p] = a
-        FN[p] = b
-    C = np.empty(nbasis)
-    S = np.empty(nbasis)
+    _project(P, Tsum, Nsum, FT, FN)
+    CS = np.empty((2, nbasis))
+    C = CS[0]
+    S = CS[1]
     _dft(cos2, sin2, dstick, C, S)
     _diagonal_jacobian(C, S, Ns, JTt)
     _dft(cos2, sin2, dslip, C, S)

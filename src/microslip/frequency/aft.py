@@ -30,6 +30,7 @@ first harmonic of a Jenkins element is within about 1e-3 of its closed form
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import accumulate
 from typing import Sequence
 
 import numpy as np
@@ -171,6 +172,9 @@ def _check_model(name: str, model) -> MicroslipModel:
 
 
 def check_periodic(periods, max_periods: int) -> None:
+    """Raise :class:`NotPeriodicError` if a kernel's period count (int or array) is negative."""
+    if periods >= 0 if isinstance(periods, int) else not np.count_nonzero(periods < 0):
+        return  # periodic: the fast path of every call
     bad = np.flatnonzero(np.atleast_1d(periods) < 0)
     if bad.size:
         raise NotPeriodicError(
@@ -283,7 +287,6 @@ def _run(models, t, n, H, samples, max_periods) -> AFTResult:
 
 def pack_models(models: Sequence[MicroslipModel]) -> tuple[np.ndarray, ...]:
     """Concatenated ``kt, kn, gaps``, the ``offsets`` (nc+1) and ``mu`` (nc) for the kernel."""
-    offsets = np.zeros(len(models) + 1, dtype=np.int64)
-    offsets[1:] = np.cumsum([m.elements for m in models])
+    offsets = np.fromiter(accumulate((m.elements for m in models), initial=0), np.int64, len(models) + 1)
     return (np.concatenate([m.kt for m in models]), np.concatenate([m.kn for m in models]),
             np.concatenate([m.gaps for m in models]), offsets, np.array([m.mu for m in models]))
