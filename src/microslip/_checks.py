@@ -81,7 +81,8 @@ def in_range(name: str, value, lo: float, hi: float, *, lo_open=False, hi_open=F
 
 def positive_int(name: str, value, *, minimum: int = 1) -> int:
     """An integer >= ``minimum``."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+    if type(value) is not int and (  # a plain int passes at once (the hot paths)
+            isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer))):
         raise TypeError(f"{name} must be an integer, got {_show(value)}")
     if value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value}")

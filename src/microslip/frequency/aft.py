@@ -53,7 +53,7 @@ def default_samples(harmonics: int) -> int:
     See the module docstring for why.
     """
     H = _checks.positive_int("harmonics", harmonics, minimum=0)
-    return max(32, 1 << int(np.ceil(np.log2(max(16 * H, 1)))))
+    return max(32, 1 << (max(16 * H, 1) - 1).bit_length())  # bit_length: ceil(log2) in integers
 
 
 def check_samples(samples, harmonics: int) -> int:
