@@ -239,7 +239,11 @@ def test_large_sparse_structure_matches_dense_solution(monkeypatch):
     assert sparse.structure.sparse
     np.testing.assert_allclose(sparse.coefficients, dense.coefficients, rtol=1e-7, atol=1e-9 * np.abs(
         dense.coefficients).max())
-    assert sparse.contact_dissipation[0, 0] > 0
+    # the contact sticks at this level: its dissipation is zero up to rounding of the
+    # harmonic products (excitation work is the natural scale of that rounding)
+    scale = abs(float(sparse.excitation_work[0]))
+    assert abs(sparse.contact_dissipation[0, 0] - dense.contact_dissipation[0, 0]) <= 1e-9 * scale
+    assert sparse.contact_dissipation[0, 0] >= -1e-12 * scale
 
 
 def test_linear_structure_without_contacts():
