@@ -2,6 +2,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 
+import matplotlib.pyplot as plt  # noqa: E402
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -137,6 +139,7 @@ def test_csv_and_figures(reference, small_family, tmp_path):
     user = accuracy(J4, reference, [paths.paper_fig4(SPHERE, steps=50)])
     with pytest.raises(ValueError, match="plot\\(\\) needs paths from default_family"):
         user.plot()
+    plt.close("all")
 
 
 @pytest.mark.parametrize("call, exc, message", [

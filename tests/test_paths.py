@@ -2,6 +2,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 
+import matplotlib.pyplot as plt  # noqa: E402
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -122,3 +124,4 @@ def test_plot():
     assert "t (µm)" in ax.get_ylabel()
     ax = paths.from_arrays([0.0, 1e-6, 0.0], n=1e-6).plot()
     assert ax.get_title() == "user path"
+    plt.close("all")

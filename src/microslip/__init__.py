@@ -6,8 +6,12 @@ tangential stiffness, a normal stiffness and a normal gap, so the normal load
 shifts between elements as the normal approach changes. SI units throughout.
 """
 
+from . import loops
+from .frequency import FrequencyResponse, Structure, frequency_response
+from .loop_tuning import LoopTuning, Validation, tune_on_loops, validate
+from .measured import FittedBackbone, MeasuredContact, fit_backbone
 from .model import MicroslipModel, Response, State, Step
-from .reference import Sphere
+from .reference import Cylinder, Sphere
 from .tuning import ContactReference, TuningError, TuningPoints, tune, tuning_points
 from . import paths
 from .accuracy import AccuracyReport, accuracy
@@ -29,13 +33,25 @@ __all__ = [
     "smallest_elements",
     "tune_to_target",
     "ContactReference",
+    "Cylinder",
+    "FittedBackbone",
+    "FrequencyResponse",
+    "LoopTuning",
+    "MeasuredContact",
+    "Validation",
+    "fit_backbone",
+    "loops",
+    "tune_on_loops",
+    "validate",
     "MicroslipModel",
     "Response",
     "Sphere",
     "State",
     "Step",
+    "Structure",
     "TuningError",
     "TuningPoints",
+    "frequency_response",
     "tune",
     "tuning_points",
 ]

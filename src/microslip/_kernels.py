@@ -24,27 +24,33 @@ STICK = 1
 SLIP = 2
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def element_step(kt, kn, gap, mu, t, n, s):  # pragma: no cover - compiled
+    """One element, one step: returns ``(T_i, N_i, slipped, new slider)``.
+
+    Branch-free form of the return mapping: clipping the trial force to
+    ``[-mu N_i, mu N_i]`` is the slip rule, and the slider moves only when
+    the clip changed the force. Same arithmetic as the pure-Python twin.
+    """
+    Ni = kn * max(n - gap, 0.0)
+    lim = mu * Ni
+    trial = kt * (t - s)
+    Ti = min(max(trial, -lim), lim)
+    slipped = Ti != trial
+    return Ti, Ni, slipped, (t - Ti / kt if slipped else s)
+
+
 @nb.njit(cache=True, nogil=True)
 def march_totals(kt, kn, gaps, mu, t, n, s, T, N):  # pragma: no cover - compiled
     """March ``t``, ``n`` from slider state ``s`` (updated in place).
 
     Writes the total forces into ``T`` and ``N`` (shape ``(steps,)``).
-    Branch-free form of the return mapping: clipping the trial force to
-    ``[-mu N_i, mu N_i]`` is the slip rule, and the slider moves only when
-    the clip changed the force. Same arithmetic as the pure-Python twin.
     """
-    J = kt.shape[0]
     for k in range(t.shape[0]):
-        tk = t[k]
-        nk = n[k]
         tsum = 0.0
         nsum = 0.0
-        for i in range(J):
-            Ni = kn[i] * max(nk - gaps[i], 0.0)
-            lim = mu * Ni
-            trial = kt[i] * (tk - s[i])
-            Ti = min(max(trial, -lim), lim)
-            s[i] = s[i] if Ti == trial else tk - Ti / kt[i]
+        for i in range(kt.shape[0]):
+            Ti, Ni, _, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s[i])
             tsum += Ti
             nsum += Ni
         T[k] = tsum
@@ -58,19 +64,11 @@ def march_elements(kt, kn, gaps, mu, t, n, s, T, N, Ti, cond):  # pragma: no cov
     ``Ti`` has shape ``(steps, J)`` (float64), ``cond`` shape ``(steps, J)``
     (int8: 0 open, 1 stick, 2 slip).
     """
-    J = kt.shape[0]
     for k in range(t.shape[0]):
-        tk = t[k]
-        nk = n[k]
         tsum = 0.0
         nsum = 0.0
-        for i in range(J):
-            Ni = kn[i] * max(nk - gaps[i], 0.0)
-            lim = mu * Ni
-            trial = kt[i] * (tk - s[i])
-            Tk = min(max(trial, -lim), lim)
-            slipped = Tk != trial
-            s[i] = tk - Tk / kt[i] if slipped else s[i]
+        for i in range(kt.shape[0]):
+            Tk, Ni, slipped, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s[i])
             Ti[k, i] = Tk
             cond[k, i] = (Ni > 0.0) * (1 + slipped)
             tsum += Tk

@@ -18,11 +18,25 @@ from .units import unit_factor
 _HEADER_CELL = re.compile(r"^\s*([^\[\]]+?)\s*(?:\[\s*([^\]]*)\s*\])?\s*$")
 
 
-def _split(line: str) -> list[str]:
+def _split(line: str, header: bool = False) -> list[str]:
     for sep in (",", ";", "\t"):
         if sep in line:
             return [c.strip() for c in line.split(sep)]
+    if header:  # space-separated: keep each "[unit]" with the name before it
+        return re.findall(r"[^\s\[\]]+(?:\s*\[[^\]]*\])?|\S+", line)
     return line.split()
+
+
+def _fast_rows(lines: list[str], width: int):
+    """All data lines parsed at C speed, or None when any line is unusual (then the slow path names it)."""
+    if not lines:
+        return None
+    sep = next((c for c in (",", ";", "\t") if c in lines[0]), None)
+    try:
+        data = np.loadtxt(lines, delimiter=sep, ndmin=2, dtype=float)
+    except ValueError:
+        return None
+    return data if data.shape[1] == width else None
 
 
 def read_table(path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
@@ -39,28 +53,31 @@ def read_table(path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"table file {str(path)!r} does not exist")
-    lines = [ln for ln in path.read_text(encoding="utf-8").splitlines()
+    lines = [(number, ln) for number, ln in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1)
              if ln.strip() and not ln.lstrip().startswith("#")]
     if not lines:
         raise ValueError(f"{path}: the file holds no header and no data")
     names, units = [], {}
-    for cell in _split(lines[0]):
+    for cell in _split(lines[0][1], header=True):
         m = _HEADER_CELL.match(cell)
         if not m:
             raise ValueError(f"{path}: cannot read the header cell {cell!r}; expected 'name [unit]'")
         names.append(m.group(1))
         units[m.group(1)] = (m.group(2) or "").strip()
+    data = _fast_rows([line for _, line in lines[1:]], len(names))
+    if data is not None:
+        return {name: data[:, i] for i, name in enumerate(names)}, units
     rows = []
-    for number, line in enumerate(lines[1:], start=2):
+    for number, line in lines[1:]:  # numbers of the lines in the file
         cells = _split(line)
         if len(cells) != len(names):
-            raise ValueError(f"{path}: data line {number} has {len(cells)} cells, the header names {len(names)}")
+            raise ValueError(f"{path}: line {number} has {len(cells)} cells, the header names {len(names)}")
         row = []
         for name, cell in zip(names, cells):
             try:
                 row.append(float(cell))
             except ValueError:
-                raise ValueError(f"{path}: data line {number}, column {name!r}: {cell!r} is not a number") from None
+                raise ValueError(f"{path}: line {number}, column {name!r}: {cell!r} is not a number") from None
         rows.append(row)
     data = np.array(rows, dtype=float).reshape(len(rows), len(names))
     return {name: data[:, i] for i, name in enumerate(names)}, units

@@ -17,7 +17,7 @@ The public objects are
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +26,6 @@ from . import _checks, _kernels
 from ._io import atomic_write
 
 OPEN, STICK, SLIP = _kernels.OPEN, _kernels.STICK, _kernels.SLIP
-CONDITION_NAMES = {OPEN: "open", STICK: "stick", SLIP: "slip"}
 
 _FORMAT = "microslip.MicroslipModel"
 _FORMAT_VERSION = 1
@@ -51,7 +50,8 @@ class State:
     sliders: np.ndarray
 
     def __post_init__(self):
-        object.__setattr__(self, "sliders", _frozen(self.sliders))
+        object.__setattr__(self, "sliders", _frozen(_checks.real_array("sliders", self.sliders, ndim=1,
+                                                                       min_size=1)))
 
     def __repr__(self) -> str:
         return f"State(sliders={np.array2string(self.sliders, precision=4)})"
@@ -131,8 +131,11 @@ class Response:
         """Work done on the contact along the record, ``∫ T dt`` (J).
 
         Over a closed path (equal first and last ``t`` and ``n`` with the
-        same state) this is the energy dissipated, and it is never negative.
-        Evaluated with the trapezoidal rule on the samples.
+        same state) this is the energy dissipated. Evaluated with the
+        trapezoidal rule on the samples: never negative when ``n`` is constant
+        over the steps where ``t`` moves; when both move in one step it may
+        fall below zero by at most ``sum(kt) * sum(dt**2) / 2``, which
+        vanishes as the path is refined.
         """
         return float(np.trapezoid(self.T, self.t)) if self.t.size > 1 else 0.0
 
@@ -194,7 +197,6 @@ class MicroslipModel:
     kn: np.ndarray
     gaps: np.ndarray
     mu: float
-    _inv_kt: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         kt = _checks.positive_array("kt", self.kt, ndim=1, min_size=1)

@@ -227,6 +227,13 @@ def _next_gap(reference, kn, gaps, n_tot, element):
     x_max = float(res.x)
     r_max = residual(x_max)
     r_hi = residual(n_tot)
+    if not r_max > 0.0:
+        # A reference curve that is not convex can leave the residual non-concave, and the
+        # bounded search may then miss its positive part: scan a grid for it.
+        for x in np.linspace(lo, n_tot, 513)[1:-1]:
+            if residual(x) > 0.0:
+                x_max, r_max = float(x), residual(x)
+                break
     if not (r_max > 0.0 and r_hi < 0.0):
         h = 1e-6 * n_tot
         slope = (float(reference.normal_force(lo + h)) - float(reference.normal_force(max(lo - h, 0.0)))) / (

@@ -1,8 +1,17 @@
-"""``microslip tune``: tune the paper's array on a reference contact and save it as JSON."""
+"""``microslip tune``: tune the paper's array on a reference contact and save it as JSON.
+
+Without loop files the reference is a sphere (Hertz + Cattaneo--Mindlin).
+With loop files (``microslip tune LOOPS... --normal-law palmgren --length 10mm
+--radius 5mm --elements 6 -o model.json``) the reference is built from the
+measured loops and a cylinder's normal law, and a report (HTML + Markdown)
+with the loops, the fitted branch, the per-element loops, the normal curve
+and the validation at every measured load is written next to the model.
+"""
 
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 from ._args import add_sphere_options, quantity, sphere_from
 
@@ -21,12 +30,23 @@ def add_parser(sub) -> None:
     p = sub.add_parser(
         "tune", help="tune a microslip model and write it as JSON",
         description="Tune the paper's microslip array on a reference contact (eqs. 1-9) and write the "
-                    "model as JSON, readable by MicroslipModel.load and by 'microslip simulate'.")
+                    "model as JSON, readable by MicroslipModel.load and by 'microslip simulate'. Without LOOPS "
+                    "the reference is a sphere on a plane. With LOOPS (measured hysteresis loops at one or more "
+                    "normal loads) the branch of the steady loop at the highest load is fitted with a smooth "
+                    "concave curve and the array is tuned on it and on a cylinder's normal law (paper Sect. 3); "
+                    "--mu then defaults to a fit of the slip forces and --load to the highest load, and a report "
+                    "is written. Units go with their values: 10mm, 2.5um, 30N, 200GPa.")
+    p.add_argument("loops", nargs="*", metavar="LOOPS",
+                   help="loop files: CSV/text whose header names columns with units (e.g. 'time [s], t [um], "
+                        "T [N], N [N]'), or the ARTS-Lab damper JSON; append @LOAD to give a file's normal load, "
+                        "e.g. run1.csv@36.6N (else a '# normal load = ...' comment or the mean of its N column)")
     p.add_argument("--reference", choices=["sphere"], default="sphere",
-                   help="the reference contact (default: sphere, Hertz + Cattaneo-Mindlin)")
+                   help="the reference contact without LOOPS (default: sphere, Hertz + Cattaneo-Mindlin)")
     add_sphere_options(p)
-    p.add_argument("--load", type=quantity("force"), default=37.5,
-                   help="normal load N_tot to tune at, e.g. 37.5N (default 37.5N)")
+    p.set_defaults(mu=None)
+    p.add_argument("--load", type=quantity("force"), default=None,
+                   help="normal load N_tot to tune at, e.g. 37.5N (default: 37.5N for the sphere, the highest "
+                        "measured load with LOOPS)")
     pts = p.add_mutually_exclusive_group()
     pts.add_argument("--elements", type=int, default=None,
                      help="number of elements J; points evenly spaced in force (default 4)")
@@ -34,17 +54,92 @@ def add_parser(sub) -> None:
                      help="tuning forces, comma-separated, increasing, last = mu*N_tot (e.g. 3.75N,7.5N,11.25N,15N)")
     pts.add_argument("--displacements", type=_quantity_list("length"), default=None,
                      help="tuning displacements, comma-separated, increasing, last at gross slip")
+    g = p.add_argument_group("measured loops (with LOOPS): cylinder on a plane; --radius, --E, --nu above apply")
+    g.add_argument("--normal-law", default="palmgren",
+                   help="normal force-approach law: 'palmgren' (Harris), 'lundberg' (Lundberg-Sjovall), or a "
+                        "table file with columns 'n [unit]' and 'N [unit]' (monotone) (default palmgren)")
+    g.add_argument("--length", type=quantity("length"), default=10e-3,
+                   help="length of the line of contact, e.g. 10mm (default 10mm)")
+    g.add_argument("--t-column", default=None, help="name of the displacement column (default: t, x, u or "
+                                                    "displacement)")
+    g.add_argument("--T-column", dest="T_column", default=None,
+                   help="name of the tangential force column (default: T, F or force)")
+    g.add_argument("--N-column", dest="N_column", default=None, help="name of the normal load column (default N)")
+    g.add_argument("--t-unit", default=None, help="unit of the displacement column when the header has none, "
+                                                  "e.g. um")
+    g.add_argument("--T-unit", dest="T_unit", default=None, help="unit of the force column when the header has "
+                                                                 "none, e.g. N")
+    g.add_argument("--report", default=None,
+                   help="folder for the report (default: the folder of --output); files <model stem>-report.*")
+    g.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
     p.add_argument("-o", "--output", default="model.json", help="model file to write (default model.json)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    if args.loops:
+        return _run_loops(args)
     from ..tuning import tune
 
+    if args.mu is None:
+        args.mu = 0.4
     reference = sphere_from(args)
     points_given = args.forces is not None or args.displacements is not None
-    model = tune(reference, args.load, forces=args.forces, displacements=args.displacements,
-                 elements=None if points_given else (args.elements or 4))
+    model = tune(reference, 37.5 if args.load is None else args.load, forces=args.forces,
+                 displacements=args.displacements,
+                 elements=None if points_given else (4 if args.elements is None else args.elements))
     model.save(args.output)
     print(json.dumps({"written": args.output, "elements": model.elements, "mu": model.mu}))
+    return 0
+
+
+def normal_law(args):
+    """The cylinder of the command line, its law a name or a table file."""
+    from ..reference import Cylinder
+
+    law = args.normal_law
+    if law in ("palmgren", "lundberg"):
+        return Cylinder(length=args.length, radius=args.radius, E=args.E, nu=args.nu, mu=args.mu, law=law)
+    if not Path(law).is_file():
+        raise ValueError(f"--normal-law must be 'palmgren', 'lundberg' or an existing table file, got {law!r}")
+    return Cylinder.from_file(law, args.length, args.radius, args.E, args.nu, args.mu)
+
+
+def _split_load(item: str):
+    from ..units import parse_quantity
+
+    path, sep, load = item.rpartition("@")
+    if not sep or not path:
+        return item, None
+    return path, parse_quantity(load, "force", name=f"load of {path}")
+
+
+def _run_loops(args) -> int:
+    from .. import loops
+    from .._progress import Progress
+    from ..loop_tuning import tune_on_loops
+
+    bar = Progress(len(args.loops) + 2, enabled=not args.quiet)
+    columns = {k: v for k, v in (("t", args.t_column), ("T", args.T_column), ("N", args.N_column)) if v}
+    units = {k: v for k, v in (("t", args.t_unit), ("T", args.T_unit)) if v}
+    analysed = []
+    for item in args.loops:
+        path, load = _split_load(item)
+        bar.step(f"reading and analysing {path}")
+        analysed.append(loops.analyse(loops.read(path, columns=columns, units=units, normal_load=load)))
+    bar.step("fitting the branch, tuning, validating")
+    points_given = args.forces is not None or args.displacements is not None
+    result = tune_on_loops(analysed, normal_law(args),
+                           elements=None if points_given else (4 if args.elements is None else args.elements),
+                           forces=args.forces, displacements=args.displacements, normal_load=args.load)
+    result.model.save(args.output)
+    out = Path(args.output)
+    bar.step("writing the report")
+    html, md = result.report(Path(args.report) if args.report else out.parent, stem=f"{out.stem}-report")
+    bar.done(f"wrote {args.output}")
+    worst = result.validation.worst()
+    print(json.dumps({"written": args.output, "report": [str(html), str(md)], "elements": result.model.elements,
+                      "mu": result.reference.mu, "normal_load": result.reference.normal_load,
+                      "fit_relative_residual": result.reference.fit.relative_residual,
+                      "worst_validation_difference": worst}))
     return 0

@@ -19,10 +19,10 @@ Every module in :data:`SECTIONS` follows one contract:
     extra tables ``(caption, headers, rows)`` shown under the figure.
 """
 
-from . import accuracy, accuracy_amplitude, accuracy_sweep, fig2a
+from . import accuracy, accuracy_amplitude, accuracy_sweep, fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6
 from .case import PaperCase
 from .reproduce import reproduce
 
-SECTIONS = [fig2a, accuracy, accuracy_sweep, accuracy_amplitude]
+SECTIONS = [fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6, accuracy, accuracy_sweep, accuracy_amplitude]
 
 __all__ = ["PaperCase", "SECTIONS", "reproduce"]

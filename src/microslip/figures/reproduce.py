@@ -31,9 +31,6 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
     Path
         The HTML report.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     from . import SECTIONS

@@ -209,6 +209,10 @@ class Sphere:
         N, dN, T_A = self._raised_load_args(N, dN, T_A)
         T = _checks.real_array("T", T)
         N2 = N + dN
+        outside = (T < 0) | (T > self.mu * N2 * (1 + 1e-12))
+        if outside.any():
+            raise ValueError(f"T must lie in [0, mu*(N+dN)] = [0, {self.mu * N2:g}] N, "
+                             f"got {float(T[outside].flat[0]):g} N")
         before = self.backbone_displacement(np.clip(T, 0, self.mu * N), N)
         tA = self.backbone_displacement(T_A, N)
         shifted = tA + self.backbone_displacement(np.clip(T - T_A, 0, self.mu * N2), N2)

@@ -1,0 +1,165 @@
+"""Speed of a whole forced-response curve, microslip against pyHarm in the same run.
+
+Run:  python benchmarks/bench_frf.py          (pyHarm part: pip install -e .[bench])
+
+The problem (same for both codes): a 1-DOF oscillator m = 1 kg, k = 1e4 N/m, c = 1 N s/m with
+one Jenkins element kt = 1e4 N/m, slip force 1 N, excitation 2 N cos(omega t), omega from 60 to
+160 rad/s, H = 7 harmonics, 128 time samples per period.
+
+Accuracy: each code's curve must give the peak of the first-harmonic amplitude within 1e-4
+(relative) of a converged reference (microslip with very small continuation steps). The peak
+is read from each curve the same way (a parabola through the highest point and its two
+neighbours, in arclength). pyHarm's step is refined (ds = 0.05, 0.04, 0.03, ...) until it
+meets the bar, with its nondimensionalisation set like microslip's scaling (lc = 5 mm,
+wc = 100 rad/s) so that its arclength measures the amplitude too; the time of the first run
+that meets the bar is the one compared. Both codes are warmed up (JIT compilation) first.
+The solutions are also compared point by point (microslip solved at pyHarm's frequencies).
+
+A second figure: the curve of a blade with a 16-element microslip damper (examples/blade_damper.py
+with a 16-element sphere contact), H = 7, 128 samples.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from microslip import MicroslipModel, Sphere, Structure, frequency_response, tune
+from microslip.frequency import StepControl, frequency_point
+
+A_TOL = 1e-4
+
+
+def jenkins_oscillator() -> Structure:
+    s = Structure(M=[[1.0]], C=[[1.0]], K=[[1e4]])
+    s.add_contact(MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0), tangential=0, approach=1e-6)
+    return s
+
+
+def peak(omega, amp, omega_scale=100.0):
+    """Peak amplitude: parabola through the highest point and its neighbours, in arclength."""
+    i = int(np.argmax(amp))
+    w, a = omega[i - 1:i + 2], amp[i - 1:i + 2]
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(w) / omega_scale, np.diff(a) / amp[i]))])
+    p = np.polyfit(s, a, 2)
+    return float(np.polyval(p, -p[1] / (2 * p[0])))
+
+
+def best_of(fn, repeat=5):
+    best, result = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        result = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, result
+
+
+def microslip_curve(control=None):
+    return frequency_response(jenkins_oscillator(), [2.0], (60.0, 160.0), harmonics=7, samples=128, control=control)
+
+
+def pyharm_input(ds):
+    node = {"connect": {"sub": [0]}, "dirs": [0]}
+    return {
+        "system": {"type": "Base", "nh": 7, "nti": 128, "adim": {"status": True, "lc": 5e-3, "wc": 100.0}},
+        "substructures": {"sub": {"type": "onlydofs", "nnodes": 1, "ndofs": 1, "matching": [0]}},
+        "connectors": {
+            "mass": {"type": "GOElement", "dto": 2, "xo": 1, "k": 1.0, **node},
+            "spring": {"type": "LinearSpring", "k": 1e4, **node},
+            "damper": {"type": "LinearDamper", "k": 1.0, **node},
+            "jenkins": {"type": "Jenkins", "k": 1e4, "mu": 1.0, "N0": 1.0, **node},
+            "force": {"type": "CosinusForcing", "amp": 2.0, **node},
+        },
+        "analysis": {"frf": {"study": "frf", "puls_inf": 60.0, "puls_sup": 160.0, "ds0": ds, "ds_max": ds,
+                             "ds_min": 1e-8, "verbose": False}},
+    }
+
+
+def pyharm_curve(ds):
+    """(seconds, omega, first-harmonic amplitude, points) of a pyHarm run."""
+    import logging
+
+    import pyHarm
+
+    logging.disable(logging.CRITICAL)
+    maestro = pyHarm.Maestro(pyharm_input(ds))
+    t0 = time.perf_counter()
+    maestro.operate()
+    elapsed = time.perf_counter() - t0
+    X = np.array([s.x for s in maestro.nls["frf"].SolList if s.flag_accepted])
+    omega = X[:, -1] * 100.0  # undo the nondimensionalisation (wc = 100 rad/s, lc = 5 mm)
+    amp = np.hypot(X[:, 1], X[:, 2]) * 5e-3
+    keep = (omega >= 60.0) & (omega <= 160.0)
+    return elapsed, omega[keep], amp[keep], int(keep.sum())
+
+
+def main():
+    warnings.filterwarnings("ignore")
+    # reference: microslip with very small steps
+    ref = microslip_curve(StepControl(ds_max=0.002, max_angle=0.01, max_points=100000))
+    a_ref = peak(ref.omega, ref.amplitude(0, 1))
+    microslip_curve()  # warm-up
+    t_ms, curve = best_of(microslip_curve)
+    err_ms = peak(curve.omega, curve.amplitude(0, 1)) / a_ref - 1
+    print(f"reference peak amplitude {a_ref * 1e3:.7f} mm ({ref.points} points)")
+    print(f"microslip: {t_ms * 1e3:7.1f} ms for {curve.points} points "
+          f"({t_ms / curve.points * 1e3:.3f} ms per point), peak error {err_ms:+.1e}")
+    assert abs(err_ms) < A_TOL
+    try:
+        import pyHarm  # noqa: F401  (only checking that it is installed)
+    except Exception as exc:
+        print(f"pyHarm is not installed ({type(exc).__name__}); pip install -e .[bench] to compare. Skipped.")
+        return
+    pyharm_curve(0.2)  # warm-up: JIT compilation of pyHarm's kernels
+    for ds in (0.05, 0.04, 0.03, 0.02, 0.01):
+        t_ph, w, a, pts = pyharm_curve(ds)
+        err_ph = peak(w, a) / a_ref - 1
+        print(f"pyHarm ds = {ds}: {t_ph * 1e3:7.1f} ms for {pts} points ({t_ph / pts * 1e3:.3f} ms per point), "
+              f"peak error {err_ph:+.1e}")
+        if abs(err_ph) < A_TOL:
+            break
+    else:
+        print("pyHarm did not reach the accuracy bar; the last run is compared")
+    # the two codes solve the same equations: microslip at pyHarm's frequencies
+    diffs = []
+    for k in np.linspace(1, len(w) - 2, 6).astype(int):
+        one = frequency_point(jenkins_oscillator(), [2.0], w[k], harmonics=7, samples=128)
+        diffs.append(abs(one.amplitude(0, 1)[0] / a[k] - 1))
+    print(f"same solutions: largest relative difference at 6 of pyHarm's points {max(diffs):.1e}")
+    print(f"RATIO pyHarm / microslip, same peak accuracy: {t_ph / t_ms:.0f}x")
+
+    # a 16-element microslip contact
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+    from blade_damper import blade_with_damper
+
+    blade = blade_with_damper()
+    blade.contacts.clear()
+    a20 = np.radians(20)
+    blade.add_contact(tune(Sphere.paper(), 37.5, elements=16), tangential=[np.cos(a20), 0.0],
+                      normal=[np.sin(a20), 0.0], preload=37.5)
+    run = lambda: frequency_response(blade, [0.0, 1.0], (4000.0, 12000.0), harmonics=7, samples=128)  # noqa: E731
+    run()
+    t16, r16 = best_of(run)
+    print(f"blade with a 16-element damper (F = 1 N, H = 7, 128 samples): {t16 * 1e3:.1f} ms for {r16.points} points")
+
+
+def in_temporary_directory(fn):
+    """Run ``fn()`` from a temporary working directory: pyHarm writes a '.pyHarm' folder there."""
+    import os
+    import tempfile
+
+    here = os.getcwd()
+    with tempfile.TemporaryDirectory() as tmp:
+        os.chdir(tmp)
+        try:
+            return fn()
+        finally:
+            os.chdir(here)
+
+
+if __name__ == "__main__":
+    in_temporary_directory(main)

@@ -1,0 +1,86 @@
+"""Speed of the measured-loop path: reading + analysing 10^6 samples (< 2 s), tuning from loops (< 5 s).
+
+Run:  python benchmarks/bench_loops.py
+
+Each figure is printed with a baseline measured in the same run, so the ratio
+is what carries over between machines:
+
+* reading + analysing a 10^6-sample CSV, against ``numpy.loadtxt`` of the same
+  file (the bare parse, no units, no analysis);
+* tuning from loops (read + analyse the 5 shipped records, fit, tune with 6
+  elements, validate at every load), against ``microslip.tune`` on the
+  closed-form sphere with 6 elements.
+
+Timings are the best of ``REPEATS`` runs after one warm-up run (which loads
+the compiled kernels from numba's cache).
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from microslip import Cylinder, Sphere, loops, tune, tune_on_loops
+from microslip.loops.synthetic import dataset_files, normal_curve_file
+
+SAMPLES = 1_000_000
+REPEATS = 3
+
+
+def best(fn, repeats=REPEATS):
+    fn()
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def write_big_record(path: Path) -> None:
+    """10^6 samples: 100 cycles of a 20-element sphere array with sensor noise."""
+    sphere = Sphere.paper()
+    model = tune(sphere, 37.5, elements=20)
+    tau = np.arange(SAMPLES) / 10_000
+    t = 1.5e-6 * np.sin(2 * np.pi * tau)
+    T = model.simulate(t, float(sphere.approach(37.5)), per_element=False).T
+    rng = np.random.default_rng(1)
+    data = np.column_stack([tau * 1e-2, (t + rng.normal(0, 5e-9, SAMPLES)) * 1e6, T + rng.normal(0, 0.03, SAMPLES)])
+    np.savetxt(path, data, delimiter=",", fmt="%.7g", header="time [s],t [um],T [N]", comments="")
+
+
+def bench_read_and_analyse() -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "big.csv"
+        write_big_record(path)
+        result = {}
+
+        def ours():
+            result["loops"] = loops.analyse(loops.read(path, normal_load=37.5))
+
+        mine = best(ours)
+        base = best(lambda: np.loadtxt(path, delimiter=",", skiprows=1))
+        L = result["loops"]
+        print(f"read + analyse {SAMPLES:.0e} samples ({L.cycles} cycles): {mine:.3f} s "
+              f"(target < 2 s); baseline numpy.loadtxt: {base:.3f} s; ratio {mine / base:.2f}")
+
+
+def bench_tune_from_loops() -> None:
+    cylinder = Cylinder.from_file(normal_curve_file(), 10e-3, 5e-3, 200e9, 0.3)
+
+    def ours():
+        records = [loops.analyse(loops.read(p)) for p in dataset_files()]
+        tune_on_loops(records, cylinder, elements=6)
+
+    mine = best(ours)
+    base = best(lambda: tune(Sphere.paper(), 37.5, elements=6))
+    print(f"tune from loops (5 records, fit, tune J=6, validate): {mine:.3f} s (target < 5 s); "
+          f"baseline tune(Sphere, J=6): {base:.4f} s; ratio {mine / base:.0f}")
+
+
+if __name__ == "__main__":
+    bench_read_and_analyse()
+    bench_tune_from_loops()

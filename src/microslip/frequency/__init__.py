@@ -1,0 +1,41 @@
+"""Frequency domain: alternating frequency--time contact forces and harmonic balance.
+
+* :func:`aft`, :func:`aft_batch` -- periodic forces of microslip contacts from
+  the Fourier coefficients of their displacements, with exact Jacobians;
+* :class:`Structure` -- a linear structure (dense or sparse ``M, C, K``) with
+  contacts attached to linear combinations of its degrees of freedom;
+* :func:`frequency_response` -- harmonic balance with pseudo-arclength
+  continuation, returning a :class:`FrequencyResponse`;
+* :func:`frequency_point` -- the solution at one frequency;
+* :func:`static_solution` -- the static equilibrium under preloads;
+* :func:`steady_state` -- direct time integration
+  to the periodic steady state (an independent check).
+"""
+
+from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
+from .continuation import ConvergenceError, StepControl
+from .hbm import HarmonicBalance
+from .response import FrequencyResponse, frequency_point, frequency_response, static_solution
+from .structure import Contact, Structure
+from .transient import SteadyState, steady_state
+
+__all__ = [
+    "AFTResult",
+    "Contact",
+    "ConvergenceError",
+    "FrequencyResponse",
+    "HarmonicBalance",
+    "NotPeriodicError",
+    "StepControl",
+    "SteadyState",
+    "Structure",
+    "aft",
+    "aft_batch",
+    "cycle_work",
+    "default_samples",
+    "frequency_point",
+    "frequency_response",
+    "static_solution",
+    "steady_state",
+    "synthesise",
+]

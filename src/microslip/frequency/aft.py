@@ -1,0 +1,292 @@
+"""Alternating frequency--time (AFT) contact forces with exact Jacobians.
+
+A periodic history of the contact's tangential displacement ``t`` and normal
+approach ``n`` is given by its Fourier coefficients (static term plus ``H``
+harmonics, layout ``[c0, a1, b1, ..., aH, bH]`` of
+``c0 + sum_h a_h cos(h tau) + b_h sin(h tau)``, ``tau = omega time``). The
+contact is marched over ``samples`` points per period, period after period,
+until its state repeats exactly, and the periodic forces ``T`` and ``N`` are
+returned as Fourier coefficients, with their derivatives with respect to the
+coefficients of ``t`` and ``n``, carried through the march (see
+:mod:`microslip.frequency._aft` for the algorithm).
+
+History convention: the contact is taken closed at ``t = 0`` with no
+tangential force (every slider at 0). The static part of the motion is
+applied first, as one monotonic step from that virgin state at the static
+normal approach; the periodic motion follows. An element that never slips
+keeps the force it took in that static step, as a real contact does.
+
+Number of samples. At least ``2H + 1`` samples are needed for the kept
+harmonics to be distinguishable. The contact force has kinks (stick--slip
+transitions), so its harmonics decay like ``1/j^2``, and harmonic ``Ns - h``
+folds onto ``h``; each kink is also located only to within one sample. Both
+errors fall like ``1/Ns^2``. :func:`default_samples` takes ``16 H`` rounded
+up to a power of two (and at least 32): the aliased part of the highest kept
+harmonic is then about ``(1/15)^2`` of its neighbour beyond ``Ns``, and the
+first harmonic of a Jenkins element is within about 1e-3 of its closed form
+(the test suite checks the ``1/Ns^2`` convergence).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import accumulate
+from typing import Sequence
+
+import numpy as np
+
+from .. import _checks
+from ..model import MicroslipModel
+from . import _aft
+
+MAX_PERIODS = 1000
+
+
+class NotPeriodicError(RuntimeError):
+    """The contact state did not become periodic within the allowed number of periods."""
+
+
+def default_samples(harmonics: int) -> int:
+    """Default number of time samples per period for ``harmonics`` harmonics.
+
+    ``16 H`` rounded up to a power of two, at least 32 (128 for ``H = 7``).
+    See the module docstring for why.
+    """
+    H = _checks.positive_int("harmonics", harmonics, minimum=0)
+    return max(32, 1 << (max(16 * H, 1) - 1).bit_length())  # bit_length: ceil(log2) in integers
+
+
+def check_samples(samples, harmonics: int) -> int:
+    """``samples`` checked against ``harmonics`` (``None``: :func:`default_samples`)."""
+    if samples is None:
+        return default_samples(harmonics)
+    Ns = _checks.positive_int("samples", samples, minimum=1)
+    if Ns < 2 * harmonics + 1:
+        raise ValueError(f"samples must be at least 2 * harmonics + 1 = {2 * harmonics + 1} "
+                         f"to resolve {harmonics} harmonics, got {Ns}")
+    return Ns
+
+
+def harmonics_of(name: str, coefficients) -> tuple[np.ndarray, int]:
+    """Check a Fourier coefficient array ``(..., 2H+1)``; returns it and ``H``."""
+    c = _checks.real_array(name, coefficients)
+    if c.ndim == 0 or c.shape[-1] % 2 == 0:
+        raise ValueError(f"{name} must hold 2H + 1 Fourier coefficients [c0, a1, b1, ..., aH, bH] "
+                         f"along its last axis, got shape {c.shape}")
+    return c, (c.shape[-1] - 1) // 2
+
+
+def synthesise(coefficients, samples: int) -> np.ndarray:
+    """Values at ``tau_k = 2 pi k / samples`` of the series with these coefficients.
+
+    Parameters
+    ----------
+    coefficients : array_like, shape (..., 2H+1)
+        ``[c0, a1, b1, ..., aH, bH]``.
+    samples : int
+        Number of samples per period.
+
+    Returns
+    -------
+    ndarray, shape (..., samples)
+    """
+    c, H = harmonics_of("coefficients", coefficients)
+    Ns = check_samples(samples, H)
+    E = _aft.tables(H, Ns)[0]
+    return c @ E.T
+
+
+@dataclass(frozen=True, eq=False)
+class AFTResult:
+    """Periodic contact forces and their derivatives (from :func:`aft`).
+
+    With ``nb = 2H + 1`` coefficients and, for :func:`aft_batch`, a leading
+    axis of length ``nc`` (one row per contact).
+
+    Attributes
+    ----------
+    T, N : ndarray, shape ([nc,] nb)
+        Fourier coefficients of the tangential and normal force (N).
+    dT_dt, dT_dn, dN_dn : ndarray, shape ([nc,] nb, nb)
+        Derivatives of the coefficients of ``T`` (resp. ``N``) with respect
+        to those of ``t`` (resp. ``n``) (N/m). ``dN/dt`` is zero.
+    periods : int or ndarray of int
+        Periods marched until the state repeated (the last one is periodic).
+    samples : int
+        Time samples per period.
+    """
+
+    T: np.ndarray
+    N: np.ndarray
+    dT_dt: np.ndarray
+    dT_dn: np.ndarray
+    dN_dn: np.ndarray
+    periods: int | np.ndarray
+    samples: int
+
+    @property
+    def harmonics(self) -> int:
+        """Number of harmonics ``H``."""
+        return (self.T.shape[-1] - 1) // 2
+
+    def dissipation(self, t) -> np.ndarray:
+        """Energy dissipated per cycle by the tangential force along ``t`` (J).
+
+        ``W = pi sum_h h (A_h b_h - B_h a_h)`` with ``T = A cos + B sin`` and
+        ``t = a cos + b sin``: the work of the harmonics kept (the normal
+        force is elastic and does no net work).
+
+        Parameters
+        ----------
+        t : array_like, shape ([nc,] nb)
+            The tangential displacement coefficients (m) given to :func:`aft`.
+        """
+        t, _ = harmonics_of("t", t)
+        return cycle_work(self.T, t)
+
+
+def cycle_work(force, displacement) -> np.ndarray:
+    """Work per cycle of a periodic force along a periodic displacement (J).
+
+    Parameters
+    ----------
+    force, displacement : array_like, shape (..., 2H+1)
+        Fourier coefficients (N and m).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        ``pi sum_h h (F_a,h x_b,h - F_b,h x_a,h)``.
+    """
+    F = np.asarray(force, dtype=float)
+    x = np.asarray(displacement, dtype=float)
+    H = (F.shape[-1] - 1) // 2
+    h = np.arange(1, H + 1)
+    return np.pi * np.sum(h * (F[..., 1::2] * x[..., 2::2] - F[..., 2::2] * x[..., 1::2]), axis=-1)
+
+
+def _check_model(name: str, model) -> MicroslipModel:
+    if not isinstance(model, MicroslipModel):
+        raise TypeError(f"{name} must be a microslip MicroslipModel, got {type(model).__name__}")
+    return model
+
+
+def check_periodic(periods, max_periods: int) -> None:
+    """Raise :class:`NotPeriodicError` if a kernel's period count (int or array) is negative."""
+    if periods >= 0 if isinstance(periods, int) else not np.count_nonzero(periods < 0):
+        return  # periodic: the fast path of every call
+    bad = np.flatnonzero(np.atleast_1d(periods) < 0)
+    if bad.size:
+        raise NotPeriodicError(
+            f"the state of contact {int(bad[0])} was still changing after max_periods = {max_periods} "
+            "periods; raise max_periods")
+
+
+def aft(model: MicroslipModel, t, n, *, samples: int | None = None,
+        max_periods: int = MAX_PERIODS) -> AFTResult:
+    """Periodic forces of one contact and their exact derivatives.
+
+    Parameters
+    ----------
+    model : MicroslipModel
+        The contact.
+    t, n : array_like, shape (2H+1,)
+        Fourier coefficients of the tangential displacement and of the normal
+        approach (m), ``[c0, a1, b1, ..., aH, bH]``.
+    samples : int, optional
+        Time samples per period (default :func:`default_samples`).
+    max_periods : int, default 1000
+        Periods allowed for the state to become periodic.
+
+    Returns
+    -------
+    AFTResult
+        Coefficients of ``T`` and ``N`` (N), shape ``(2H+1,)``, and the
+        Jacobians (N/m), shape ``(2H+1, 2H+1)``.
+
+    Raises
+    ------
+    NotPeriodicError
+        If the state is still changing after ``max_periods`` periods.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from microslip import MicroslipModel
+    >>> from microslip.frequency import aft
+    >>> jenkins = MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0)  # slip force 1 N at n = 1 µm
+    >>> r = aft(jenkins, t=[0, 3e-4, 0], n=[1e-6, 0, 0])
+    >>> r.T.shape, r.dT_dt.shape
+    ((3,), (3, 3))
+    """
+    model = _check_model("model", model)
+    t, H = harmonics_of("t", t)
+    n, _ = harmonics_of("n", n)
+    if t.ndim != 1:
+        raise ValueError(f"t must be 1-D (2H+1 coefficients), got shape {t.shape}")
+    if n.shape != t.shape:
+        raise ValueError(f"n must have the same shape as t {t.shape}, got {n.shape}")
+    Ns = check_samples(samples, H)
+    max_periods = _checks.positive_int("max_periods", max_periods)
+    nb = t.size
+    T, N = np.empty(nb), np.empty(nb)
+    dT_dt, dT_dn, dN_dn = np.empty((nb, nb)), np.empty((nb, nb)), np.empty((nb, nb))
+    periods = _aft.aft_contact(model.kt, model.kn, model.gaps, model.mu, t, n, *_aft.tables(H, Ns), max_periods,
+                               T, N, dT_dt, dT_dn, dN_dn)
+    check_periodic(periods, max_periods)
+    return AFTResult(T, N, dT_dt, dT_dn, dN_dn, int(periods), Ns)
+
+
+def aft_batch(models: Sequence[MicroslipModel], t, n, *, samples: int | None = None,
+              max_periods: int = MAX_PERIODS) -> AFTResult:
+    """Periodic forces of ``nc`` contacts at once (one compiled call).
+
+    Parameters
+    ----------
+    models : sequence of MicroslipModel, length nc
+        The contacts (their numbers of elements may differ).
+    t, n : array_like, shape (nc, 2H+1)
+        Fourier coefficients of each contact's tangential displacement and
+        normal approach (m).
+    samples, max_periods
+        As in :func:`aft`.
+
+    Returns
+    -------
+    AFTResult
+        Arrays with a leading axis of length ``nc``; ``periods`` per contact.
+    """
+    if isinstance(models, MicroslipModel) or not isinstance(models, Sequence) or len(models) == 0:
+        raise TypeError(f"models must be a non-empty sequence of MicroslipModel, got {type(models).__name__}")
+    models = [_check_model(f"models[{i}]", m) for i, m in enumerate(models)]
+    t, H = harmonics_of("t", t)
+    n, _ = harmonics_of("n", n)
+    shape = (len(models), 2 * H + 1)
+    if t.shape != shape:
+        raise ValueError(f"t must have shape (len(models), 2H+1) = {shape}, got {t.shape}")
+    if n.shape != shape:
+        raise ValueError(f"n must have the same shape as t {shape}, got {n.shape}")
+    return _run(models, t, n, H, samples, max_periods)
+
+
+def _run(models, t, n, H, samples, max_periods) -> AFTResult:
+    Ns = check_samples(samples, H)
+    max_periods = _checks.positive_int("max_periods", max_periods)
+    nc, nb = t.shape
+    FT = np.empty((nc, nb))
+    FN = np.empty((nc, nb))
+    JTt = np.empty((nc, nb, nb))
+    JTn = np.empty((nc, nb, nb))
+    JNn = np.empty((nc, nb, nb))
+    periods = np.empty(nc, dtype=np.int64)
+    _aft.aft_batch(*pack_models(models), np.ascontiguousarray(t), np.ascontiguousarray(n),
+                   *_aft.tables(H, Ns), max_periods, FT, FN, JTt, JTn, JNn, periods)
+    check_periodic(periods, max_periods)
+    return AFTResult(FT, FN, JTt, JTn, JNn, periods, Ns)
+
+
+def pack_models(models: Sequence[MicroslipModel]) -> tuple[np.ndarray, ...]:
+    """Concatenated ``kt, kn, gaps``, the ``offsets`` (nc+1) and ``mu`` (nc) for the kernel."""
+    offsets = np.fromiter(accumulate((m.elements for m in models), initial=0), np.int64, len(models) + 1)
+    return (np.concatenate([m.kt for m in models]), np.concatenate([m.kn for m in models]),
+            np.concatenate([m.gaps for m in models]), offsets, np.array([m.mu for m in models]))

@@ -1,0 +1,240 @@
+"""The TOML configuration of ``microslip frf``: a structure, its contacts, the excitation, the sweep.
+
+Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
+``"2kHz"``). Paths are relative to the configuration file. Example::
+
+    title = "Block on an inclined plane"
+
+    [structure]
+    M = [[0.1, 0.0], [0.0, 0.1]]        # kg; or matrices = "model.npz" (arrays M, K, optional C)
+    K = [[1e7, 0.0], [0.0, 1e7]]        # N/m
+    C = [[17.3, 0.0], [0.0, 17.3]]      # N s/m (optional), or rayleigh = [alpha, beta]: C = alpha M + beta K
+    dofs = ["x", "y"]                   # optional names of the DOFs
+
+    [[contact]]                         # one table per contact
+    model = "contact.json"              # from 'microslip tune' (MicroslipModel.save)
+    tangential = [0.866, 0.5]           # t = b_t . q: a DOF index, a list per DOF, or {"0" = 1, "1" = -1}
+    normal = [-0.5, 0.866]              # n = b_n . q + approach (omit to impose the approach)
+    preload = "37.5N"                   # static force pressing the contact (along normal)
+    # approach = "2um"                  # imposed approach at q = 0 (an interference)
+    # name = "damper"
+
+    [excitation]                        # amplitudes per DOF (N); "static" for the static force
+    h1 = [0.6, 0.0]
+    # phase_h1 = [0.0, 90.0]            # degrees: F = amplitude * exp(i phase)
+
+    [sweep]
+    omega = [12000, 16500]              # rad/s; or frequency = ["1.9kHz", "2.6kHz"] (Hz)
+    harmonics = 7
+    # samples = 128                     # AFT samples per period (default 16 H rounded up to 2^k)
+
+    [continuation]                      # optional step control (see StepControl)
+    # ds_max = 0.05
+    # max_angle = 0.1
+
+    [output]
+    # plot = [0]                        # DOFs to plot (default: all, up to 6)
+    # harmonic = 1                      # plotted amplitude: a harmonic, or omit for max |q - q0|
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..model import MicroslipModel
+from ..units import parse_quantity
+from .continuation import StepControl
+from .structure import Structure
+
+try:  # Python >= 3.11
+    import tomllib as _toml
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+    try:
+        import tomli as _toml
+    except ModuleNotFoundError:
+        _toml = None
+
+_CONTROL_KEYS = {"ds_initial", "ds_min", "ds_max", "max_angle", "target_iterations", "max_iterations",
+                 "max_points", "tolerance"}
+
+
+class ConfigError(ValueError):
+    """A configuration file that cannot be used; the message names the file and the key."""
+
+
+@dataclass
+class FrfConfig:
+    """What ``microslip frf`` needs, read from a TOML file (SI units)."""
+
+    title: str
+    structure: Structure
+    force: dict
+    omega: tuple[float, float]
+    harmonics: int
+    samples: int | None
+    control: StepControl
+    plot_dofs: list[int]
+    harmonic: int | None
+    dof_names: list[str] = field(default_factory=list)
+
+
+def _get(table: dict, key: str, where: str, path):
+    if key not in table:
+        raise ConfigError(f"{path}: {where} needs the key {key!r}")
+    return table[key]
+
+
+def _quantity(value, kind: str, what: str, path) -> float:
+    try:
+        return parse_quantity(value, kind, name=what)
+    except (ValueError, TypeError) as exc:
+        raise ConfigError(f"{path}: {exc}") from None
+
+
+def _array(value, what: str, path, kind: str = "force") -> np.ndarray:
+    try:
+        return np.array([_quantity(v, kind, what, path) for v in value], dtype=float)
+    except TypeError:
+        raise ConfigError(f"{path}: {what} must be a list of numbers, got {value!r}") from None
+
+
+def _matrix(value, what: str, path) -> np.ndarray:
+    try:
+        A = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{path}: {what} must be a matrix (a list of rows of numbers)") from None
+    return A
+
+
+def _direction(value, what: str, path):
+    if isinstance(value, dict):
+        try:
+            return {int(k): float(v) for k, v in value.items()}
+        except ValueError:
+            raise ConfigError(f"{path}: {what} keys must be DOF indices and values numbers, got {value!r}") from None
+    return value
+
+
+def load_config(path) -> FrfConfig:
+    """Read and check a ``microslip frf`` configuration file.
+
+    Raises
+    ------
+    FileNotFoundError
+        No such file (or a file it names is missing).
+    ConfigError
+        Invalid TOML or contents; the message names the table and key.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"configuration file {str(path)!r} does not exist")
+    if _toml is None:  # pragma: no cover - Python 3.10 without tomli
+        raise ConfigError("reading TOML needs Python >= 3.11 or the 'tomli' package (pip install tomli)")
+    try:
+        data = _toml.loads(path.read_text(encoding="utf-8"))
+    except _toml.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+    base = path.parent
+    unknown = set(data) - {"title", "structure", "contact", "excitation", "sweep", "continuation", "output"}
+    if unknown:
+        raise ConfigError(f"{path}: unknown top-level key(s) {sorted(unknown)}")
+
+    # -- structure -------------------------------------------------------------------
+    st = _get(data, "structure", "the file", path)
+    if "matrices" in st:
+        npz = base / st["matrices"]
+        if not npz.is_file():
+            raise FileNotFoundError(f"{path}: [structure] matrices file {str(npz)!r} does not exist")
+        with np.load(npz) as arrays:
+            mats = {k: np.array(arrays[k]) for k in ("M", "C", "K") if k in arrays}
+        for key in ("M", "K"):
+            if key not in mats:
+                raise ConfigError(f"{path}: [structure] matrices file {str(npz)!r} holds no array {key!r}")
+    else:
+        mats = {k: _matrix(_get(st, k, "[structure]", path), f"[structure] {k}", path) for k in ("M", "K")}
+        if "C" in st:
+            mats["C"] = _matrix(st["C"], "[structure] C", path)
+    if "rayleigh" in st:
+        if "C" in mats:
+            raise ConfigError(f"{path}: [structure] give either C or rayleigh, not both")
+        alpha, beta = (float(v) for v in st["rayleigh"])
+        mats["C"] = alpha * mats["M"] + beta * mats["K"]
+    try:
+        structure = Structure(mats["M"], mats.get("C"), mats["K"])
+    except (ValueError, TypeError) as exc:
+        raise ConfigError(f"{path}: [structure] {exc}") from None
+    ndof = structure.ndof
+    names = [str(n) for n in st.get("dofs", [])] or [f"q{i}" for i in range(ndof)]
+    if len(names) != ndof:
+        raise ConfigError(f"{path}: [structure] dofs names {len(names)} DOFs, the matrices have {ndof}")
+
+    # -- contacts ----------------------------------------------------------------------
+    for i, c in enumerate(data.get("contact", [])):
+        where = f"[[contact]] {i + 1}"
+        model_path = base / _get(c, "model", where, path)
+        try:
+            model = MicroslipModel.load(model_path)
+        except (ValueError, TypeError) as exc:
+            raise ConfigError(f"{path}: {where}: {exc}") from None
+        kwargs = {"tangential": _direction(_get(c, "tangential", where, path), f"{where} tangential", path),
+                  "normal": _direction(c.get("normal"), f"{where} normal", path), "name": c.get("name")}
+        if "preload" in c:
+            kwargs["preload"] = _quantity(c["preload"], "force", f"{where} preload", path)
+        if "approach" in c:
+            kwargs["approach"] = _quantity(c["approach"], "length", f"{where} approach", path)
+        try:
+            structure.add_contact(model, **kwargs)
+        except (ValueError, TypeError) as exc:
+            raise ConfigError(f"{path}: {where}: {exc}") from None
+
+    # -- excitation ----------------------------------------------------------------------
+    ex = _get(data, "excitation", "the file", path)
+    force = {}
+    for key, value in ex.items():
+        if key.startswith("phase_"):
+            continue
+        if key == "static":
+            h = 0
+        elif key.startswith("h") and key[1:].isdigit():
+            h = int(key[1:])
+        else:
+            raise ConfigError(f"{path}: [excitation] key {key!r} is neither 'static' nor 'h<harmonic>' (e.g. h1)")
+        amp = _array(value, f"[excitation] {key}", path).astype(complex)
+        if f"phase_{key}" in ex:
+            amp = amp * np.exp(1j * np.radians(_array(ex[f"phase_{key}"], f"[excitation] phase_{key}", path,
+                                                      "dimensionless")))
+        force[h] = amp
+    for key in ex:
+        if key.startswith("phase_") and key[6:] not in ex:
+            raise ConfigError(f"{path}: [excitation] {key} has no amplitude {key[6:]!r}")
+
+    # -- sweep ---------------------------------------------------------------------------
+    sw = _get(data, "sweep", "the file", path)
+    if ("omega" in sw) == ("frequency" in sw):
+        raise ConfigError(f"{path}: [sweep] needs exactly one of omega (rad/s) or frequency (Hz)")
+    if "omega" in sw:
+        omega = tuple(_array(sw["omega"], "[sweep] omega", path, "frequency"))
+    else:
+        omega = tuple(2 * np.pi * _array(sw["frequency"], "[sweep] frequency", path, "frequency"))
+    if len(omega) != 2:
+        raise ConfigError(f"{path}: [sweep] the range must have 2 values (start, end), got {len(omega)}")
+    harmonics = sw.get("harmonics", 5)
+    samples = sw.get("samples")
+
+    # -- continuation and output -----------------------------------------------------------
+    cont = data.get("continuation", {})
+    bad = set(cont) - _CONTROL_KEYS
+    if bad:
+        raise ConfigError(f"{path}: [continuation] unknown key(s) {sorted(bad)}; known: {sorted(_CONTROL_KEYS)}")
+    control = StepControl(**cont)
+    out = data.get("output", {})
+    plot_dofs = [int(d) for d in out.get("plot", range(min(ndof, 6)))]
+    for d in plot_dofs:
+        if not 0 <= d < ndof:
+            raise ConfigError(f"{path}: [output] plot names DOF {d}; the structure has {ndof}")
+    harmonic = out.get("harmonic")
+    return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
+                     plot_dofs, harmonic, names)

@@ -1,0 +1,221 @@
+"""Newton's method and pseudo-arclength continuation with step control.
+
+Works on any problem ``R(x, omega) = 0`` that provides
+``evaluate(x, omega) -> (R, dR/dx, dR/domega)``, ``solve(A, b)`` and
+``augmented(Jx, R_omega, row)`` (see :class:`~microslip.frequency.hbm.HarmonicBalance`).
+All arclength geometry is done in scaled variables ``(x / x_scale, omega / omega_scale)``
+so that displacements (µm) and frequencies (rad/s) weigh alike.
+
+Predictor: along the secant through the last two points (the tangent at the
+first point). The contact forces are only piecewise smooth (each element
+that starts to slip or to open at one more time sample puts a kink in the
+curve), so the local tangent jumps from facet to facet while the secant
+follows the curve's shape at the scale of the step. Corrector: Newton on
+``R = 0`` plus the hyperplane orthogonal to the predictor through the
+predicted point, so turning points (folds in ``omega``) pass. Step control:
+the step grows when the corrector needs few iterations, shrinks when it
+needs many, and a step is refused (and halved) when the corrector fails or
+the secant turns by more than ``max_angle`` (which keeps points dense where
+the curve bends, at peaks and folds) -- unless halving does not reduce the
+turn, which marks a kink.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass
+class StepControl:
+    """Settings of the continuation (scaled arclength units; see the module docstring).
+
+    Attributes
+    ----------
+    ds_initial, ds_min, ds_max : float
+        First, smallest and largest step.
+    max_angle : float
+        Largest turn of the tangent per step (rad).
+    target_iterations : int
+        Corrector iterations the step size aims at.
+    max_iterations : int
+        Corrector iterations before a step is refused.
+    max_points : int
+        Points after which the continuation stops.
+    tolerance : float
+        Convergence: scaled Newton step and relative residual below this.
+    """
+
+    ds_initial: float = 0.02
+    ds_min: float = 1e-7
+    ds_max: float = 0.05
+    max_angle: float = 0.1
+    target_iterations: int = 3
+    max_iterations: int = 12
+    max_points: int = 5000
+    tolerance: float = 1e-9
+
+
+class ConvergenceError(RuntimeError):
+    """Newton's method or the continuation could not converge."""
+
+
+def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, tolerance: float = 1e-9,
+           max_iterations: int = 50) -> tuple[np.ndarray, int]:
+    """Solve ``R(x, omega) = 0`` at fixed ``omega`` with a backtracking Newton method.
+
+    Returns ``(x, iterations)``; raises :class:`ConvergenceError` on failure.
+    """
+    x = np.array(x, dtype=float)
+    R, Jx, _ = problem.evaluate(x, omega)
+    norm = np.linalg.norm(R) / r_scale
+    for it in range(1, max_iterations + 1):
+        dx = problem.solve(Jx, -R)
+        if not np.all(np.isfinite(dx)):
+            raise ConvergenceError(f"Newton's method met a singular Jacobian at omega = {omega:g} rad/s")
+        lam = 1.0
+        while True:
+            x_new = x + lam * dx
+            R_new = problem.evaluate(x_new, omega, jacobian=False)
+            norm_new = np.linalg.norm(R_new) / r_scale
+            if norm_new < norm or lam < 1e-4:
+                break
+            lam *= 0.5
+        x = x_new
+        step = lam * np.max(np.abs(dx)) / x_scale
+        R, Jx, _ = problem.evaluate(x, omega)
+        norm = np.linalg.norm(R) / r_scale
+        if norm < tolerance and step < max(tolerance, 1e-3) or norm < 1e-3 * tolerance:
+            return x, it
+    raise ConvergenceError(f"Newton's method did not converge at omega = {omega:g} rad/s "
+                           f"(relative residual {norm:.3g} after {max_iterations} iterations)")
+
+
+def _scaled_system(problem, Jx, R_omega, row, scale):
+    """``[[Jx, R_omega], [row]]`` with the columns multiplied by ``scale``."""
+    Js = Jx.multiply(scale[None, :-1]).tocsc() if hasattr(Jx, "multiply") else Jx * scale[:-1]
+    return problem.augmented(Js, R_omega * scale[-1], row)
+
+
+def _tangent(problem, Jx, R_omega, row, scale) -> np.ndarray:
+    """Unit tangent (scaled) of ``R = 0``: ``[Jx, R_omega] z = 0`` with ``row . z = 1``."""
+    A = _scaled_system(problem, Jx, R_omega, row, scale)
+    rhs = np.zeros(scale.size)
+    rhs[-1] = 1.0
+    z = problem.solve(A, rhs)
+    return z / np.linalg.norm(z)
+
+
+def _correct(problem, y_pred, tau, scale, r_scale, ctl):
+    """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``."""
+    yc = y_pred.copy()
+    step = np.inf
+    for it in range(ctl.max_iterations + 1):
+        R, Jx, Rw = problem.evaluate(yc[:-1], yc[-1])
+        res = np.linalg.norm(R) / r_scale
+        if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
+            return yc, it
+        if it == ctl.max_iterations or not np.isfinite(res):
+            break
+        g = np.append(R, tau @ ((yc - y_pred) / scale))
+        dz = problem.solve(_scaled_system(problem, Jx, Rw, tau, scale), -g)
+        if not np.all(np.isfinite(dz)):
+            break
+        yc = yc + dz * scale
+        step = float(np.max(np.abs(dz)))
+    return None, it
+
+
+def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
+                 control: StepControl | None = None, callback=None):
+    """Follow the solution curve of ``R(x, omega) = 0`` from ``omega_start`` to ``omega_end``.
+
+    Parameters
+    ----------
+    problem
+        See the module docstring.
+    x0 : ndarray, shape (n,)
+        A solution at ``omega_start`` (converged).
+    omega_start, omega_end : float
+        Frequency range (rad/s); the curve is followed while it stays inside.
+    x_scale, r_scale : float
+        Scales of ``x`` (m) and of the residual (N).
+    control : StepControl, optional
+        Step-size settings.
+    callback : callable, optional
+        ``callback(omega, count)`` after each accepted point.
+
+    Returns
+    -------
+    xs : ndarray, shape (points, n)
+    omegas : ndarray, shape (points,)
+    iterations : ndarray of int, shape (points,)
+        Corrector iterations of each point.
+    """
+    ctl = control or StepControl()
+    n = x0.size
+    scale = np.empty(n + 1)
+    scale[:-1] = x_scale
+    w_scale = abs(omega_end - omega_start)
+    scale[-1] = w_scale
+    direction = 1.0 if omega_end > omega_start else -1.0
+    lo, hi = sorted((omega_start, omega_end))
+
+    y = np.append(x0, omega_start)
+    R, Jx, Rw = problem.evaluate(x0, omega_start)
+    e_w = np.zeros(n + 1)
+    e_w[-1] = 1.0
+    tau = _tangent(problem, Jx, Rw, e_w, scale)
+    if tau[-1] * direction < 0:
+        tau = -tau
+    xs, omegas, iters = [x0.copy()], [omega_start], [0]
+    ds = ctl.ds_initial
+    while len(omegas) < ctl.max_points:
+        refused_angle = np.inf  # turn at the last step refused for turning too much
+        while True:
+            if ds < ctl.ds_min:
+                raise ConvergenceError(
+                    f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
+                    f"ds_min = {ctl.ds_min:g}")
+            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl)
+            if yc is None:
+                ds *= 0.5
+                continue
+            secant = (yc - y) / scale
+            secant /= np.linalg.norm(secant)
+            angle = float(np.arccos(np.clip(secant @ tau, -1.0, 1.0)))
+            # On a smooth curve the turn shrinks with the step; where it does not, the
+            # step crosses a kink (an element starts to slip or to open: the contact
+            # force is only piecewise smooth) and a smaller step would not help.
+            kink = angle > 0.75 * refused_angle
+            if angle > ctl.max_angle and ds > 2 * ctl.ds_min and not kink:
+                refused_angle = angle
+                ds *= 0.5
+                continue
+            break
+        y, tau = yc, secant
+        if not lo <= y[-1] <= hi:
+            # left the range: end exactly on its edge (or stop if it turned back out)
+            edge = hi if y[-1] > hi else lo
+            if edge == (hi if direction > 0 else lo):
+                x_prev, w_prev = xs[-1], omegas[-1]
+                frac = (edge - w_prev) / (y[-1] - w_prev)
+                x_edge, k = newton(problem, x_prev + frac * (y[:-1] - x_prev), edge,
+                                   r_scale=r_scale, x_scale=x_scale, tolerance=ctl.tolerance)
+                xs.append(x_edge)
+                omegas.append(edge)
+                iters.append(k)
+                if callback is not None:
+                    callback(edge, len(omegas))
+            break
+        xs.append(y[:-1].copy())
+        omegas.append(float(y[-1]))
+        iters.append(it)
+        if callback is not None:
+            callback(float(y[-1]), len(omegas))
+        # grow when the corrector was quick and the curve straight, shrink otherwise
+        turn = 0.0 if kink else angle
+        factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(turn, 1e-12))
+        ds = float(np.clip(ds * max(factor, 0.5), ctl.ds_min, ctl.ds_max))
+    return np.array(xs), np.array(omegas), np.array(iters)

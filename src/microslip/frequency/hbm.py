@@ -1,0 +1,262 @@
+"""Harmonic balance equations of a :class:`~microslip.frequency.structure.Structure`.
+
+Unknowns: the Fourier coefficients of every DOF, ``X`` of shape
+``(2H+1, ndof)`` (harmonic-major, layout ``[c0, a1, b1, ..., aH, bH]``),
+flattened to ``x`` of length ``n = (2H+1) ndof``. With ``tau = omega time``
+the equations are
+
+``R(x, omega) = (Kx + omega Cx - omega^2 Mx) x + sum_c L_c F_c(L_c^T x + a_c) - f = 0``
+
+where ``Kx = I (x) K``, ``Mx = diag(0, 1, 1, 4, 4, ...) (x) M``, ``Cx`` the
+harmonic derivative (blocks ``[[0, h], [-h, 0]]``) ``(x) C``, ``L_c`` picks the
+contact's ``t`` and ``n`` coefficients and ``F_c`` are its AFT forces. The
+static part (``h = 0``) carries the preloads and the static contact forces, so
+the static normal approach is solved together with the vibration. The
+Jacobian is exact: the linear part is analytic and the contact part comes
+from the AFT kernel.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .. import _checks
+from . import _aft, _hbm
+from .aft import MAX_PERIODS, check_periodic, check_samples, cycle_work, pack_models
+from .structure import Structure
+
+DENSE_LIMIT = 600  # unknowns up to which dense linear algebra is used
+
+
+def harmonic_operators(H: int):
+    """``(D, W)``: harmonic derivative ``d/dtau`` and ``-d^2/dtau^2`` in coefficient space, ``(2H+1, 2H+1)``."""
+    nb = 2 * H + 1
+    D = np.zeros((nb, nb))
+    W = np.zeros((nb, nb))
+    for h in range(1, H + 1):
+        c, s = 2 * h - 1, 2 * h
+        # d/dtau (a cos + b sin) = h b cos - h a sin
+        D[c, s] = h
+        D[s, c] = -h
+        W[c, c] = W[s, s] = h * h
+    return D, W
+
+
+def excitation(structure: Structure, force, H: int) -> np.ndarray:
+    """Excitation coefficients ``(2H+1, ndof)`` (N) from ``force``.
+
+    ``force`` is one vector of ``ndof`` amplitudes (real or complex) at the
+    first harmonic, or a mapping ``{h: vector}`` with ``0 <= h <= H`` (``h = 0``
+    a static force, real). A complex amplitude ``F`` means
+    ``Re(F exp(i h omega time)) = Re F cos - Im F sin``.
+    """
+    nb = 2 * H + 1
+    out = np.zeros((nb, structure.ndof))
+    items = force.items() if isinstance(force, Mapping) else [(1, force)]
+    for h, vec in items:
+        if isinstance(h, bool) or not isinstance(h, (int, np.integer)):
+            raise TypeError(f"force: harmonic keys must be integers, got {h!r}")
+        if not 0 <= h <= H:
+            raise ValueError(f"force: harmonic {h} is outside 0..harmonics = {H}")
+        f = structure.force_vector(vec, f"force[{h}]" if isinstance(force, Mapping) else "force")
+        if h == 0:
+            if np.iscomplexobj(f) and np.any(f.imag):
+                raise ValueError("force[0] (the static force) must be real")
+            out[0] += f.real
+        else:
+            out[2 * h - 1] += f.real
+            out[2 * h] -= f.imag if np.iscomplexobj(f) else 0.0
+    return out
+
+
+class HarmonicBalance:
+    """Residual and exact Jacobian of the harmonic balance equations.
+
+    Parameters
+    ----------
+    structure : Structure
+        The structure with its contacts.
+    force : array_like or mapping
+        Excitation (N), see :func:`excitation`.
+    harmonics : int
+        Number of harmonics ``H`` (0: static problem).
+    samples : int, optional
+        AFT time samples per period (default
+        :func:`~microslip.frequency.aft.default_samples`).
+    max_periods : int
+        Periods allowed for each contact to become periodic.
+    """
+
+    def __init__(self, structure: Structure, force, harmonics: int, *, samples: int | None = None,
+                 max_periods: int = MAX_PERIODS):
+        if not isinstance(structure, Structure):
+            raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+        H = _checks.positive_int("harmonics", harmonics, minimum=0)
+        self.structure = structure
+        self.H = H
+        self.nb = nb = 2 * H + 1
+        self.ndof = ndof = structure.ndof
+        self.n = nb * ndof
+        self.samples = check_samples(samples, H) if H else 1 if samples is None else check_samples(samples, H)
+        self.max_periods = _checks.positive_int("max_periods", max_periods)
+        self.tables = _aft.tables(H, self.samples)
+        self.f_ext = excitation(structure, force, H)
+        contacts = structure.contacts
+        self.nc = nc = len(contacts)
+        for c in contacts:
+            self.f_ext[0] += c.preload * c.normal
+        self.f = self.f_ext.ravel()
+        D, W = harmonic_operators(H)
+        self.dense = self.n <= DENSE_LIMIT
+        self.sparse_storage = not self.dense
+        if self.dense:
+            dense = [A.toarray() if sp.issparse(A) else np.asarray(A) for A in
+                     (structure.K, structure.C, structure.M)]
+            self.Kx = np.kron(np.eye(nb), dense[0])
+            self.Cx = np.kron(D, dense[1])
+            self.Mx = np.kron(W, dense[2])
+        else:
+            self.Kx = sp.kron(sp.identity(nb), sp.csr_matrix(structure.K), format="csc")
+            self.Cx = sp.kron(sp.csr_matrix(D), sp.csr_matrix(structure.C), format="csc")
+            self.Mx = sp.kron(sp.csr_matrix(W), sp.csr_matrix(structure.M), format="csc")
+        # contact directions, (ndof, nc), and offsets of the normal approach
+        self.Bt = np.array([c.tangential for c in contacts]).T.reshape(ndof, nc)
+        self.Bn = np.array([c.normal for c in contacts]).T.reshape(ndof, nc)
+        self.n0 = np.array([c.approach for c in contacts])
+        self.packed = pack_models([c.model for c in contacts]) if nc else (
+            np.ones(0), np.ones(0), np.zeros(0), np.zeros(1, dtype=np.int64), np.ones(0))
+        # work arrays of the AFT
+        self.FT = np.zeros((nc, nb))
+        self.FN = np.zeros((nc, nb))
+        self.JTt = np.zeros((nc, nb, nb))
+        self.JTn = np.zeros((nc, nb, nb))
+        self.JNn = np.zeros((nc, nb, nb))
+        self.periods = np.zeros(nc, dtype=np.int64)
+        self._J_dummy = np.empty((0, 0))
+        self._Rw_dummy = np.empty(self.n)
+
+    # -- pieces ---------------------------------------------------------------
+    def local(self, x) -> tuple[np.ndarray, np.ndarray]:
+        """Coefficients of every contact's ``t`` and ``n`` (m), each ``(nc, 2H+1)``."""
+        X = np.reshape(x, (self.nb, self.ndof))
+        xt = np.ascontiguousarray((X @ self.Bt).T)
+        xn = np.ascontiguousarray((X @ self.Bn).T)
+        xn[:, 0] += self.n0
+        return xt, xn
+
+    def _aft(self, x) -> None:
+        if not self.nc:
+            return
+        xt, xn = self.local(x)
+        _aft.aft_batch(*self.packed, xt, xn, *self.tables, self.max_periods,
+                       self.FT, self.FN, self.JTt, self.JTn, self.JNn, self.periods)
+        check_periodic(self.periods, self.max_periods)
+
+    def dynamic_stiffness(self, omega: float):
+        """``Z(omega) = Kx + omega Cx - omega^2 Mx``, shape ``(n, n)`` (dense or sparse CSC)."""
+        return self.Kx + omega * self.Cx - (omega * omega) * self.Mx
+
+    def evaluate(self, x, omega: float, *, jacobian: bool = True):
+        """Residual (N) and, if asked, ``dR/dx`` (N/m, ``(n, n)``) and ``dR/domega`` (N s, ``(n,)``).
+
+        Returns ``R`` alone when ``jacobian`` is False, else ``(R, Jx, R_omega)``
+        (fresh arrays). Dense problems use the compiled kernel of
+        :mod:`microslip.frequency._hbm`; sparse ones :meth:`evaluate_reference`.
+        """
+        if not self.dense:
+            return self.evaluate_reference(x, omega, jacobian=jacobian)
+        n = self.n
+        R = np.empty(n)
+        J = np.empty((n, n)) if jacobian else self._J_dummy
+        Rw = np.empty(n) if jacobian else self._Rw_dummy
+        worst = _hbm.evaluate_dense(np.ascontiguousarray(x, dtype=np.float64), float(omega), self.Kx, self.Cx,
+                                    self.Mx, self.f, self.Bt, self.Bn, self.n0, *self.packed, *self.tables,
+                                    self.max_periods, jacobian, R, J, Rw, self.FT, self.FN, self.JTt, self.JTn,
+                                    self.JNn, self.periods)
+        if worst < 0:
+            check_periodic(self.periods, self.max_periods)
+        return (R, J, Rw) if jacobian else R
+
+    def evaluate_reference(self, x, omega: float, *, jacobian: bool = True):
+        """As :meth:`evaluate`, with NumPy/SciPy array operations (any storage)."""
+        Z = self.dynamic_stiffness(omega)
+        R = Z @ x - self.f
+        if self.nc:
+            self._aft(x)
+            R += (self.FT.T @ self.Bt.T + self.FN.T @ self.Bn.T).ravel()
+        if not jacobian:
+            return R
+        Jx = Z + self._contact_jacobian() if self.nc else Z
+        R_omega = self.Cx @ x - 2.0 * omega * (self.Mx @ x)
+        return R, Jx, R_omega
+
+    def _contact_jacobian(self):
+        Bt, Bn = self.Bt, self.Bn
+        if self.dense:
+            J = (np.einsum("cpq,ic,jc->piqj", self.JTt, Bt, Bt)
+                 + np.einsum("cpq,ic,jc->piqj", self.JTn, Bt, Bn)
+                 + np.einsum("cpq,ic,jc->piqj", self.JNn, Bn, Bn))
+            return J.reshape(self.n, self.n)
+        J = None
+        for c in range(self.nc):
+            bt = sp.csr_matrix(Bt[:, c:c + 1])
+            bn = sp.csr_matrix(Bn[:, c:c + 1])
+            part = (sp.kron(sp.csr_matrix(self.JTt[c]), bt @ bt.T) + sp.kron(sp.csr_matrix(self.JTn[c]), bt @ bn.T)
+                    + sp.kron(sp.csr_matrix(self.JNn[c]), bn @ bn.T))
+            J = part if J is None else J + part
+        return J.tocsc()
+
+    # -- linear algebra ---------------------------------------------------------
+    def solve(self, A, b) -> np.ndarray:
+        """Solve ``A z = b`` (dense or sparse ``A``); NaNs when ``A`` is singular."""
+        try:
+            if sp.issparse(A):
+                return spla.splu(A.tocsc()).solve(b)
+            return np.linalg.solve(A, b)
+        except (np.linalg.LinAlgError, RuntimeError):
+            return np.full(np.shape(b), np.nan)
+
+    def augmented(self, Jx, R_omega, row):
+        """``[[Jx, R_omega], [row]]``, shape ``(n+1, n+1)``."""
+        if sp.issparse(Jx):
+            return sp.vstack([sp.hstack([Jx, sp.csr_matrix(R_omega[:, None])]),
+                              sp.csr_matrix(row[None, :])], format="csc")
+        A = np.empty((self.n + 1, self.n + 1))
+        A[:-1, :-1] = Jx
+        A[:-1, -1] = R_omega
+        A[-1] = row
+        return A
+
+    # -- quantities along a curve ------------------------------------------------------
+    def curve_quantities(self, xs, omegas) -> dict:
+        """Contact displacements and forces and the work per cycle at solutions ``xs`` ``(points, n)``.
+
+        Returns a dict of arrays: ``t, n, T, N`` (m, N), shape ``(points, nc, 2H+1)``;
+        ``excitation``, ``viscous`` (J, ``(points,)``): work of the excitation and energy
+        dissipated by ``C`` per cycle; ``contacts`` (J, ``(points, nc)``): energy dissipated by
+        each contact. With harmonic balance these balance exactly at a solution (the work
+        of the harmonics kept).
+        """
+        xs = np.asarray(xs, dtype=float)
+        P = xs.shape[0]
+        X = xs.reshape(P, self.nb, self.ndof)
+        excitation = cycle_work(self.f_ext.T, X.transpose(0, 2, 1)).sum(axis=-1)
+        # viscous: int q'^T C q' dtime = pi omega sum_h h^2 (a^T C a + b^T C b)
+        V = X[:, 1:, :].reshape(-1, self.ndof)
+        quad = np.einsum("ki,ki->k", V, np.asarray((self.structure.C @ V.T).T)).reshape(P, 2 * self.H)
+        h2 = np.repeat(np.arange(1, self.H + 1) ** 2, 2)
+        viscous = np.pi * np.asarray(omegas) * (quad @ h2)
+        out = {"t": np.zeros((P, self.nc, self.nb)), "n": np.zeros((P, self.nc, self.nb)),
+               "T": np.zeros((P, self.nc, self.nb)), "N": np.zeros((P, self.nc, self.nb))}
+        for k in range(P):
+            if self.nc:
+                out["t"][k], out["n"][k] = self.local(xs[k])
+                self._aft(xs[k])
+                out["T"][k], out["N"][k] = self.FT, self.FN
+        out["contacts"] = cycle_work(out["T"], out["t"]) + cycle_work(out["N"], out["n"])
+        out["excitation"], out["viscous"] = excitation, viscous
+        return out

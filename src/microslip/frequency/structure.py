@@ -1,0 +1,205 @@
+"""Linear structures carrying microslip contacts.
+
+A :class:`Structure` is ``M q'' + C q' + K q + sum_c (b_t T_c + b_n N_c) = f(time)``
+with ``ndof`` degrees of freedom ``q`` (m, or any consistent unit per DOF),
+mass, damping and stiffness matrices in kg, N s/m and N/m (dense arrays or
+``scipy.sparse``), and contacts :class:`Contact` whose tangential
+displacement ``t = b_t . q`` and normal approach ``n = b_n . q + n_0`` are
+linear combinations of the degrees of freedom. A contact force acts on the
+structure along the same combinations (virtual work ``T dt + N dn``), so a
+single DOF ``i`` means a contact between that DOF and the ground, and
+``{i: 1, j: -1}`` a contact between DOFs ``i`` and ``j``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+import scipy.sparse as sp
+
+from .. import _checks
+from ..model import MicroslipModel
+
+
+def _matrix(name: str, value, ndof: int | None):
+    if sp.issparse(value):
+        A = sp.csr_matrix(value, dtype=np.float64)
+        if not np.isfinite(A.data).all():
+            raise ValueError(f"{name} must be finite; it holds {A.data[~np.isfinite(A.data)][0]!r}")
+    else:
+        A = _checks.real_array(name, value)
+        if A.ndim == 0 and ndof is None:
+            A = A.reshape(1, 1)
+    if A.ndim != 2 or A.shape[0] != A.shape[1]:
+        raise ValueError(f"{name} must be a square matrix, got shape {A.shape}")
+    if ndof is not None and A.shape[0] != ndof:
+        raise ValueError(f"{name} must be {ndof} x {ndof} like M, got shape {A.shape}")
+    return A
+
+
+def direction(name: str, spec, ndof: int, *, allow_none: bool = False) -> np.ndarray:
+    """A contact direction as a dense vector of length ``ndof``.
+
+    ``spec`` is a DOF index (relative to ground), a mapping ``{dof: coefficient}``,
+    a sequence of ``ndof`` coefficients, or (with ``allow_none``) ``None`` for
+    "not coupled to the structure" (the zero vector).
+    """
+    if spec is None:
+        if allow_none:
+            return np.zeros(ndof)
+        raise ValueError(f"{name} must name the DOF(s) of the contact, got None")
+    if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool):
+        spec = {int(spec): 1.0}
+    if isinstance(spec, Mapping):
+        b = np.zeros(ndof)
+        for dof, coef in spec.items():
+            try:
+                i = int(dof)
+            except (TypeError, ValueError):
+                raise TypeError(f"{name}: DOF keys must be integers, got {dof!r}") from None
+            if not 0 <= i < ndof:
+                raise ValueError(f"{name}: DOF {i} is out of range for a structure with {ndof} DOFs")
+            b[i] += _checks.real_scalar(f"{name}[{i}]", coef)
+    else:
+        b = _checks.real_array(name, spec, ndim=1)
+        if b.size != ndof:
+            raise ValueError(f"{name} must have one coefficient per DOF ({ndof}), got {b.size}")
+    if not b.any() and not allow_none:
+        raise ValueError(f"{name} must not be all zeros")
+    return b
+
+
+@dataclass(frozen=True, eq=False)
+class Contact:
+    """A microslip contact attached to a structure (made by :meth:`Structure.add_contact`).
+
+    Attributes
+    ----------
+    model : MicroslipModel
+        The contact law.
+    tangential, normal : ndarray, shape (ndof,)
+        ``t = tangential . q``, ``n = normal . q + approach`` (``normal`` is
+        zero for a contact whose approach is imposed).
+    preload : float
+        Static force pressing the contact closed (N), applied to the
+        structure along ``normal``.
+    approach : float
+        Imposed normal approach (interference) at ``q = 0`` (m).
+    name : str
+        Label used in results and files.
+    """
+
+    model: MicroslipModel
+    tangential: np.ndarray
+    normal: np.ndarray
+    preload: float
+    approach: float
+    name: str
+
+
+class Structure:
+    """A linear structure ``M q'' + C q' + K q = f`` to which contacts are added.
+
+    Parameters
+    ----------
+    M, C, K : array_like or scipy.sparse matrix, shape (ndof, ndof)
+        Mass (kg), viscous damping (N s/m) and stiffness (N/m) matrices.
+        ``C`` may be ``None`` (no viscous damping).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from microslip import MicroslipModel, Structure
+    >>> s = Structure(M=np.eye(2), C=0.01 * np.eye(2), K=[[2e4, -1e4], [-1e4, 1e4]])
+    >>> c = s.add_contact(MicroslipModel([1e4], [1e6], [0.0], 0.5), tangential=0, approach=2e-6)
+    >>> s.ndof, len(s.contacts)
+    (2, 1)
+    """
+
+    def __init__(self, M, C, K):
+        self.M = _matrix("M", M, None)
+        ndof = self.M.shape[0]
+        self.K = _matrix("K", K, ndof)
+        self.C = sp.csr_matrix((ndof, ndof)) if C is None and sp.issparse(self.M) else (
+            np.zeros((ndof, ndof)) if C is None else _matrix("C", C, ndof))
+        self.contacts: list[Contact] = []
+
+    @property
+    def ndof(self) -> int:
+        """Number of degrees of freedom."""
+        return self.M.shape[0]
+
+    @property
+    def sparse(self) -> bool:
+        """True when any of ``M``, ``C``, ``K`` is a ``scipy.sparse`` matrix."""
+        return any(sp.issparse(A) for A in (self.M, self.C, self.K))
+
+    def __repr__(self) -> str:
+        kind = "sparse" if self.sparse else "dense"
+        return f"Structure(ndof={self.ndof}, {kind}, contacts={len(self.contacts)})"
+
+    def add_contact(self, model: MicroslipModel, *, tangential, normal=None, preload: float | None = None,
+                    approach: float | None = None, name: str | None = None) -> Contact:
+        """Attach a microslip contact.
+
+        Parameters
+        ----------
+        model : MicroslipModel
+            The contact law (e.g. from :func:`microslip.tune`).
+        tangential : int, mapping or array_like
+            ``t = b_t . q``: a DOF index (relative to ground), ``{dof: coef}``
+            or ``ndof`` coefficients.
+        normal : int, mapping, array_like or None
+            ``n = b_n . q + approach``, same forms; ``None``: the normal
+            approach is not coupled to the structure (it is ``approach``).
+        preload : float, optional
+            Static force pressing the contact closed (N), applied along
+            ``normal``; the static normal approach is then an unknown solved
+            with the rest.
+        approach : float, optional
+            Imposed normal approach at ``q = 0`` (m), an interference fit.
+            Needed when ``normal`` is None.
+        name : str, optional
+            Label (default ``contact<i>``).
+
+        Returns
+        -------
+        Contact
+        """
+        if not isinstance(model, MicroslipModel):
+            raise TypeError(f"model must be a microslip MicroslipModel, got {type(model).__name__}")
+        bt = direction("tangential", tangential, self.ndof)
+        bn = direction("normal", normal, self.ndof, allow_none=True)
+        P = 0.0 if preload is None else _checks.positive_scalar("preload", preload, allow_zero=True)
+        n0 = 0.0 if approach is None else _checks.real_scalar("approach", approach)
+        if normal is None:
+            if approach is None:
+                raise ValueError("approach must be given (m) when normal is None: "
+                                 "the normal approach is then imposed, not solved for")
+            if P:
+                raise ValueError("preload must be None when normal is None: a preload force needs a "
+                                 "normal direction on the structure to act along")
+        if name is None:
+            name = f"contact{len(self.contacts)}"
+        elif not isinstance(name, str) or not name:
+            raise TypeError(f"name must be a non-empty string, got {name!r}")
+        if any(c.name == name for c in self.contacts):
+            raise ValueError(f"name {name!r} is already used by another contact")
+        contact = Contact(model, bt, bn, P, n0, name)
+        self.contacts.append(contact)
+        return contact
+
+    def force_vector(self, force, name: str = "force") -> np.ndarray:
+        """A real or complex force vector of length ``ndof`` (N), checked."""
+        f = np.asarray(force)
+        if np.iscomplexobj(f):
+            re = _checks.real_array(name, f.real, ndim=1)
+            im = _checks.real_array(name, f.imag, ndim=1)
+            f = re + 1j * im
+        else:
+            f = _checks.real_array(name, f, ndim=1)
+        if f.size != self.ndof:
+            raise ValueError(f"{name} must have one entry per DOF ({self.ndof}), got {f.size}")
+        return f

@@ -1,0 +1,105 @@
+"""The compiled kernels against their slow pure-Python twin.
+
+Both follow the same return mapping with the same floating-point operations
+in the same order (the compiled one branch-free, clipping the trial force;
+the twin with an ``if``), so they must agree bit for bit, including at ties
+(a trial force exactly at the friction limit sticks in both).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from _strategies import UM, lengths_array, models, paths
+from microslip import MicroslipModel, _kernels
+from microslip.model import OPEN, SLIP, STICK
+
+
+def compiled(model, t, n, s0):
+    steps, J = t.size, model.elements
+    s = np.array(s0, dtype=float)
+    T, N = np.empty(steps), np.empty(steps)
+    Ti, cond = np.empty((steps, J)), np.empty((steps, J), dtype=np.int8)
+    _kernels.march_elements(model.kt, model.kn, model.gaps, model.mu, t, n, s, T, N, Ti, cond)
+    s_tot = np.array(s0, dtype=float)
+    T_tot, N_tot = np.empty(steps), np.empty(steps)
+    _kernels.march_totals(model.kt, model.kn, model.gaps, model.mu, t, n, s_tot, T_tot, N_tot)
+    return T, N, Ti, cond, s, T_tot, N_tot, s_tot
+
+
+def assert_twins_agree(model, t, n, s0):
+    s0 = np.asarray(s0, dtype=float)
+    s0_copy = s0.copy()
+    T_ref, N_ref, Ti_ref, cond_ref, s_ref = _kernels.march_reference(
+        model.kt, model.kn, model.gaps, model.mu, t, n, s0)
+    np.testing.assert_array_equal(s0, s0_copy)  # the twin does not touch its input state
+    T, N, Ti, cond, s, T_tot, N_tot, s_tot = compiled(model, t, n, s0)
+    np.testing.assert_array_equal(T, T_ref)
+    np.testing.assert_array_equal(N, N_ref)
+    np.testing.assert_array_equal(Ti, np.array(Ti_ref).reshape(Ti.shape))
+    np.testing.assert_array_equal(cond, np.array(cond_ref).reshape(cond.shape))
+    np.testing.assert_array_equal(s, s_ref)
+    np.testing.assert_array_equal(T_tot, T_ref)
+    np.testing.assert_array_equal(N_tot, N_ref)
+    np.testing.assert_array_equal(s_tot, s_ref)
+    return np.array(cond_ref)
+
+
+@settings(max_examples=150, deadline=None)
+@given(model=models(), path=paths(), data=st.data())
+def test_compiled_kernels_equal_twin_bit_for_bit(model, path, data):
+    t, n = path
+    s0 = lengths_array(data.draw, model.elements, -3 * UM, 3 * UM)
+    assert_twins_agree(model, t, n, s0)
+
+
+@st.composite
+def random_walks(draw):
+    """Long random walks in (t, n) in which n wanders across all the gaps."""
+    size = draw(st.integers(50, 300))
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    t = np.cumsum(rng.normal(0.0, 0.3 * UM, size))
+    n = 1 * UM + np.cumsum(rng.normal(0.0, 0.3 * UM, size))
+    return t, n
+
+
+@settings(max_examples=40, deadline=None)
+@given(model=models(max_elements=12), path=random_walks())
+def test_twins_agree_on_random_walks(model, path):
+    assert_twins_agree(model, *path, np.zeros(model.elements))
+
+
+def test_twins_agree_where_elements_open_and_close_again():
+    model = MicroslipModel(kt=[8e6, 5e6, 3e6], kn=[1e7, 7e6, 3e6], gaps=[0.0, 0.9e-6, 1.5e-6], mu=0.4)
+    k = np.arange(2000)
+    t = 1.5 * UM * np.sin(2 * np.pi * k / 97)
+    n = 1.0 * UM + 1.2 * UM * np.sin(2 * np.pi * k / 331)  # from -0.2 µm to 2.2 µm
+    cond = assert_twins_agree(model, t, n, np.zeros(3))
+    for i in range(3):  # every element is open, then closed, then open again...
+        closes = np.flatnonzero((cond[:-1, i] == OPEN) & (cond[1:, i] != OPEN))
+        opens = np.flatnonzero((cond[:-1, i] != OPEN) & (cond[1:, i] == OPEN))
+        assert closes.size >= 3 and opens.size >= 3
+    assert (cond == STICK).any() and (cond == SLIP).any()
+
+
+def test_simulate_uses_the_compiled_kernel_with_the_same_numbers():
+    model = MicroslipModel(kt=[8e6, 5e6], kn=[1e7, 7e6], gaps=[0.0, 0.9e-6], mu=0.4)
+    rng = np.random.default_rng(1)
+    t, n = rng.uniform(-2, 2, 500) * UM, rng.uniform(-0.5, 2, 500) * UM
+    r = model.simulate(t, n)
+    T_ref, N_ref, Ti_ref, cond_ref, s_ref = _kernels.march_reference(
+        model.kt, model.kn, model.gaps, model.mu, t, n, np.zeros(2))
+    np.testing.assert_array_equal(r.T, T_ref)
+    np.testing.assert_array_equal(r.Ti, Ti_ref)
+    np.testing.assert_array_equal(r.condition, cond_ref)
+    np.testing.assert_array_equal(r.state.sliders, s_ref)
+
+
+def test_kernels_are_compiled_and_cached():
+    _kernels.warm_up()
+    for kernel in (_kernels.march_totals, _kernels.march_elements):
+        assert kernel.signatures  # compiled for float64 arrays
+        assert type(kernel._cache).__name__ != "NullCache"  # cache=True
