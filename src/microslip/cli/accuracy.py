@@ -41,9 +41,6 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     from .._checks import positive_int

@@ -5,16 +5,17 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ._args import add_sphere_options, quantity, sphere_from
+from ._args import add_sphere_options, sphere_from
+from .tune import _quantity_list
 
 
 def _load_range(text):
     import argparse
 
-    parts = [s for s in str(text).split(",") if s.strip()]
-    if len(parts) != 2:
+    loads = _quantity_list("force")(text)
+    if len(loads) != 2:
         raise argparse.ArgumentTypeError(f"expected two loads N_lo,N_hi such as 7.5N,37.5N, got {text!r}")
-    return tuple(quantity("force")(s) for s in parts)
+    return tuple(loads)
 
 
 def _elements_list(text):
@@ -110,9 +111,6 @@ def _summary(res, path, meets):
 
 
 def _sweep(args, problem) -> int:
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     from .._io import atomic_write, save_figure, write_csv
