@@ -49,14 +49,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _checks
+from .._binning import binned_means
 from . import _kernels
-from ._record import Record
+from ._record import MIN_SAMPLES, Record
 
 
 class LoopError(ValueError):
     """The record cannot be analysed (no complete cycle, no steady cycle, ...)."""
 
 
+_SIGN_ADVICE = ("T must be the tangential force acting along t, so that the loops run counter-clockwise in the "
+                "t-T plane and the energy dissipated, the loop area (closed integral of T dt), is positive: "
+                "negate the force (change its sign in the file, or loops.Record(t=r.t, T=-r.T, ...))")
 _GROSS_SLIP_RATIO = 0.1  # end slope below this fraction of the stick stiffness: gross slip
 _MASING_BINS = 24
 
@@ -349,8 +353,13 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     force_amplitude = 0.25 * (np.abs(np.diff(rT))[0::2] + np.abs(np.diff(rT))[1::2])
     first_up = kind[1] > 0  # the first branch of every cycle ascends
     up, down = (slice(0, None, 2), slice(1, None, 2)) if first_up else (slice(1, None, 2), slice(0, None, 2))
-    stiff, slip, gross = branch
+    stiff, slip, _, gross = branch
     steady_from, steady_to, is_steady = _steady(energy, amplitude, steady_tolerance)
+    steady = slice(steady_from, steady_to)
+    stick = 0.5 * (stiff[up][:C] + stiff[down][:C])[steady].mean()
+    if energy[steady].mean() < 0 and stick < 0:
+        raise LoopError(f"{record.source}: force sign reversed: loop energy < 0 ({energy[steady].mean():.4g} J per "
+                        f"steady cycle) and stick stiffness < 0 ({stick:.4g} N/m). {_SIGN_ADVICE}")
     loops = Loops(
         record=record, reversal_index=index, reversal_kind=kind, reversal_t=rt, reversal_T=rT,
         energy=energy, amplitude=amplitude, force_amplitude=force_amplitude,
@@ -366,6 +375,104 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     object.__setattr__(loops, "masing_error", error)
     object.__setattr__(loops, "masing_basis", basis)
     return loops
+
+
+@dataclass(frozen=True, eq=False)
+class Branch:
+    """One measured branch of a steady loop, read as twice the backbone by Masing's rule (SI units).
+
+    Attributes
+    ----------
+    x : ndarray, shape (P,)
+        Half the displacement travelled from the reversal (m), >= 0.
+    y : ndarray, shape (P,)
+        Half the force change from the reversal (N), positive.
+    ascending : bool
+        True when ``t`` rises along the branch.
+    reversal : tuple of float
+        The refined reversal point ``(t_r, T_r)`` it starts from (m, N).
+    stick_stiffness : float
+        Slope of ``T`` on ``t`` just after the reversal (N/m), as in :func:`analyse`.
+    slip_force : float
+        Mean force over the last ``slip_fraction`` of the stroke (N).
+    end_slope : float
+        Slope over that last part (N/m).
+    gross_slip : bool
+        ``|end_slope|`` below 10 % of the stick stiffness: the branch ends in gross slip.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    ascending: bool
+    reversal: tuple
+    stick_stiffness: float
+    slip_force: float
+    end_slope: float
+    gross_slip: bool
+
+
+def analyse_branch(t, T, *, threshold: float = 0.1, stick_fraction: float = 0.1, slip_fraction: float = 0.1,
+                   source: str = "branch") -> Branch:
+    """Measure one branch given as samples from a reversal to the next.
+
+    The reversal is the extreme of ``t`` in the first quarter of the samples
+    (samples before it are dropped), refined as in :func:`analyse`; the
+    stick stiffness, slip force and gross-slip flag are those of
+    :func:`analyse`, the points ``(x, y)`` those of
+    :meth:`Loops.backbone_points`.
+
+    Parameters
+    ----------
+    t : array_like, shape (S,)
+        Tangential displacement along the branch (m), rising or falling.
+    T : array_like, shape (S,)
+        Tangential force (N).
+    threshold, stick_fraction, slip_fraction : float
+        As in :func:`analyse`; ``t`` must not reverse by more than
+        ``threshold`` of its range.
+    source : str
+        Name for messages.
+
+    Returns
+    -------
+    Branch
+
+    Raises
+    ------
+    LoopError
+        ``t`` does not vary, holds more than one branch, or the force sign
+        is reversed (``T`` falls as ``t`` rises after the reversal).
+    """
+    t = _checks.real_array("t", t, ndim=1, min_size=MIN_SAMPLES)
+    T = _checks.real_array("T", T, ndim=1, min_size=MIN_SAMPLES)
+    if T.size != t.size:
+        raise ValueError(f"t and T must have the same length, got {t.size} and {T.size}")
+    threshold = _checks.in_range("threshold", threshold, 0.0, 0.5, lo_open=True)
+    stick_fraction = _checks.in_range("stick_fraction", stick_fraction, 0.0, 1.0, lo_open=True)
+    slip_fraction = _checks.in_range("slip_fraction", slip_fraction, 0.0, 1.0, lo_open=True)
+    lo, hi = np.percentile(t, [0.5, 99.5])
+    if not hi > lo:
+        raise LoopError(f"{source}: the displacement does not vary (robust range {hi - lo:.3g} m): no branch")
+    index, _ = find_reversals(t, threshold * (hi - lo))
+    if index.size:
+        raise LoopError(f"{source}: t must hold one branch (from a reversal to the next), but it reverses at "
+                        f"sample {int(index[0])} (t = {t[index[0]]:.6g} m): pass the samples of one ascending or "
+                        f"descending branch")
+    s = 1.0 if np.median(t[-5:]) > np.median(t[:5]) else -1.0
+    start = int(np.argmin(s * t[:max(t.size // 4, 1)]))
+    t, T = t[start:], T[start:]
+    index = np.array([0, t.size - 1], dtype=np.int64)
+    rt, rT = _refine(t, T, index, max(1, int(round(0.015 * t.size))))
+    stiffness, slip_force, end, gross = _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction,
+                                                         noise_level(t))
+    if stiffness[0] < 0:
+        raise LoopError(f"{source}: force sign reversed: T {'falls' if s > 0 else 'rises'} as t "
+                        f"{'rises' if s > 0 else 'falls'} after the reversal (stick stiffness "
+                        f"{stiffness[0]:.4g} N/m < 0). {_SIGN_ADVICE}")
+    x, y = _halved(t, T, rt[0], rT[0], s)
+    return Branch(x=x, y=y, ascending=s > 0, reversal=(float(rt[0]), float(rT[0])),
+                  stick_stiffness=float(stiffness[0]), slip_force=float(slip_force[0]), end_slope=float(end[0]),
+                  gross_slip=bool(gross[0]))
 
 
 def _refine(t, T, index, w):
@@ -409,7 +516,7 @@ def _slopes(t, T, a, b, sigma_t=0.0):
 
 
 def _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction, sigma_t):
-    """Stick stiffness after each reversal, slip force at each branch end, gross-slip flag."""
+    """Stick stiffness after each reversal, slip force and slope at each branch end, gross-slip flag."""
     a, b = index[:-1], index[1:]
     out = np.empty(a.size, dtype=np.int64)
     _kernels.window_ends(T, a, b, stick_fraction * np.abs(np.diff(rT)), out)
@@ -421,7 +528,7 @@ def _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction, sigma_t
     slip_force = (csT[b + 1] - csT[slip_start]) / (b - slip_start + 1)
     end_slope = _slopes(t, T, slip_start, b)
     gross = np.abs(end_slope) < _GROSS_SLIP_RATIO * np.abs(stiffness)
-    return stiffness, slip_force, gross
+    return stiffness, slip_force, end_slope, gross
 
 
 def _cycle_energy(t, T, start, end):
@@ -451,15 +558,6 @@ def _steady(energy, amplitude, tol):
     return c, c + 1, False
 
 
-def _binned(x, y, edges):
-    which = np.digitize(x, edges) - 1
-    keep = (which >= 0) & (which < edges.size - 1)
-    counts = np.bincount(which[keep], minlength=edges.size - 1)
-    sums = np.bincount(which[keep], weights=y[keep], minlength=edges.size - 1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return sums / counts, counts
-
-
 def _masing(loops: Loops) -> tuple[float, str]:
     """Masing check (see the module docstring): RMS difference / force amplitude, and the basis."""
     B = loops.steady_mean("force_amplitude")
@@ -477,8 +575,8 @@ def _masing(loops: Loops) -> tuple[float, str]:
         basis = "branch symmetry"
     top = min(xb.max(), xr.max())
     edges = np.linspace(0.0, top, _MASING_BINS + 1)
-    mb, cb = _binned(xb, yb, edges)
-    mr, cr = _binned(xr, yr, edges)
+    cb, (mb,) = binned_means(xb, edges, yb)
+    cr, (mr,) = binned_means(xr, edges, yr)
     both = (cb > 0) & (cr > 0)
     if not both.any() or not B > 0:
         return float("inf"), basis
@@ -489,10 +587,15 @@ def _points(loops, branches):
     xs, ys = [], []
     for b in branches:
         t, T = loops.branch(b)
-        s = float(loops.reversal_kind[b + 1])
-        xs.append(np.maximum(s * (t - loops.reversal_t[b]) / 2.0, 0.0))  # noise can cross the reversal
-        ys.append(s * (T - loops.reversal_T[b]) / 2.0)
+        x, y = _halved(t, T, loops.reversal_t[b], loops.reversal_T[b], float(loops.reversal_kind[b + 1]))
+        xs.append(x)
+        ys.append(y)
     return np.concatenate(xs), np.concatenate(ys)
+
+
+def _halved(t, T, t_r, T_r, s):
+    """Masing's backbone points of a branch from the reversal ``(t_r, T_r)`` going the way ``s`` (+1 or -1)."""
+    return np.maximum(s * (t - t_r) / 2.0, 0.0), s * (T - T_r) / 2.0  # noise can cross the reversal
 
 
 def _virgin_points(loops: Loops):
