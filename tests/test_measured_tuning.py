@@ -98,6 +98,16 @@ def test_validate_checks_its_model(records):
     with pytest.raises(TypeError, match="model must be a MicroslipModel"):
         validate("model", Cylinder(**GEOM), records)
     m = MicroslipModel(kt=[1e7], kn=[1e8], gaps=[0.0], mu=0.4)
+    with pytest.raises(TypeError, match=r"normal must provide approach\(\) of a normal law \(e.g. "
+                                        r"microslip.Cylinder\); str lacks approach"):
+        validate(m, "palmgren", records)
+
+    class Broken:
+        def approach(self, N):
+            return float("nan")
+
+    with pytest.raises(ValueError, match=r"normal.approach\(36.6 N\) must be finite, got nan"):
+        validate(m, Broken(), records)
     v = validate(m, Cylinder(**GEOM), records[:1])
     assert v.loads[0].predicted.cycles == records[0].cycles
 

@@ -104,8 +104,13 @@ def backlash(loops: Loops) -> tuple[float, float, float, float]:
 
 
 def points_backlash(x, y) -> tuple[float, float, float, float]:
-    """:func:`backlash` of backbone points ``x`` (m, >= 0) and ``y`` (N), shape (P,)."""
-    count, (xb, yb) = binned_means(x, np.linspace(0.0, x.max(), 81), x, y)
+    """:func:`backlash` of backbone points ``x`` (m, >= 0) and ``y`` (N), shape (P,).
+
+    The points are averaged in 80 bins of ``x``, fewer (down to 10) when
+    there are fewer than 10 points per bin (a single branch).
+    """
+    bins = int(np.clip(x.size // 10, 10, 80))
+    count, (xb, yb) = binned_means(x, np.linspace(0.0, x.max(), bins + 1), x, y)
     keep = count > 0
     xb, yb = xb[keep], np.maximum.accumulate(yb[keep])
     levels = np.linspace(0.0, 0.9 * yb.max(), 19)

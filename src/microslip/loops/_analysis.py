@@ -58,7 +58,7 @@ class LoopError(ValueError):
     """The record cannot be analysed (no complete cycle, no steady cycle, ...)."""
 
 
-_SIGN_ADVICE = ("T must be the tangential force acting along t, so that the loops run counter-clockwise in the "
+_SIGN_ADVICE = ("T must be the tangential force acting along t, so that the loops run clockwise in the "
                 "t-T plane and the energy dissipated, the loop area (closed integral of T dt), is positive: "
                 "negate the force (change its sign in the file, or loops.Record(t=r.t, T=-r.T, ...))")
 _GROSS_SLIP_RATIO = 0.1  # end slope below this fraction of the stick stiffness: gross slip
@@ -416,8 +416,9 @@ def analyse_branch(t, T, *, threshold: float = 0.1, stick_fraction: float = 0.1,
     """Measure one branch given as samples from a reversal to the next.
 
     The reversal is the extreme of ``t`` in the first quarter of the samples
-    (samples before it are dropped), refined as in :func:`analyse`; the
-    stick stiffness, slip force and gross-slip flag are those of
+    (samples before it are dropped), refined by a quadratic in the sample
+    number fitted to ``t`` and ``T`` over the next 6 % of the samples and
+    extrapolated to it; the stick stiffness, slip force and gross-slip flag are those of
     :func:`analyse`, the points ``(x, y)`` those of
     :meth:`Loops.backbone_points`.
 
@@ -462,7 +463,13 @@ def analyse_branch(t, T, *, threshold: float = 0.1, stick_fraction: float = 0.1,
     start = int(np.argmin(s * t[:max(t.size // 4, 1)]))
     t, T = t[start:], T[start:]
     index = np.array([0, t.size - 1], dtype=np.int64)
-    rt, rT = _refine(t, T, index, max(1, int(round(0.015 * t.size))))
+    w = max(2, int(round(0.03 * t.size)))
+    rt, rT = _refine(t, T, index, w)
+    # the branch starts at its reversal: a centred mean (as in analyse) is not available there, and a
+    # one-sided one would sit off the reversal by the drift of t; a quadratic in the sample number,
+    # exact for a ramp and for the stationary t of a sine, extrapolated to the first sample is not
+    head = np.arange(2 * w + 1)
+    rt[0], rT[0] = (np.polyval(np.polyfit(head, v[:head.size], 2), 0.0) for v in (t, T))
     stiffness, slip_force, end, gross = _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction,
                                                          noise_level(t))
     if stiffness[0] < 0:
