@@ -58,6 +58,8 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
         fig = section.plot(data)
         report.heading(section.CAPTION.split(":")[0])
         report.figure(fig, section.NAME, section.CAPTION, out_dir)
+        for caption, headers, rows in (getattr(section, "tables", None) or (lambda _: []))(data):
+            report.table(headers, rows, caption=caption)
         plt.close(fig)
         write_csv(out_dir / f"{section.NAME}.csv", section.columns(data), header_comment=section.CAPTION)
         errors += section.error_rows(data)
