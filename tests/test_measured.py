@@ -296,3 +296,40 @@ def test_masing_tolerance_is_checked():
                          (0.0, "masing_tolerance must be positive, got 0.0")):
         with pytest.raises(ValueError, match=message):
             MeasuredContact.from_loops(L, SPHERE, masing_tolerance=bad)
+
+
+def test_mindlin_deresiewicz_path_on_the_measured_reference(sphere_reference):
+    from microslip.reference import mindlin
+
+    # the generic path on a reference fitted to sphere loops is the sphere's within the fit's error:
+    # forces within 0.3 % of mu N_ref (test above) at slopes down to 0 near gross slip, so compare
+    # displacements below 95 % of gross slip, where the inverse is well conditioned: 3 % of t_gs
+    N, dN, T_A = 20.0, 15.0, 4.0
+    T = np.linspace(0, 0.95 * 0.4 * (N + dN), 60)
+    np.testing.assert_allclose(mindlin.raised_load_path(sphere_reference, T, N, dN, T_A),
+                               SPHERE.raised_load_path(T, N, dN, T_A),
+                               atol=0.03 * float(SPHERE.gross_slip_displacement(N + dN)))
+    t_B, T_B = mindlin.join_point(sphere_reference, N, dN, T_A)
+    assert T_B == pytest.approx(T_A + 0.4 * dN, rel=1e-15)
+    assert t_B == pytest.approx(SPHERE.join_point(N, dN, T_A)[0], rel=0.03)
+    with pytest.raises(ValueError, match=r"T_A must not exceed mu\*N = 8 N, got 9 N"):
+        mindlin.join_point(sphere_reference, N, dN, 9.0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(x=st.lists(st.floats(-0.5, 2.5, allow_nan=False), min_size=1, max_size=80), bins=st.integers(1, 9))
+def test_binned_means_matches_a_loop(x, bins):
+    from microslip._binning import binned_means
+
+    x = np.asarray(x)
+    y = 3.0 * x - 1.0
+    edges = np.linspace(0.0, 2.0, bins + 1)
+    count, (mx, my) = binned_means(x, edges, x, y)
+    for k in range(bins):  # bin k: edges[k] <= x < edges[k+1], the last one closed on the right
+        last = k == bins - 1
+        inside = (x >= edges[k]) & ((x <= edges[k + 1]) if last else (x < edges[k + 1]))
+        assert count[k] == inside.sum()
+        if inside.any():
+            assert mx[k] == pytest.approx(x[inside].mean()) and my[k] == pytest.approx(y[inside].mean())
+        else:
+            assert np.isnan(mx[k]) and np.isnan(my[k])
