@@ -43,7 +43,7 @@ import numpy as np
 from . import _checks, _loop_checks
 from ._loop_checks import backlash, fit_mu
 from .backbone_fit import _KNOTS, FittedBackbone, fit_backbone
-from .loops._analysis import analyse_branch
+from .loops._branch import analyse_branch
 from .tuning import TuningError
 
 __all__ = ["FittedBackbone", "MeasuredContact", "backlash", "fit_backbone", "fit_mu"]
