@@ -119,6 +119,16 @@ def test_analysis_errors_name_the_parameter():
         L.cycle_bounds(5)
 
 
+def test_reversed_force_sign_is_refused():
+    rec = _jenkins_record()
+    flipped = loops.Record(t=rec.t, T=-rec.T, source="flipped.csv")
+    # the Jenkins loop area is 4 F (A - F/K) = 60 µJ and its stick stiffness K: both come out negative
+    with pytest.raises(loops.LoopError, match=r"flipped.csv: force sign reversed: loop energy < 0 \(-6(\.\d+)?e-05 J "
+                                              r"per steady cycle\) and stick stiffness < 0 \(-2e\+07 N/m\)\. "
+                                              r".*negate the force"):
+        loops.analyse(flipped)
+
+
 def test_plot_returns_axes_with_labels():
     import matplotlib
 
@@ -168,7 +178,9 @@ def test_real_damper_loops(name):
     L = loops.analyse(r)
     # about 10 s at 1 Hz with a ramp of amplitude at both ends: 6 full-size cycles, >= 2 steady
     assert L.cycles >= 5 and L.is_steady and L.steady.stop - L.steady.start >= 2
-    assert np.all(L.energy > 0) and L.summary()["gross_slip"]
+    # its sign convention is ours (T acts along t: positive loop energy and stick stiffness), so the
+    # sign check lets it through
+    assert np.all(L.energy > 0) and L.summary()["gross_slip"] and L.summary()["stick_stiffness"] > 0
     # independent check: SOURCE.txt gives the mean loop area over the 10 s record
     # (|loop area| per cycle in in*kip, 10 cycles); the whole record's work ∮T dt must match it
     area = {"1Hz20lbtension.json": 1.823, "1Hz80lbtension.json": 4.715}[name] * 0.0254 * 4448.2216152605

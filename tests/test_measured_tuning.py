@@ -2,17 +2,19 @@
 the Fig. 4-like transition, the report, the Fig. 6 section and the command line."""
 
 import json
+import re
 from pathlib import Path
 
 import matplotlib
 import numpy as np
 import pytest
 
-from microslip import Cylinder, MicroslipModel, Sphere, loops, tune_on_loops, validate
+from microslip import Cylinder, MicroslipModel, Sphere, loops, tune, tune_on_loops, validate
 from microslip.cli import main
 from microslip.figures import SECTIONS, fig6
 from microslip.loop_tuning import raised_load_path
 from microslip.loops.synthetic import dataset_files, normal_curve_file
+from microslip.tuning import model_from_points
 
 matplotlib.use("Agg")
 GEOM = dict(length=10e-3, radius=5e-3, E=200e9, nu=0.3)
@@ -74,11 +76,48 @@ def test_transition_joins_the_curve_at_the_higher_load(result):
 
 def test_raised_load_path_on_the_sphere_matches_its_closed_form():
     s = Sphere.paper()
-    T = np.linspace(0, 0.4 * 37.5, 50)
-    np.testing.assert_allclose(raised_load_path(s, T, 25.0, 12.5, 5.0), s.raised_load_path(T, 25.0, 12.5, 5.0),
-                               rtol=1e-12, atol=1e-18)
+    N, dN, T_A = 25.0, 12.5, 5.0
+    T = np.linspace(0, 0.4 * (N + dN), 50)
+    # Cattaneo-Mindlin: t(T; N) = c (N^(2/3) - (N - T/mu)^(2/3)), with c = t_gs(N) / N^(2/3) the same at all loads
+    c = float(s.gross_slip_displacement(N)) / N ** (2 / 3)
+    virgin = lambda T_, N_: c * (N_ ** (2 / 3) - (N_ - T_ / 0.4) ** (2 / 3))  # noqa: E731
+    T_B = T_A + 0.4 * dN
+    closed = np.where(T <= T_A, virgin(np.minimum(T, 0.4 * N), N),
+                      np.where(T <= T_B, virgin(T_A, N) + virgin(np.clip(T - T_A, 0, None), N + dN),
+                               virgin(T, N + dN)))
+    np.testing.assert_allclose(raised_load_path(s, T, N, dN, T_A), closed, rtol=1e-12, atol=1e-18)
     with pytest.raises(ValueError, match=r"T_A must not exceed mu\*N = 10 N, got 11 N"):
-        raised_load_path(s, T, 25.0, 12.5, 11.0)
+        raised_load_path(s, T, N, dN, 11.0)
+    with pytest.raises(ValueError, match=re.escape("T must lie in [0, mu*(N+dN)] = [0, 15] N, got 16 N")):
+        raised_load_path(s, [1.0, 16.0], N, dN, T_A)
+
+
+def test_tune_on_loops_chooses_the_points_once(records, result, monkeypatch):
+    import microslip.tuning
+
+    def twice(*args, **kwargs):
+        raise AssertionError("tuning points computed a second time")
+
+    monkeypatch.setattr(microslip.tuning, "tuning_points", twice)  # what tune() would call again
+    again = tune_on_loops(records, Cylinder.from_file(normal_curve_file(), **GEOM), elements=6)
+    monkeypatch.undo()
+    # the same model as tune() on the same reference
+    assert again.model == tune(result.reference, result.reference.normal_load, elements=6) == result.model
+    with pytest.raises(TypeError, match="points must be TuningPoints"):
+        model_from_points(result.reference, (result.points.t, result.points.T))
+
+
+def test_report_leaves_the_backend_and_pyplot_alone(result, tmp_path):
+    import matplotlib.pyplot as plt
+
+    matplotlib.use("svg")  # stands for a user's own backend
+    try:
+        figures = plt.get_fignums()
+        result.report(tmp_path, stem="b")
+        assert matplotlib.get_backend() == "svg" and plt.get_fignums() == figures
+    finally:
+        matplotlib.use("Agg")
+    assert (tmp_path / "b-branch.png").read_bytes()[:4] == b"\x89PNG"
 
 
 def test_plots_and_report(result, tmp_path):
@@ -98,6 +137,16 @@ def test_validate_checks_its_model(records):
     with pytest.raises(TypeError, match="model must be a MicroslipModel"):
         validate("model", Cylinder(**GEOM), records)
     m = MicroslipModel(kt=[1e7], kn=[1e8], gaps=[0.0], mu=0.4)
+    with pytest.raises(TypeError, match=r"normal must provide approach\(\) of a normal law \(e.g. "
+                                        r"microslip.Cylinder\); str lacks approach"):
+        validate(m, "palmgren", records)
+
+    class Broken:
+        def approach(self, N):
+            return float("nan")
+
+    with pytest.raises(ValueError, match=r"normal.approach\(36.6 N\) must be finite, got nan"):
+        validate(m, Broken(), records)
     v = validate(m, Cylinder(**GEOM), records[:1])
     assert v.loads[0].predicted.cycles == records[0].cycles
 
@@ -109,10 +158,27 @@ def test_fig6_section_follows_the_contract():
     assert len(fig.axes) == 4
     cols = fig6.columns(data)
     assert all(np.asarray(v).ndim == 1 for v in cols.values())
-    rows = fig6.error_rows(data)
-    assert len(rows) == 15 and all(len(r) == 5 for r in rows)
-    energy_errors = [abs(r[3]) for r in rows if "energy" in r[0]]
-    assert max(energy_errors) < 2.0  # percent, as in the validation test
+    # the cylinder is measured against a model, not discrete against continuous: its own table
+    assert fig6.error_rows(data) == []
+    (caption, headers, rows), = fig6.tables(data)
+    assert "SYNTHETIC" in caption and headers == fig6.TABLE_HEADERS
+    assert len(rows) == 15 and all(len(r) == len(headers) for r in rows)
+    # the tuning load is marked as such, the four others as predictions
+    roles = {r[0]: r[1] for r in rows}
+    assert roles["36.6"] == "tuning load (fitted, not a prediction)"
+    assert [k for k, role in roles.items() if role.startswith("predicted")] == ["31.6", "26.5", "21.5", "16.4"]
+    for load, role, quantity, measured, model, diff, bound, why in rows:
+        assert diff == pytest.approx(100 * (model - measured) / measured, rel=1e-9)
+        assert abs(diff) < bound and len(why) > 20  # every bound holds, and says why it is what it is
+
+
+def test_reproduce_writes_the_fig6_table(tmp_path):
+    from microslip.figures import reproduce
+
+    reproduce(tmp_path, sections=[fig6], progress=False)
+    md = (tmp_path / "report.md").read_text(encoding="utf-8")
+    assert "| N (N) | role | quantity | measured | model |" in md and "tuning load (fitted, not a prediction)" in md
+    assert "cylinder 36.6 N" not in md  # no longer in the discrete-vs-continuous table
 
 
 # -- command line ------------------------------------------------------------------------------------

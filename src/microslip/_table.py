@@ -93,3 +93,42 @@ def column_si(columns, units, name: str, kind: str, *, path="table", unit: str |
     except ValueError as exc:
         raise ValueError(f"{path}: column {name!r}: {exc}") from None
     return columns[name] * factor
+
+
+def header_unit(units, name: str, given: str | None, kind: str, *, path="table", option="unit") -> str:
+    """The unit of column ``name``: the header's; ``given`` only fills in a header without one.
+
+    A ``given`` unit that differs from the header's (a different SI factor)
+    is refused rather than silently preferred: a ``t [um]`` column read with
+    ``mm`` would be 1000 times off.
+
+    Parameters
+    ----------
+    units : dict
+        ``{name: unit}`` from :func:`read_table` (``""`` when the header gives none).
+    name : str
+        The column.
+    given : str or None
+        The unit given apart from the file (an option), if any.
+    kind : str
+        Its dimension (see :func:`microslip.units.unit_factor`).
+    path, option : str
+        For messages: the file and how ``given`` was given (e.g. ``"--unit"``).
+
+    Returns
+    -------
+    str
+        The unit to read the column in (``""``: none, SI).
+    """
+    header = units.get(name, "")
+    if not given or not header or given == header:
+        return header or (given or "")
+    try:
+        same = unit_factor(given, kind) == unit_factor(header, kind)
+    except ValueError:
+        same = False
+    if not same:
+        raise ValueError(f"{path}: column {name!r} is in {header!r} by its header, but {option} gives {given!r}; "
+                         f"{option} only applies to a column whose header has no unit: drop it, or correct the "
+                         f"header")
+    return header

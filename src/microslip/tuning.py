@@ -61,15 +61,81 @@ class ContactReference(Protocol):
 
     mu: float
 
-    def backbone(self, t, N): ...
+    def backbone(self, t, N):
+        """Virgin tangential force (N) at displacement ``t`` (m) under the constant load ``N`` (N).
 
-    def backbone_displacement(self, T, N): ...
+        Parameters
+        ----------
+        t : array_like
+            Tangential displacement from the unloaded state (m).
+        N : float or array_like
+            Normal load (N), positive; broadcast against ``t``.
 
-    def gross_slip_displacement(self, N): ...
+        Returns
+        -------
+        ndarray
+            Tangential force (N), shape of ``t``; odd in ``t``, increasing,
+            concave for ``t >= 0``, equal to ``mu N`` from the gross-slip
+            displacement on.
+        """
 
-    def approach(self, N): ...
+    def backbone_displacement(self, T, N):
+        """Inverse of :meth:`backbone`: displacement (m) at tangential force ``T`` (N), load ``N`` (N).
 
-    def normal_force(self, n): ...
+        Parameters
+        ----------
+        T : array_like
+            Tangential force (N), ``|T| <= mu N``.
+        N : float or array_like
+            Normal load (N), positive.
+
+        Returns
+        -------
+        ndarray
+            Tangential displacement (m), shape of ``T``, odd in ``T``.
+        """
+
+    def gross_slip_displacement(self, N):
+        """Displacement (m) at which the backbone at load ``N`` (N) reaches ``mu N``.
+
+        Parameters
+        ----------
+        N : float or array_like
+            Normal load (N), positive.
+
+        Returns
+        -------
+        float or ndarray
+            Gross-slip displacement (m), shape of ``N``.
+        """
+
+    def approach(self, N):
+        """Normal approach (m) at normal load ``N`` (N).
+
+        Parameters
+        ----------
+        N : float or array_like
+            Normal load (N), non-negative.
+
+        Returns
+        -------
+        float or ndarray
+            Normal approach (m), shape of ``N``, increasing in ``N``.
+        """
+
+    def normal_force(self, n):
+        """Normal force (N) at normal approach ``n`` (m); the inverse of :meth:`approach`.
+
+        Parameters
+        ----------
+        n : float or array_like
+            Normal approach (m).
+
+        Returns
+        -------
+        float or ndarray
+            Normal force (N), shape of ``n``, increasing, 0 for ``n <= 0``.
+        """
 
 
 @dataclass(frozen=True)
@@ -101,8 +167,43 @@ def tuning_points(reference, normal_load, *, forces=None, displacements=None,
                   elements=None) -> TuningPoints:
     """Choose the tuning points on the reference backbone (step 1 of :func:`tune`).
 
-    Give exactly one of ``forces``, ``displacements`` or ``elements``; see
-    :func:`tune` for their meaning.
+    Give exactly one of ``forces``, ``displacements`` or ``elements``.
+
+    Parameters
+    ----------
+    reference : ContactReference
+        The contact to imitate (e.g. :class:`microslip.Sphere`): its ``mu``,
+        backbone at constant load, inverse, gross-slip displacement and
+        ``approach(N)``.
+    normal_load : float
+        The load ``N_tot`` to tune at (N), positive.
+    forces : array_like, shape (J,), optional
+        Tangential forces of the points (N), strictly increasing, the last
+        equal to ``mu * normal_load`` (to a relative 1e-6; it is then set
+        exactly); their displacements come from the inverse backbone.
+    displacements : array_like, shape (J,), optional
+        Tangential displacements of the points (m), strictly increasing, the
+        last at the gross-slip displacement (to a relative 1e-6); their
+        forces come from the backbone.
+    elements : int, optional
+        Number of points ``J``, evenly spaced in force:
+        ``T_j = j mu N_tot / J`` (the paper's choice).
+
+    Returns
+    -------
+    TuningPoints
+        ``t`` (m) and ``T`` (N), each shape ``(J,)``, the last at gross slip;
+        ``normal_load`` (N) and ``approach``, the reference's normal approach
+        at it (m).
+
+    Raises
+    ------
+    TypeError
+        ``reference`` lacks a method of :class:`ContactReference`.
+    ValueError
+        Not exactly one of ``forces``, ``displacements``, ``elements``; a
+        value not finite or not positive; points not strictly increasing;
+        the last point not at gross slip.
     """
     _check_reference(reference)
     N_tot = _checks.positive_scalar("normal_load", normal_load)
@@ -289,9 +390,29 @@ def tune(reference, normal_load, *, forces=None, displacements=None, elements=No
     """
     pts = tuning_points(reference, normal_load, forces=forces, displacements=displacements,
                         elements=elements)
-    kt = tangential_stiffnesses(pts.t, pts.T)
-    s = pts.t[::-1]  # element e slips at t_{J+1-e}
-    kn, gaps = normal_parameters(reference, kt, s, pts.normal_load)
+    return model_from_points(reference, pts)
+
+
+def model_from_points(reference, points: TuningPoints) -> MicroslipModel:
+    """Steps 2--4 of :func:`tune` on points already chosen by :func:`tuning_points`.
+
+    Parameters
+    ----------
+    reference : ContactReference
+        The reference the points were chosen on (its ``mu`` and normal curve).
+    points : TuningPoints
+        The tuning points (m, N) and the tuning load and approach.
+
+    Returns
+    -------
+    MicroslipModel
+        As :func:`tune` returns it.
+    """
+    if not isinstance(points, TuningPoints):
+        raise TypeError(f"points must be TuningPoints (from tuning_points), got {type(points).__name__}")
+    kt = tangential_stiffnesses(points.t, points.T)
+    s = points.t[::-1]  # element e slips at t_{J+1-e}
+    kn, gaps = normal_parameters(reference, kt, s, points.normal_load)
     return MicroslipModel(kt=kt, kn=kn, gaps=gaps, mu=reference.mu)
 
 

@@ -18,7 +18,9 @@ def add_parser(sub) -> None:
                                    "of normal approach")
     p.add_argument("--t-column", default="t", help="name of the tangential displacement column (default t)")
     p.add_argument("--n-column", default="n", help="name of the normal approach column (default n)")
-    p.add_argument("--unit", default=None, help="unit of both columns when the header gives none (default m)")
+    p.add_argument("--unit", default=None,
+                   help="unit of the t and n columns whose header gives none, e.g. um (default m); a unit that "
+                        "differs from the header's is an error, never an override")
     normal = p.add_mutually_exclusive_group()
     normal.add_argument("--n", dest="n_const", type=quantity("length"), default=None,
                         help="constant normal approach instead of a column, e.g. 2um")
@@ -32,18 +34,23 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from .._io import save_figure, write_csv
-    from .._table import column_si, read_table
+    from .._table import column_si, header_unit, read_table
     from ..model import MicroslipModel
 
     model = MicroslipModel.load(args.model)
     columns, units = read_table(args.history)
-    t = column_si(columns, units, args.t_column, "length", path=args.history, unit=args.unit)
+
+    def length_column(name):
+        unit = header_unit(units, name, args.unit, "length", path=args.history, option="--unit")
+        return column_si(columns, units, name, "length", path=args.history, unit=unit)
+
+    t = length_column(args.t_column)
     if args.n_const is not None:
         n = np.full_like(t, args.n_const)
     elif args.load is not None:
         n = np.full_like(t, float(model.approach(args.load)))
     else:
-        n = column_si(columns, units, args.n_column, "length", path=args.history, unit=args.unit)
+        n = length_column(args.n_column)
     r = model.simulate(t, n, per_element=False)
     write_csv(args.output, {"t [m]": r.t, "n [m]": r.n, "T [N]": r.T, "N [N]": r.N})
     if args.plot:

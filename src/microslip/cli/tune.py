@@ -66,9 +66,10 @@ def add_parser(sub) -> None:
                    help="name of the tangential force column (default: T, F or force)")
     g.add_argument("--N-column", dest="N_column", default=None, help="name of the normal load column (default N)")
     g.add_argument("--t-unit", default=None, help="unit of the displacement column when the header has none, "
-                                                  "e.g. um")
-    g.add_argument("--T-unit", dest="T_unit", default=None, help="unit of the force column when the header has "
-                                                                 "none, e.g. N")
+                                                  "e.g. um (a unit that differs from the header's is an error)")
+    g.add_argument("--T-unit", dest="T_unit", default=None,
+                   help="unit of the force column when the header has none, e.g. N (a unit that differs from the "
+                        "header's is an error)")
     g.add_argument("--report", default=None,
                    help="folder for the report (default: the folder of --output); files <model stem>-report.*")
     g.add_argument("--quiet", action="store_true", help="do not show progress on standard error")

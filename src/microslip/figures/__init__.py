@@ -14,9 +14,13 @@ Every module in :data:`SECTIONS` follows one contract:
     the plotted data, written as CSV;
 ``error_rows(data) -> list``
     rows ``(quantity, discrete, continuous, error %, bound)`` of the
-    report's error table (may be empty);
-``tables(data) -> list`` (optional)
-    extra tables ``(caption, headers, rows)`` shown under the figure.
+    report's error table (may be empty).
+
+Optional:
+
+``tables(data) -> list``
+    further tables ``(caption, headers, rows)`` of the section, written in
+    the report under its figure (for data that do not fit the error table).
 """
 
 from . import accuracy, accuracy_amplitude, accuracy_sweep, fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6

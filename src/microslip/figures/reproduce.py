@@ -58,7 +58,7 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
         plt.close(fig)
         write_csv(out_dir / f"{section.NAME}.csv", section.columns(data), header_comment=section.CAPTION)
         for caption, headers, rows in getattr(section, "tables", lambda _: [])(data):
-            report.table(headers, rows, caption)
+            report.table(headers, rows, caption=caption)
         errors += section.error_rows(data)
     bar.step("report")
     report.heading("Differences between discrete and continuous")

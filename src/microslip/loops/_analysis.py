@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _checks
+from .._binning import binned_means
 from . import _kernels
 from ._record import Record
 
@@ -57,6 +58,9 @@ class LoopError(ValueError):
     """The record cannot be analysed (no complete cycle, no steady cycle, ...)."""
 
 
+_SIGN_ADVICE = ("T must be the tangential force acting along t, so that the loops run clockwise in the "
+                "t-T plane and the energy dissipated, the loop area (closed integral of T dt), is positive: "
+                "negate the force (change its sign in the file, or loops.Record(t=r.t, T=-r.T, ...))")
 _GROSS_SLIP_RATIO = 0.1  # end slope below this fraction of the stick stiffness: gross slip
 _MASING_BINS = 24
 
@@ -349,8 +353,13 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     force_amplitude = 0.25 * (np.abs(np.diff(rT))[0::2] + np.abs(np.diff(rT))[1::2])
     first_up = kind[1] > 0  # the first branch of every cycle ascends
     up, down = (slice(0, None, 2), slice(1, None, 2)) if first_up else (slice(1, None, 2), slice(0, None, 2))
-    stiff, slip, gross = branch
+    stiff, slip, _, gross = branch
     steady_from, steady_to, is_steady = _steady(energy, amplitude, steady_tolerance)
+    steady = slice(steady_from, steady_to)
+    stick = 0.5 * (stiff[up][:C] + stiff[down][:C])[steady].mean()
+    if energy[steady].mean() < 0 and stick < 0:
+        raise LoopError(f"{record.source}: force sign reversed: loop energy < 0 ({energy[steady].mean():.4g} J per "
+                        f"steady cycle) and stick stiffness < 0 ({stick:.4g} N/m). {_SIGN_ADVICE}")
     loops = Loops(
         record=record, reversal_index=index, reversal_kind=kind, reversal_t=rt, reversal_T=rT,
         energy=energy, amplitude=amplitude, force_amplitude=force_amplitude,
@@ -409,7 +418,7 @@ def _slopes(t, T, a, b, sigma_t=0.0):
 
 
 def _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction, sigma_t):
-    """Stick stiffness after each reversal, slip force at each branch end, gross-slip flag."""
+    """Stick stiffness after each reversal, slip force and slope at each branch end, gross-slip flag."""
     a, b = index[:-1], index[1:]
     out = np.empty(a.size, dtype=np.int64)
     _kernels.window_ends(T, a, b, stick_fraction * np.abs(np.diff(rT)), out)
@@ -421,7 +430,7 @@ def _branch_measures(t, T, index, rt, rT, stick_fraction, slip_fraction, sigma_t
     slip_force = (csT[b + 1] - csT[slip_start]) / (b - slip_start + 1)
     end_slope = _slopes(t, T, slip_start, b)
     gross = np.abs(end_slope) < _GROSS_SLIP_RATIO * np.abs(stiffness)
-    return stiffness, slip_force, gross
+    return stiffness, slip_force, end_slope, gross
 
 
 def _cycle_energy(t, T, start, end):
@@ -451,15 +460,6 @@ def _steady(energy, amplitude, tol):
     return c, c + 1, False
 
 
-def _binned(x, y, edges):
-    which = np.digitize(x, edges) - 1
-    keep = (which >= 0) & (which < edges.size - 1)
-    counts = np.bincount(which[keep], minlength=edges.size - 1)
-    sums = np.bincount(which[keep], weights=y[keep], minlength=edges.size - 1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return sums / counts, counts
-
-
 def _masing(loops: Loops) -> tuple[float, str]:
     """Masing check (see the module docstring): RMS difference / force amplitude, and the basis."""
     B = loops.steady_mean("force_amplitude")
@@ -477,8 +477,8 @@ def _masing(loops: Loops) -> tuple[float, str]:
         basis = "branch symmetry"
     top = min(xb.max(), xr.max())
     edges = np.linspace(0.0, top, _MASING_BINS + 1)
-    mb, cb = _binned(xb, yb, edges)
-    mr, cr = _binned(xr, yr, edges)
+    cb, (mb,) = binned_means(xb, edges, yb)
+    cr, (mr,) = binned_means(xr, edges, yr)
     both = (cb > 0) & (cr > 0)
     if not both.any() or not B > 0:
         return float("inf"), basis
@@ -489,10 +489,15 @@ def _points(loops, branches):
     xs, ys = [], []
     for b in branches:
         t, T = loops.branch(b)
-        s = float(loops.reversal_kind[b + 1])
-        xs.append(np.maximum(s * (t - loops.reversal_t[b]) / 2.0, 0.0))  # noise can cross the reversal
-        ys.append(s * (T - loops.reversal_T[b]) / 2.0)
+        x, y = _halved(t, T, loops.reversal_t[b], loops.reversal_T[b], float(loops.reversal_kind[b + 1]))
+        xs.append(x)
+        ys.append(y)
     return np.concatenate(xs), np.concatenate(ys)
+
+
+def _halved(t, T, t_r, T_r, s):
+    """Masing's backbone points of a branch from the reversal ``(t_r, T_r)`` going the way ``s`` (+1 or -1)."""
+    return np.maximum(s * (t - t_r) / 2.0, 0.0), s * (T - T_r) / 2.0  # noise can cross the reversal
 
 
 def _virgin_points(loops: Loops):

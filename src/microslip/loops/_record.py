@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _checks
-from .._table import column_si, read_table
+from .._table import column_si, header_unit, read_table
 from ..units import parse_quantity, unit_factor
 
 #: column names tried, in order, for each role when ``columns`` does not name one
@@ -137,8 +137,9 @@ def read(path, *, columns=None, units=None, normal_load=None) -> Record:
         Default names tried: ``t, x, u, displacement`` / ``T, F, force`` /
         ``time`` / ``N, normal load``.
     units : dict, optional
-        Unit for a role, overriding (or supplying) the header's, e.g.
-        ``{"t": "um", "T": "N"}``.
+        Unit for a role whose column has none in the header, e.g.
+        ``{"t": "um", "T": "N"}``. It never overrides the header: a unit
+        that differs from the header's raises ``ValueError``.
     normal_load : float or str, optional
         Normal load of the whole record (N, or a string with its unit such as
         ``"36.6N"``). Default: a ``# normal load = 36.6 N`` comment in the
@@ -155,7 +156,8 @@ def read(path, *, columns=None, units=None, normal_load=None) -> Record:
         No such file.
     ValueError
         A missing column (the message lists those present), an unknown unit
-        or one of the wrong kind, a column without a unit, a cell that is not
+        or one of the wrong kind, a column without a unit, a unit in
+        ``units`` that conflicts with the header's, a cell that is not
         a number or not finite (row and column named), too few samples.
     """
     path = Path(path)
@@ -176,7 +178,8 @@ def read(path, *, columns=None, units=None, normal_load=None) -> Record:
         name = _pick_column(path, table, role, columns.get(role), defaults[role], required=role in ("t", "T"))
         if name is None:
             continue
-        unit = units.get(role, table_units.get(name) or None)
+        unit = header_unit(table_units, name, units.get(role), _KIND[role], path=path,
+                           option=f"units[{role!r}]" + (f" (--{role}-unit)" if role in ("t", "T") else ""))
         if not unit:
             raise ValueError(f"{path}: column {name!r} ({_KIND[role]}) has no unit in the header; write it as "
                              f"'{name} [unit]' or pass units={{{role!r}: ...}}")

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _checks
-from . import masing
+from . import masing, mindlin
 
 
 @dataclass(frozen=True)
@@ -186,38 +186,14 @@ class Sphere:
         """Displacement (m) along the Mindlin--Deresiewicz path of the paper's Fig. 4a.
 
         Path: from O, ``T`` rises to ``T_A`` at constant load ``N`` (point A);
-        the load is raised to ``N + dN`` at constant ``T`` (the point does not
-        move in the T--t plane); then ``T`` rises again. For
-        ``T_A <= T <= T_A + mu dN`` the curve is the virgin curve at ``N + dN``
-        shifted to start at A; from the join point B (``T_B = T_A + mu dN``) on,
-        it is the virgin curve at ``N + dN`` itself.
-
-        Parameters
-        ----------
-        T : array_like
-            Tangential force (N), ``0 <= T <= mu (N + dN)``.
-        N, dN : float
-            Initial load and its increment (N).
-        T_A : float
-            Tangential force at which the load is raised (N), ``0 <= T_A <= mu N``.
-
-        Returns
-        -------
-        ndarray
-            Tangential displacement (m), same shape as ``T``.
+        the load is raised to ``N + dN`` at constant ``T``; then ``T`` rises
+        again, on the virgin curve at ``N + dN`` shifted to start at A up to
+        the join point B (``T_B = T_A + mu dN``), on that curve itself beyond.
+        :func:`microslip.reference.mindlin.raised_load_path` applied to this
+        sphere: ``T`` (N), ``0 <= T <= mu (N + dN)``; ``N``, ``dN`` (N);
+        ``T_A`` (N), ``0 <= T_A <= mu N``; returns an array shaped like ``T``.
         """
-        N, dN, T_A = self._raised_load_args(N, dN, T_A)
-        T = _checks.real_array("T", T)
-        N2 = N + dN
-        outside = (T < 0) | (T > self.mu * N2 * (1 + 1e-12))
-        if outside.any():
-            raise ValueError(f"T must lie in [0, mu*(N+dN)] = [0, {self.mu * N2:g}] N, "
-                             f"got {float(T[outside].flat[0]):g} N")
-        before = self.backbone_displacement(np.clip(T, 0, self.mu * N), N)
-        tA = self.backbone_displacement(T_A, N)
-        shifted = tA + self.backbone_displacement(np.clip(T - T_A, 0, self.mu * N2), N2)
-        joined = self.backbone_displacement(np.clip(T, 0, self.mu * N2), N2)
-        return np.where(T <= T_A, before, np.where(T <= T_A + self.mu * dN, shifted, joined))
+        return mindlin.raised_load_path(self, T, N, dN, T_A)
 
     def join_point(self, N, dN, T_A):
         """Point B where the raised-load path joins the virgin curve at ``N + dN``.
@@ -227,14 +203,4 @@ class Sphere:
         t_B, T_B : float
             ``T_B = T_A + mu dN`` (N) and its displacement (m).
         """
-        N, dN, T_A = self._raised_load_args(N, dN, T_A)
-        T_B = T_A + self.mu * dN
-        return float(self.backbone_displacement(T_B, N + dN)), float(T_B)
-
-    def _raised_load_args(self, N, dN, T_A):
-        N = _checks.positive_scalar("N", N)
-        dN = _checks.positive_scalar("dN", dN, allow_zero=True)
-        T_A = _checks.positive_scalar("T_A", T_A, allow_zero=True)
-        if T_A > self.mu * N:
-            raise ValueError(f"T_A must not exceed mu*N = {self.mu * N:g} N, got {T_A:g} N")
-        return N, dN, T_A
+        return mindlin.join_point(self, N, dN, T_A)
