@@ -15,8 +15,11 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     model = "contact.json"              # from 'microslip tune' (MicroslipModel.save)
     tangential = [0.866, 0.5]           # t = b_t . q: a DOF index, a list per DOF, or {"0" = 1, "1" = -1}
     normal = [-0.5, 0.866]              # n = b_n . q + approach (omit to impose the approach)
-    preload = "37.5N"                   # static force pressing the contact (along normal)
-    # approach = "2um"                  # imposed approach at q = 0 (an interference)
+    preload = "37.5N"                   # static force on the structure along normal, shared between the
+                                        # contact and the structure's springs (the report prints what the
+                                        # contact carries, N0)
+    # approach = "2um"                  # imposed approach at q = 0 (with normal omitted: the normal load is
+                                        # then fixed, e.g. approach of the tuned contact at the wanted load)
     # name = "damper"
 
     [excitation]                        # amplitudes per DOF (N); "static" for the static force
