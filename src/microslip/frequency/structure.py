@@ -49,7 +49,7 @@ def _positive_definite(name: str, A) -> None:
     diag = A.diagonal()
     if np.any(diag <= 0):
         i = int(np.argmax(diag <= 0))
-        raise ValueError(f"{name} must be positive definite: its diagonal entry {i} is {diag[i]!r} "
+        raise ValueError(f"{name} must be positive definite: its diagonal entry {i} is {float(diag[i])!r} "
                          f"(every DOF needs a positive mass)")
     if sp.issparse(A):
         # symmetric ordering without pivoting: A = L U with positive pivots iff A is positive definite
