@@ -9,6 +9,14 @@ linear combinations of the degrees of freedom. A contact force acts on the
 structure along the same combinations (virtual work ``T dt + N dn``), so a
 single DOF ``i`` means a contact between that DOF and the ground, and
 ``{i: 1, j: -1}`` a contact between DOFs ``i`` and ``j``.
+
+Static normal load. A contact is closed either by a ``preload`` -- an
+external static force ``P b_n`` on the structure, which the structure's own
+stiffness along ``b_n`` shares with the contact, so that the contact carries
+``N0 <= P`` (found with the static equilibrium, reported as
+``FrequencyResponse.static_normal_force``) -- or by an imposed ``approach``
+(with ``normal=None`` the normal load is then fixed, e.g. at
+``model.approach(N)`` it is ``N`` whatever the structure does).
 """
 
 from __future__ import annotations
