@@ -398,3 +398,25 @@ def test_save_is_atomic(paper_model, tmp_path, monkeypatch):
     assert path.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["model.json"]
     assert MicroslipModel.load(path) == old
+
+
+def test_state_refuses_non_finite_or_non_vector_sliders():
+    from microslip import State
+
+    with pytest.raises(ValueError, match=r"sliders must be finite, got nan at flat index 0"):
+        State([np.nan, 0.0])
+    with pytest.raises(ValueError, match=r"sliders must be 1-D, got shape \(2, 1\)"):
+        State([[0.0], [1.0]])
+    with pytest.raises(TypeError, match=r"sliders must be an array of real numbers, got 'ab'"):
+        State("ab")
+
+
+@pytest.mark.parametrize("bad", ["0.3", True, 0.3 + 0.1j])
+def test_numeric_strings_booleans_and_complex_are_not_real_numbers(bad):
+    with pytest.raises(TypeError, match=r"mu must be a real number"):
+        MicroslipModel(kt=[1.0], kn=[1.0], gaps=[0.0], mu=bad)
+
+
+def test_arrays_of_strings_are_refused_not_converted():
+    with pytest.raises(TypeError, match=r"kt must be an array of real numbers, got \['1', '2'\]"):
+        MicroslipModel(kt=["1", "2"], kn=[1.0, 1.0], gaps=[0.0, 0.0], mu=0.3)

@@ -13,10 +13,25 @@ from .measured import FittedBackbone, MeasuredContact, fit_backbone
 from .model import MicroslipModel, Response, State, Step
 from .reference import Cylinder, Sphere
 from .tuning import ContactReference, TuningError, TuningPoints, tune, tuning_points
+from . import paths
+from .accuracy import AccuracyReport, accuracy
+from .reference.mdr import LoadLimitError, MDRModel, mdr
+from .tuning_target import TargetNotMet, TargetProblem, TargetTuning, smallest_elements, tune_to_target
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "AccuracyReport",
+    "LoadLimitError",
+    "MDRModel",
+    "TargetNotMet",
+    "TargetProblem",
+    "TargetTuning",
+    "accuracy",
+    "mdr",
+    "paths",
+    "smallest_elements",
+    "tune_to_target",
     "ContactReference",
     "Cylinder",
     "FittedBackbone",

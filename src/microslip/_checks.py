@@ -15,11 +15,20 @@ def _show(value) -> str:
 
 
 def real_array(name: str, value, *, ndim: int | None = None, min_size: int = 0) -> np.ndarray:
-    """Return ``value`` as a finite float64 array, or raise naming ``name``."""
+    """Return ``value`` as a finite float64 array, or raise naming ``name``.
+
+    Integers and floats are accepted; strings, booleans, complex numbers
+    and objects are refused rather than converted.
+    """
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be an array of real numbers, got {_show(value)}")
     try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
+        raw = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nested sequences
         raise TypeError(f"{name} must be an array of real numbers, got {_show(value)}") from None
+    if raw.dtype.kind not in "iuf":
+        raise TypeError(f"{name} must be an array of real numbers, got {_show(value)}")
+    arr = raw.astype(np.float64, copy=False)
     if ndim is not None and arr.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-D, got shape {arr.shape}")
     if arr.size < min_size:
@@ -47,7 +56,7 @@ def positive_array(name: str, value, *, ndim: int | None = None, min_size: int =
 
 def real_scalar(name: str, value) -> float:
     """A finite Python float, or raise naming ``name``."""
-    if isinstance(value, (bool, np.bool_)):
+    if isinstance(value, (bool, np.bool_, str, bytes)):
         raise TypeError(f"{name} must be a real number, got {_show(value)}")
     try:
         x = float(value)

@@ -26,7 +26,6 @@ from . import _checks, _kernels
 from ._io import atomic_write
 
 OPEN, STICK, SLIP = _kernels.OPEN, _kernels.STICK, _kernels.SLIP
-CONDITION_NAMES = {OPEN: "open", STICK: "stick", SLIP: "slip"}
 
 _FORMAT = "microslip.MicroslipModel"
 _FORMAT_VERSION = 1
@@ -51,7 +50,8 @@ class State:
     sliders: np.ndarray
 
     def __post_init__(self):
-        object.__setattr__(self, "sliders", _frozen(self.sliders))
+        object.__setattr__(self, "sliders", _frozen(_checks.real_array("sliders", self.sliders, ndim=1,
+                                                                       min_size=1)))
 
     def __repr__(self) -> str:
         return f"State(sliders={np.array2string(self.sliders, precision=4)})"

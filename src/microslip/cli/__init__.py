@@ -10,7 +10,7 @@ import argparse
 import importlib
 import sys
 
-COMMANDS = ["reproduce", "tune", "simulate", "frf"]
+COMMANDS = ["reproduce", "tune", "simulate", "frf", "accuracy", "target"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -31,9 +31,12 @@ def main(argv=None) -> int:
     """Entry point of the ``microslip`` console script."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    import matplotlib
+
+    matplotlib.use("Agg")  # the commands write figures to files; no window is ever opened
     try:
         return int(args.func(args) or 0)
-    except (ValueError, TypeError, FileNotFoundError) as exc:
+    except (ValueError, TypeError, OSError) as exc:
         print(f"microslip {args.command}: error: {exc}", file=sys.stderr)
         return 2
 

@@ -14,13 +14,15 @@ Every module in :data:`SECTIONS` follows one contract:
     the plotted data, written as CSV;
 ``error_rows(data) -> list``
     rows ``(quantity, discrete, continuous, error %, bound)`` of the
-    report's error table (may be empty).
+    report's error table (may be empty);
+``tables(data) -> list`` (optional)
+    extra tables ``(caption, headers, rows)`` shown under the figure.
 """
 
-from . import fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6
+from . import accuracy, accuracy_amplitude, accuracy_sweep, fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6
 from .case import PaperCase
 from .reproduce import reproduce
 
-SECTIONS = [fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6]
+SECTIONS = [fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6, accuracy, accuracy_sweep, accuracy_amplitude]
 
 __all__ = ["PaperCase", "SECTIONS", "reproduce"]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -39,12 +40,14 @@ class PaperCase:
     raised_by: float = 12.5
     raised_at: float = 0.5
 
-    @property
+    @cached_property
     def points(self) -> TuningPoints:
+        """The tuning points (evenly spaced in force, as in the paper)."""
         return tuning_points(self.sphere, self.normal_load, elements=self.elements)
 
-    @property
+    @cached_property
     def model(self) -> MicroslipModel:
+        """The tuned array."""
         return tune(self.sphere, self.normal_load, elements=self.elements)
 
     @property

@@ -31,9 +31,6 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
     Path
         The HTML report.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     from . import SECTIONS
@@ -60,6 +57,8 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
         report.figure(fig, section.NAME, section.CAPTION, out_dir)
         plt.close(fig)
         write_csv(out_dir / f"{section.NAME}.csv", section.columns(data), header_comment=section.CAPTION)
+        for caption, headers, rows in getattr(section, "tables", lambda _: [])(data):
+            report.table(headers, rows, caption)
         errors += section.error_rows(data)
     bar.step("report")
     report.heading("Differences between discrete and continuous")

@@ -1,6 +1,9 @@
 """Continuous reference contacts, the exact answers a tuned array is measured against."""
 
 from .cylinder import Cylinder
+from .mdr import LoadLimitError, MDRModel, mdr
+from .profiles import AxisymmetricProfile, RoundedPunch, SphereProfile
 from .sphere import Sphere
 
-__all__ = ["Cylinder", "Sphere"]
+__all__ = ["AxisymmetricProfile", "Cylinder", "LoadLimitError", "MDRModel", "RoundedPunch", "Sphere",
+           "SphereProfile", "mdr"]

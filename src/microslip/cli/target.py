@@ -1,0 +1,136 @@
+"""``microslip target``: tune the paper's array to an accuracy target over a load range, or sweep J."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ._args import add_sphere_options, sphere_from
+from .tune import _quantity_list
+
+
+def _load_range(text):
+    import argparse
+
+    loads = _quantity_list("force")(text)
+    if len(loads) != 2:
+        raise argparse.ArgumentTypeError(f"expected two loads N_lo,N_hi such as 7.5N,37.5N, got {text!r}")
+    return tuple(loads)
+
+
+def _elements_list(text):
+    import argparse
+
+    out = []
+    for part in str(text).split(","):
+        part = part.strip()
+        try:
+            if "-" in part:
+                a, b = (int(x) for x in part.split("-"))
+                out += list(range(a, b + 1))
+            elif part:
+                out.append(int(part))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected element counts such as 2-16,20,24, got {text!r}") from None
+    if not out or min(out) < 1:
+        raise argparse.ArgumentTypeError(f"expected positive element counts such as 2-16,20,24, got {text!r}")
+    return out
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "target", help="tune to an accuracy target: optimise the tuning points, find the smallest J, sweep J",
+        description="Tune the paper's array (its eqs. 1-9, at the top of the load range) with tuning points "
+                    "chosen to minimise the worst error against the exact continuous contact over the family "
+                    "of variable-normal-load cycles within the load range (lowest load >= N_lo) and with "
+                    "tangential amplitudes >= --min-amplitude times the gross-slip displacement at the path's "
+                    "lowest load. The worst error is max(|energy error|/energy target, force difference/force "
+                    "target). With --elements J: optimise the points of J elements. Without: find the smallest "
+                    "J meeting both targets (exit status 1 and the best found if none up to --max-elements "
+                    "does). With --sweep: the worst errors against J for points evenly spaced in force, evenly "
+                    "spaced in displacement and optimised (slow: minutes for J up to 32).")
+    p.add_argument("--reference", choices=["sphere"], default="sphere",
+                   help="the reference contact (default: sphere)")
+    add_sphere_options(p)
+    p.add_argument("--load-range", type=_load_range, default=(7.5, 37.5),
+                   help="loads N_lo,N_hi the contact meets, e.g. 7.5N,37.5N (default); tuned at N_hi")
+    p.add_argument("--energy-target", type=float, default=2.0,
+                   help="worst allowed |energy-per-cycle error|, %% (default 2)")
+    p.add_argument("--force-target", type=float, default=2.0,
+                   help="worst allowed force difference, %% of the reference's peak (default 2)")
+    p.add_argument("--min-amplitude", type=float, default=0.5,
+                   help="smallest tangential amplitude of the family, as a multiple of the gross-slip "
+                        "displacement at a path's lowest load (default 0.5)")
+    what = p.add_mutually_exclusive_group()
+    what.add_argument("--elements", type=int, default=None, help="optimise the points of this many elements")
+    what.add_argument("--sweep", type=_elements_list, default=None,
+                      help="sweep these J, e.g. 2-16,20,24,28,32, and write sweep.csv and sweep.png to --out")
+    p.add_argument("--max-elements", type=int, default=32,
+                   help="largest J tried when searching for the smallest (default 32)")
+    p.add_argument("--reuse-points", action="store_true",
+                   help="with --sweep: re-measure the optimised points stored with the package instead of "
+                        "searching again (fast; the paper's sphere and load range only)")
+    p.add_argument("--save-points", default=None, help="with --sweep: write the optimised points to this JSON file")
+    p.add_argument("-o", "--output", default="model.json", help="model file to write (default model.json)")
+    p.add_argument("--out", default="microslip-target", help="folder for the sweep's outputs")
+    p.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from .._progress import Progress
+    from ..tuning_target import TargetNotMet, TargetProblem, optimal_points, smallest_elements
+
+    reference = sphere_from(args)
+    bar = Progress(1, enabled=not args.quiet)
+    bar.step("load paths and exact reference")
+    problem = TargetProblem(reference, args.load_range, energy_target=args.energy_target / 100,
+                            force_target=args.force_target / 100, min_amplitude=args.min_amplitude)
+    if args.sweep is not None:
+        return _sweep(args, problem)
+    if args.elements is not None:
+        res = optimal_points(problem, args.elements, progress=not args.quiet)
+    else:
+        try:
+            res = smallest_elements(reference, args.load_range, problem=problem, max_elements=args.max_elements,
+                                    progress=not args.quiet)
+        except TargetNotMet as exc:
+            exc.best.model.save(args.output)
+            print(json.dumps(_summary(exc.best, args.output, meets=False)))
+            print(f"microslip target: {exc}")
+            return 1
+    res.model.save(args.output)
+    print(json.dumps(_summary(res, args.output, meets=res.meets)))
+    return 0
+
+
+def _summary(res, path, meets):
+    return {"written": str(path), "elements": res.elements, "energy_error_percent": round(100 * res.energy_error, 4),
+            "force_difference_percent": round(100 * res.force_difference, 4), "meets_target": bool(meets),
+            "points_um": [round(x * 1e6, 6) for x in res.points.t]}
+
+
+def _sweep(args, problem) -> int:
+    import matplotlib.pyplot as plt
+
+    from .._io import atomic_write, save_figure, write_csv
+    from ..tuning_target import element_sweep, load_optimal_points, points_record
+
+    known = load_optimal_points()["fractions"] if args.reuse_points else None
+    sweep = element_sweep(problem, args.sweep, fractions=known, progress=not args.quiet)
+    out = Path(args.out)
+    write_csv(out / "sweep.csv", sweep.columns(),
+              header_comment=f"worst errors over the family within {problem.load_range} N, amplitude >= "
+                             f"{problem.min_amplitude:g} t_gs(N_min), against the exact contact (MDR)")
+    fig = sweep.plot()
+    save_figure(fig, out / "sweep.png", dpi=130, bbox_inches="tight")
+    plt.close(fig)
+    if args.save_points:
+        atomic_write(args.save_points, json.dumps(points_record(problem, sweep), indent=1) + "\n")
+    lines = ["J    energy / force (%):  " + " | ".join(sweep.energy_error)]
+    lines += [f"{row[0]:<4} " + " | ".join(row[1:]) for row in sweep.rows()]
+    for s in sweep.energy_error:
+        lines.append(f"smallest J meeting the target with {s} points: {sweep.smallest(s)}")
+    atomic_write(out / "sweep.txt", "\n".join(lines) + "\n")
+    print("\n".join(lines))
+    return 0

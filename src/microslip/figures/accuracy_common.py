@@ -1,0 +1,49 @@
+"""Computations shared by the accuracy sections of ``microslip reproduce`` (cached per case)."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ..accuracy import reference_run
+from ..paths import default_family
+from ..reference.mdr import mdr
+from ..tuning_target import TargetProblem, element_sweep, load_optimal_points
+
+#: lowest load of the target family, as a fraction of the tuning load (the issue's N >= 0.2 N_tot)
+LOW_LOAD = 0.2
+#: J of the sweep (the stored optimised points cover these)
+SWEEP = tuple(range(2, 17)) + (20, 24, 28, 32)
+
+
+@lru_cache(maxsize=2)
+def family_run(case):
+    """The default family at the case's tuning load and the exact reference (MDR, 2000 elements) run on it."""
+    family = default_family(case.sphere, case.normal_load)
+    return reference_run(mdr(case.sphere, max_load=case.normal_load, elements=2000), family)
+
+
+@lru_cache(maxsize=2)
+def problem(case) -> TargetProblem:
+    """The target problem: loads 0.2..1 N_tot, amplitudes >= 0.5 t_gs(N_min), targets 2 % and 2 %."""
+    return TargetProblem(case.sphere, (LOW_LOAD * case.normal_load, case.normal_load))
+
+
+def stored_points(case):
+    """The optimised points stored with the package, or None when they were found for another problem."""
+    data = load_optimal_points()
+    p, s = data["problem"], case.sphere
+    same = (np.isclose(p["radius"], s.radius) and np.isclose(p["E"], s.E) and np.isclose(p["nu"], s.nu)
+            and np.isclose(p["mu"], s.mu)
+            and np.allclose(p["load_range"], [LOW_LOAD * case.normal_load, case.normal_load]))
+    return data["fractions"] if same else None
+
+
+@lru_cache(maxsize=2)
+def sweep(case):
+    """Worst errors against J: force and displacement spacings measured now, optimised points re-measured."""
+    known = stored_points(case)
+    spacings = ("force", "displacement", "optimal") if known else ("force", "displacement")
+    Js = [J for J in SWEEP if known is None or J in known]
+    return element_sweep(problem(case), Js, spacings=spacings, fractions=known)

@@ -1,0 +1,565 @@
+"""Tuning to an accuracy target: choose the paper's tuning points, and the number of elements, by measurement.
+
+The paper spaces its tuning points evenly in force. Here the points are
+chosen to make the tuned array accurate on the load paths it will meet: the
+default family of variable-normal-load cycles (:func:`microslip.paths.default_family`)
+restricted to a load range ``N_lo <= N <= N_hi`` and to tangential amplitudes
+of at least ``min_amplitude`` times the gross-slip displacement at the
+path's lowest load, measured against the exact continuous contact
+(:func:`microslip.mdr`). The model is still tuned by the paper's equations at
+``N_hi`` (:func:`microslip.tune` with ``displacements=``), so the result is a
+paper-style array; only the points move.
+
+The objective is the worst normalised error over the family,
+``max(|energy error| / energy_target, force difference / force_target)``
+(:mod:`microslip.accuracy`), minimised over the points by Nelder--Mead on
+the logarithms of the spacings (so the points stay increasing), started
+from the best of a few one- and two-parameter spacings. Pass
+``force_target=inf`` to minimise the worst energy error alone.
+
+Below ``min_amplitude`` a finite array dissipates too little by construction
+(Mindlin's loss grows as the cube of the amplitude; the array's begins only
+when its first element slips): see :meth:`TargetProblem.amplitude_report`.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from importlib import resources
+
+import numpy as np
+from scipy import optimize
+
+from . import _checks
+from ._progress import Progress
+from .accuracy import AccuracyReport, accuracy, reference_run
+from .paths import default_family
+from .reference.mdr import mdr
+from .tuning import TuningError, TuningPoints, tune, tuning_points
+
+SPACINGS = ("force", "displacement", "optimal")
+
+#: MDR elements of the exact reference used by the optimisation (errors below 1e-4 of the metrics)
+REFERENCE_ELEMENTS = 2000
+
+
+class TargetNotMet(ValueError):
+    """No number of elements up to the limit meets the accuracy target; ``best`` holds the best found."""
+
+    def __init__(self, message, best):
+        super().__init__(message)
+        self.best = best
+
+
+@dataclass(frozen=True, eq=False)
+class TargetTuning:
+    """A model tuned for accuracy, with its measured worst errors.
+
+    Attributes
+    ----------
+    model : MicroslipModel
+        The tuned array (``J`` elements).
+    points : TuningPoints
+        Its tuning points on the backbone at ``N_hi`` (m, N).
+    spacing : str
+        ``'force'`` (even in force, the paper's), ``'displacement'`` (even in
+        displacement) or ``'optimal'``.
+    energy_error : float
+        Worst ``|W/W_ref - 1|`` over the problem's family (fraction).
+    force_difference : float
+        Worst ``max|T - T_ref| / max|T_ref|`` over the family (fraction).
+    meets : bool
+        Both within the problem's targets.
+    evaluations : int
+        Models evaluated to find it.
+    """
+
+    model: object
+    points: TuningPoints
+    spacing: str
+    energy_error: float
+    force_difference: float
+    meets: bool
+    evaluations: int = 1
+
+    @property
+    def elements(self) -> int:
+        return self.model.elements
+
+    def plot(self, reference, ax=None):
+        """The reference backbone at the tuning load, the model's, and the tuning points.
+
+        Parameters
+        ----------
+        reference : Sphere or similar
+            The reference it was tuned on.
+        ax : matplotlib Axes, optional
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 4))
+        N = self.points.normal_load
+        t = np.linspace(0.0, 1.2 * self.points.t[-1], 400)
+        ax.plot(t * 1e6, reference.backbone(t, N), "k-", lw=2, label="reference backbone")
+        ax.plot(t * 1e6, self.model.backbone(t, self.points.approach), "--", color="tab:red",
+                label=f"tuned array, J = {self.elements}")
+        ax.plot(self.points.t * 1e6, self.points.T, "s", mfc="none", color="tab:green",
+                label=f"{self.spacing} points")
+        ax.set_xlabel("tangential displacement t (µm)")
+        ax.set_ylabel("tangential force T (N)")
+        ax.set_title(f"N = {N:g} N: worst energy error {100 * self.energy_error:.3g} %, "
+                     f"force {100 * self.force_difference:.3g} %", fontsize=9)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        return ax
+
+    def __repr__(self) -> str:
+        return (f"TargetTuning(J={self.elements}, spacing={self.spacing!r}, "
+                f"energy_error={100 * self.energy_error:.3g} %, "
+                f"force_difference={100 * self.force_difference:.3g} %, meets={self.meets})")
+
+
+class TargetProblem:
+    """The family, the exact reference and the targets a tuning is measured on.
+
+    Parameters
+    ----------
+    reference : Sphere or similar
+        The contact (``mu``, backbone, normal law; ``E_star``, ``G_star``,
+        ``radius`` for its MDR reference).
+    load_range : (float, float)
+        ``(N_lo, N_hi)`` (N), ``0 < N_lo < N_hi``: the model is tuned at
+        ``N_hi``; the family keeps the paths whose lowest load is at least
+        ``N_lo``.
+    energy_target, force_target : float, default 0.02
+        Worst allowed ``|energy error|`` and force difference (fractions).
+    min_amplitude : float, default 0.5
+        Smallest tangential amplitude kept, as a multiple of the gross-slip
+        displacement at the path's lowest load.
+    steps_per_cycle : int, default 180
+        Samples per cycle of the family (the errors change by < 1e-4 from 180
+        to 1440, measured in the tests).
+    reference_elements : int, default 2000
+        Elements of the MDR reference.
+    family_options : dict, optional
+        Passed to :func:`~microslip.paths.default_family` (``ratios``,
+        ``phases_deg``, ``amplitudes``, ``levels``).
+    """
+
+    def __init__(self, reference, load_range, *, energy_target=0.02, force_target=0.02, min_amplitude=0.5,
+                 steps_per_cycle: int = 180, reference_elements: int = REFERENCE_ELEMENTS, family_options=None):
+        lo, hi = _load_range(load_range)
+        self.reference = reference
+        self.load_range = (lo, hi)
+        self.energy_target = _checks.positive_scalar("energy_target", energy_target)
+        self.force_target = _checks.positive_scalar("force_target", force_target)
+        self.min_amplitude = _checks.positive_scalar("min_amplitude", min_amplitude, allow_zero=True)
+        options = dict(family_options or {})
+        family = default_family(reference, hi, steps_per_cycle=steps_per_cycle, **options)
+        self.full_family = family
+        keep = [p for p in family
+                if p.params["N_m"] - p.params["N_a"] >= lo * (1 - 1e-12)
+                and p.params["amplitude"] >= self.min_amplitude * (1 - 1e-12)]
+        if not keep:
+            raise ValueError(f"load_range {self.load_range} and min_amplitude {self.min_amplitude:g} leave no path "
+                             "of the family; lower N_lo or min_amplitude")
+        self.family = keep
+        self.reference_model = mdr(reference, max_load=hi, elements=reference_elements)
+        self._run = reference_run(self.reference_model, keep)
+        self._full_run = None
+        self.evaluations = 0
+
+    @property
+    def normal_load(self) -> float:
+        """Tuning load ``N_hi`` (N)."""
+        return self.load_range[1]
+
+    def report(self, model) -> AccuracyReport:
+        """Accuracy of ``model`` on the problem's (restricted) family."""
+        self.evaluations += 1
+        return accuracy(model, self._run)
+
+    def amplitude_report(self, model) -> AccuracyReport:
+        """Accuracy of ``model`` on the whole family (all amplitudes, loads >= N_lo), for error vs amplitude."""
+        if self._full_run is None:
+            lo = self.load_range[0]
+            paths = [p for p in self.full_family if p.params["N_m"] - p.params["N_a"] >= lo * (1 - 1e-12)]
+            self._full_run = reference_run(self.reference_model, paths)
+        return accuracy(model, self._full_run)
+
+    def worst(self, model) -> tuple[float, float]:
+        """``(worst |energy error|, worst force difference)`` of ``model`` on the family (fractions)."""
+        r = self.report(model)
+        return abs(r.worst("energy_error")[0]), abs(r.worst("force_difference")[0])
+
+    def score(self, model) -> float:
+        """``max(|energy error| / energy_target, force difference / force_target)``; <= 1 meets the target."""
+        e, f = self.worst(model)
+        return max(e / self.energy_target, f / self.force_target)
+
+    def result(self, model, points, spacing, evaluations=1) -> TargetTuning:
+        e, f = self.worst(model)
+        return TargetTuning(model=model, points=points, spacing=spacing, energy_error=e, force_difference=f,
+                            meets=bool(e <= self.energy_target and f <= self.force_target),
+                            evaluations=evaluations)
+
+    # -- models -------------------------------------------------------------
+    def tune_fractions(self, fractions):
+        """Tune at ``N_hi`` on the points ``t_j = fractions[j] * t_gs(N_hi)``; returns ``(model, points)``."""
+        t = np.asarray(fractions, dtype=float) * float(self.reference.gross_slip_displacement(self.normal_load))
+        pts = tuning_points(self.reference, self.normal_load, displacements=t)
+        return tune(self.reference, self.normal_load, displacements=t), pts
+
+    def tune_spacing(self, spacing: str, elements: int) -> TargetTuning:
+        """The model with ``elements`` points spaced evenly in ``'force'`` or ``'displacement'``."""
+        J = _checks.positive_int("elements", elements, minimum=1)
+        if spacing == "force":
+            pts = tuning_points(self.reference, self.normal_load, elements=J)
+            model = tune(self.reference, self.normal_load, elements=J)
+        elif spacing == "displacement":
+            model, pts = self.tune_fractions(np.arange(1, J + 1) / J)
+        else:
+            raise ValueError(f"spacing must be 'force' or 'displacement' here, got {spacing!r}")
+        return self.result(model, pts, spacing)
+
+
+def _load_range(load_range):
+    try:
+        lo, hi = load_range
+    except (TypeError, ValueError):
+        raise TypeError(f"load_range must be a pair (N_lo, N_hi) in N, got {load_range!r}") from None
+    lo = _checks.positive_scalar("load_range[0]", lo)
+    hi = _checks.positive_scalar("load_range[1]", hi)
+    if not lo < hi:
+        raise ValueError(f"load_range must satisfy N_lo < N_hi, got ({lo:g}, {hi:g}) N")
+    return lo, hi
+
+
+def _fractions(z):
+    """Increasing fractions in (0, 1], last 1, from log-spacings ``z`` (length J-1; the last spacing is 1)."""
+    w = np.exp(np.clip(np.append(z, 0.0), -30, 30))
+    u = np.cumsum(w) / w.sum()
+    u[-1] = 1.0
+    return u
+
+
+def _log_spacings(u):
+    d = np.log(np.diff(np.concatenate([[0.0], u])))
+    return d[:-1] - d[-1]
+
+
+def _resample(u, J):
+    """Fractions of another J resampled to J points (same shape of the spacing)."""
+    x = np.arange(len(u) + 1) / len(u)
+    return np.interp(np.arange(1, J + 1) / J, x, np.concatenate([[0.0], u]))
+
+
+def _starts(J):
+    """Candidate fractions: power and offset warps of even spacing (even displacement is p = 1, c = 0)."""
+    j = np.arange(1, J + 1)
+    for p in (0.7, 0.85, 1.0, 1.2):
+        for c in (-0.5, 0.0, 0.3, 0.6):
+            yield ((j - c) / (J - c)) ** p
+
+
+def optimal_points(problem: TargetProblem, elements: int, *, start=None, maxfev: int | None = None,
+                   restarts: int = 3, progress: bool = False) -> TargetTuning:
+    """Optimise the ``elements`` tuning points of ``problem`` (see the module docstring).
+
+    Parameters
+    ----------
+    problem : TargetProblem
+    elements : int
+        ``J >= 1``.
+    start : array_like, shape (J,), or list of them, optional
+        Fractions of ``t_gs(N_hi)`` to start from (increasing, last 1); the
+        best of these and of a few warps of even spacing is the start.
+    maxfev : int, optional
+        Evaluations per Nelder--Mead round (default ``150 J``).
+    restarts : int, default 3
+        Nelder--Mead rounds (each restarts the simplex at the best point).
+    progress : bool, default False
+        Show progress (one line per round) on standard error.
+
+    Returns
+    -------
+    TargetTuning
+        ``spacing='optimal'``.
+    """
+    J = _checks.positive_int("elements", elements, minimum=1)
+    restarts = _checks.positive_int("restarts", restarts, minimum=0)
+    maxfev = 150 * J if maxfev is None else _checks.positive_int("maxfev", maxfev)
+    count = 0
+
+    def score(u):
+        nonlocal count
+        count += 1
+        try:
+            model, _ = problem.tune_fractions(u)
+        except (TuningError, ValueError):
+            return np.inf
+        return problem.score(model)
+
+    if J == 1:
+        model, pts = problem.tune_fractions([1.0])
+        return problem.result(model, pts, "optimal", 1)
+    candidates = list(_starts(J))
+    if start is None:
+        given = []
+    elif isinstance(start, (list, tuple)) and start and np.ndim(start[0]) == 1:
+        given = list(start)  # several starts
+    else:
+        given = [start]
+    for u0 in given:
+        u0 = _checks.positive_array("start", u0, ndim=1)
+        if u0.size != J:
+            raise ValueError(f"start must have {J} fractions, got {u0.size}")
+        candidates.append(u0 / u0[-1])
+    bar = Progress(restarts + 1, enabled=progress)
+    bar.step(f"J = {J}: {len(candidates)} starting spacings")
+    best = min(candidates, key=score)
+    z = _log_spacings(best)
+    for k in range(restarts):
+        bar.step(f"J = {J}: Nelder-Mead round {k + 1} of {restarts} (up to {maxfev} models)")
+        res = optimize.minimize(lambda zz: score(_fractions(zz)), z, method="Nelder-Mead",
+                                options={"maxfev": maxfev, "xatol": 1e-5, "fatol": 1e-6, "adaptive": True})
+        z = res.x
+    model, pts = problem.tune_fractions(_fractions(z))
+    bar.done(f"J = {J}: {count} models evaluated")
+    return problem.result(model, pts, "optimal", count)
+
+
+def tune_to_target(reference, load_range, *, elements: int, energy_target=0.02, force_target=0.02,
+                   min_amplitude=0.5, problem: TargetProblem | None = None, **options) -> TargetTuning:
+    """Tune the paper's array with ``elements`` points chosen to minimise the worst error over a load range.
+
+    Parameters
+    ----------
+    reference : Sphere or similar
+        The contact to imitate.
+    load_range : (float, float)
+        ``(N_lo, N_hi)`` (N); the model is tuned at ``N_hi``.
+    elements : int
+        Number of elements ``J``.
+    energy_target, force_target : float, default 0.02
+        Normalisation of the two errors in the objective, and the targets
+        that ``meets`` reports (fractions).
+    min_amplitude : float, default 0.5
+        Smallest amplitude of the family (multiple of the gross-slip
+        displacement at a path's lowest load).
+    problem : TargetProblem, optional
+        A prepared problem (reused to save the reference runs).
+    **options
+        Passed to :func:`optimal_points` (``start``, ``maxfev``, ``restarts``).
+
+    Returns
+    -------
+    TargetTuning
+        The model, its points and its measured worst errors.
+
+    Examples
+    --------
+    >>> from microslip import Sphere, tune_to_target
+    >>> best = tune_to_target(Sphere.paper(), (7.5, 37.5), elements=6)   # doctest: +SKIP
+    """
+    problem = problem or TargetProblem(reference, load_range, energy_target=energy_target,
+                                       force_target=force_target, min_amplitude=min_amplitude)
+    return optimal_points(problem, elements, **options)
+
+
+def smallest_elements(reference, load_range, *, energy_target=0.02, force_target=0.02, min_amplitude=0.5,
+                      max_elements: int = 32, spacing: str = "optimal", start: int = 2,
+                      problem: TargetProblem | None = None, progress: bool = False, **options) -> TargetTuning:
+    """The smallest number of elements whose tuned array meets the accuracy target.
+
+    Tries ``J = start, start + 1, ... max_elements`` in turn.
+
+    Parameters
+    ----------
+    reference, load_range, energy_target, force_target, min_amplitude
+        As in :func:`tune_to_target`.
+    max_elements : int, default 32
+        Largest ``J`` tried.
+    spacing : {'optimal', 'displacement', 'force'}
+        How the points are chosen.
+    start : int, default 2
+        First ``J`` tried.
+    problem : TargetProblem, optional
+    progress : bool
+        Show progress on standard error.
+
+    Returns
+    -------
+    TargetTuning
+        The first that meets the target.
+
+    Raises
+    ------
+    TargetNotMet
+        When no ``J`` up to ``max_elements`` does; its ``best`` attribute
+        holds the best found (smallest score) and the message its errors.
+    """
+    if spacing not in SPACINGS:
+        raise ValueError(f"spacing must be one of {', '.join(SPACINGS)}, got {spacing!r}")
+    J0 = _checks.positive_int("start", start, minimum=1)
+    Jmax = _checks.positive_int("max_elements", max_elements, minimum=J0)
+    problem = problem or TargetProblem(reference, load_range, energy_target=energy_target,
+                                       force_target=force_target, min_amplitude=min_amplitude)
+    bar = Progress(Jmax - J0 + 1, enabled=progress)
+    best = None
+    for J in range(J0, Jmax + 1):
+        bar.step(f"J = {J} ({spacing} points)")
+        res = (optimal_points(problem, J, **options) if spacing == "optimal" else problem.tune_spacing(spacing, J))
+        if res.meets:
+            bar.done(f"J = {J} meets the target")
+            return res
+        key = max(res.energy_error / problem.energy_target, res.force_difference / problem.force_target)
+        if best is None or key < best[0]:
+            best = (key, res)
+    res = best[1]
+    raise TargetNotMet(
+        f"no J up to max_elements = {Jmax} meets the target (|energy error| <= {100 * problem.energy_target:g} %, "
+        f"force difference <= {100 * problem.force_target:g} %) with {spacing} points; the best found is "
+        f"J = {res.elements}: energy {100 * res.energy_error:.3g} %, force {100 * res.force_difference:.3g} %",
+        res)
+
+
+# -- sweeps over J -------------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class ElementSweep:
+    """Worst errors against the number of elements for each spacing of the points.
+
+    Attributes
+    ----------
+    elements : ndarray of int, shape (K,)
+    energy_error, force_difference : dict of str -> ndarray, shape (K,)
+        Per spacing (``'force'``, ``'displacement'``, ``'optimal'``), worst
+        fractions over the problem's family.
+    fractions : dict of int -> ndarray
+        The optimised points of each ``J`` (fractions of ``t_gs(N_hi)``).
+    energy_target, force_target : float
+    """
+
+    elements: np.ndarray
+    energy_error: dict
+    force_difference: dict
+    fractions: dict
+    energy_target: float
+    force_target: float
+
+    def smallest(self, spacing: str) -> int | None:
+        """Smallest ``J`` of the sweep meeting both targets with ``spacing``, or None."""
+        ok = (self.energy_error[spacing] <= self.energy_target) & (self.force_difference[spacing] <= self.force_target)
+        return int(self.elements[np.argmax(ok)]) if ok.any() else None
+
+    def columns(self) -> dict:
+        """``{'name [unit]': column}`` for CSV."""
+        cols = {"J [-]": self.elements}
+        for s in self.energy_error:
+            cols[f"energy error {s} [%]"] = 100 * self.energy_error[s]
+            cols[f"force difference {s} [%]"] = 100 * self.force_difference[s]
+        return cols
+
+    def rows(self) -> list:
+        """Table rows ``[J, energy and force (%) per spacing...]``."""
+        return [[int(J)] + [f"{100 * self.energy_error[s][k]:.3g} / {100 * self.force_difference[s][k]:.3g}"
+                            for s in self.energy_error] for k, J in enumerate(self.elements)]
+
+    def plot(self):
+        """Worst energy and force errors (%) against ``J``, one line per spacing; returns the Figure."""
+        import matplotlib.pyplot as plt
+
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+        for ax, what, target, title in ((axes[0], self.energy_error, self.energy_target, "worst |energy error|"),
+                                        (axes[1], self.force_difference, self.force_target,
+                                         "worst max|T - T_ref| / max|T_ref|")):
+            for s, v in what.items():
+                ax.semilogy(self.elements, 100 * v, "o-", ms=3, label=f"{s} points")
+            ax.axhline(100 * target, color="0.4", ls="--", lw=1, label=f"target {100 * target:g} %")
+            ax.set_xlabel("number of elements J (-)")
+            ax.set_ylabel(f"{title} (%)")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
+        return fig
+
+
+def element_sweep(problem: TargetProblem, elements=range(2, 33), *, spacings=SPACINGS, fractions=None,
+                  progress: bool = False, **options) -> ElementSweep:
+    """Worst errors of the three spacings against ``J``.
+
+    Parameters
+    ----------
+    problem : TargetProblem
+    elements : iterable of int
+        The ``J`` to try.
+    spacings : sequence of str
+        Among ``'force'``, ``'displacement'``, ``'optimal'``.
+    fractions : dict of int -> array, optional
+        Optimised points already known (e.g. :func:`load_optimal_points`):
+        they are only re-measured, not searched again.
+    progress : bool
+    **options
+        Passed to :func:`optimal_points`.
+    """
+    Js = np.array([_checks.positive_int("elements", int(J)) for J in elements])
+    for s in spacings:
+        if s not in SPACINGS:
+            raise ValueError(f"spacings must be among {', '.join(SPACINGS)}, got {s!r}")
+    known = {int(k): np.asarray(v, dtype=float) for k, v in (fractions or {}).items()}
+    bar = Progress(len(Js), enabled=progress)
+    energy = {s: np.empty(len(Js)) for s in spacings}
+    force = {s: np.empty(len(Js)) for s in spacings}
+    found = {}
+    for k, J in enumerate(Js):
+        bar.step(f"J = {J}")
+        for s in spacings:
+            if s != "optimal":
+                res = problem.tune_spacing(s, J)
+            elif J in known:
+                model, pts = problem.tune_fractions(known[J])
+                res = problem.result(model, pts, "optimal")
+            else:
+                previous = [_resample(u, J) for u in found.values()][-1:]
+                res = optimal_points(problem, J, start=previous or None, **options)
+            energy[s][k], force[s][k] = res.energy_error, res.force_difference
+            if s == "optimal":
+                found[int(J)] = res.points.t / res.points.t[-1]
+    bar.done("sweep")
+    return ElementSweep(Js, energy, force, found, problem.energy_target, problem.force_target)
+
+
+# -- the cached optimal points of the paper's sphere ----------------------------
+
+_DATA = "optimal_points.json"
+
+
+def load_optimal_points() -> dict:
+    """The optimised points stored with the package (paper's sphere, load range 7.5-37.5 N).
+
+    Returns
+    -------
+    dict
+        ``{"problem": {...}, "fractions": {J: ndarray}}``; the fractions are of
+        ``t_gs(N_hi)``. Written by ``microslip target --sweep --save-points``.
+    """
+    text = resources.files("microslip").joinpath("data", _DATA).read_text(encoding="utf-8")
+    data = json.loads(text)
+    data["fractions"] = {int(k): np.asarray(v, dtype=float) for k, v in data["fractions"].items()}
+    return data
+
+
+def points_record(problem: TargetProblem, sweep: ElementSweep) -> dict:
+    """Plain-JSON record of a sweep's optimised points and the problem they solve."""
+    r = problem.reference
+    return {"problem": {"reference": type(r).__name__, "radius": getattr(r, "radius", None),
+                        "E": getattr(r, "E", None), "nu": getattr(r, "nu", None), "mu": r.mu,
+                        "load_range": list(problem.load_range), "min_amplitude": problem.min_amplitude,
+                        "energy_target": problem.energy_target, "force_target": problem.force_target},
+            "fractions": {str(J): [float(x) for x in u] for J, u in sorted(sweep.fractions.items())}}
