@@ -23,7 +23,7 @@ sharp resonance of the free blade, 4730 rad/s); in between, the elements slip
 one after the other (microslip) and the response is smallest: the classic
 family of damper curves with an optimum excitation level.
 
-Run ``python examples/blade_damper.py`` (a few seconds); writes
+Run ``python examples/blade_damper.py`` (about 1 s); writes
 ``examples/blade_damper.png``.
 """
 
