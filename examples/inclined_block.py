@@ -1,10 +1,14 @@
 """Harmonic balance against time integration: a block pressed on an inclined plane.
 
-A 0.1 kg block on two springs (x and y, 10 N/µm each) is pressed with 37.5 N on a
-plane inclined at 30 degrees; the contact is the paper's steel sphere tuned with 4
-elements. Both the tangential displacement and the normal approach move with x and
-y, so the normal load -- and its share among the elements -- varies along the cycle.
-The block is shaken along x with 0.6 N.
+A 0.1 kg block on two springs (x and y, 10 N/µm each) is pushed by a static force of
+37.5 N (the contact's ``preload``) against a plane inclined at 30 degrees; the contact is
+the paper's steel sphere tuned with 4 elements at 37.5 N. The preload is a force on the
+block, so the springs take part of it: at the static equilibrium the contact carries
+21.4 N, with 3 of its 4 elements closed and no tangential force (the springs are alike
+in x and y, so the block moves straight along the normal). Both the tangential
+displacement and the normal approach move with x and y, so the normal load -- and its
+share among the elements -- varies along the cycle. The block is shaken along x with
+0.6 N.
 
 The script computes the forced response (H = 7) and compares it with explicit time
 integration of the same structure and contact to the periodic steady state at five

@@ -71,3 +71,55 @@ def test_force_vector_errors():
         s.force_vector([1, 2, 3])
     with pytest.raises(ValueError, match="force must be finite"):
         s.force_vector([1, np.nan])
+
+
+@pytest.mark.parametrize("M, message", [
+    (np.array([[-1.0]]), "M must be positive definite: its diagonal entry 0 is -1.0 \\(every DOF needs a positive"),
+    (np.diag([1.0, 0.0]), "M must be positive definite: its diagonal entry 1 is 0.0"),
+    (np.array([[1.0, 1.0], [1.0, 1.0]]), "M must be positive definite \\(a mass matrix\\); it is symmetric with a "
+                                         "positive diagonal but singular or indefinite"),
+    (np.array([[1.0, 2.0], [2.0, 1.0]]), "M must be positive definite \\(a mass matrix\\)"),
+    (np.array([[1.0, 0.5], [0.0, 1.0]]), "M must be symmetric, got \\|M - M\\^T\\| up to 0.5"),
+    (sp.csr_matrix(np.array([[1.0, 2.0], [2.0, 1.0]])), "M must be positive definite \\(a mass matrix\\)"),
+    (sp.csr_matrix(np.array([[1.0, 1.0], [1.0, 1.0]])), "M must be positive definite \\(a mass matrix\\)"),
+    (sp.diags([1.0, -2.0]), "M must be positive definite: its diagonal entry 1 is -2.0"),
+])
+def test_mass_matrix_must_be_symmetric_positive_definite(M, message):
+    # before this check such an M was accepted and time integration failed later with a raw LinAlgError
+    with pytest.raises(ValueError, match=message):
+        Structure(M, None, np.eye(2) if M.shape[0] == 2 else [[1.0]])
+
+
+def test_positive_definite_masses_are_accepted_dense_and_sparse():
+    M = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]])  # consistent-mass-like, eigenvalues > 0
+    Structure(M, None, np.eye(3))
+    Structure(sp.csr_matrix(M), None, sp.identity(3))
+
+
+def test_assembled_contact_data():
+    """``contact_directions``, ``preload_force``, ``packed_models`` and ``stuck_stiffness``, dense and sparse."""
+    two = MicroslipModel(kt=[1e6, 2e6], kn=[1e7, 3e7], gaps=[0.0, 1e-6], mu=0.3)
+    for sparse in (False, True):
+        K = np.diag([1e5, 2e5, 3e5])
+        s = Structure(sp.identity(3) if sparse else np.eye(3), None, sp.csr_matrix(K) if sparse else K)
+        s.add_contact(MODEL, tangential=0, normal={1: 1.0, 2: -1.0}, preload=5.0)
+        s.add_contact(two, tangential=[0.0, 0.6, 0.8], approach=2e-6)
+        Bt, Bn, n0 = s.contact_directions()
+        np.testing.assert_array_equal(Bt, [[1, 0], [0, 0.6], [0, 0.8]])
+        np.testing.assert_array_equal(Bn, [[0, 0], [1, 0], [-1, 0]])
+        np.testing.assert_array_equal(n0, [0.0, 2e-6])
+        np.testing.assert_array_equal(s.preload_force(), [0.0, 5.0, -5.0])
+        kt, kn, gaps, offsets, mu = s.packed_models()
+        np.testing.assert_array_equal(kt, [1e6, 1e6, 2e6])
+        np.testing.assert_array_equal(offsets, [0, 1, 3])
+        np.testing.assert_array_equal(mu, [0.5, 0.3])
+        expected = K + 1e6 * np.outer(Bt[:, 0], Bt[:, 0]) + 1e7 * np.outer(Bn[:, 0], Bn[:, 0]) \
+            + 3e6 * np.outer(Bt[:, 1], Bt[:, 1])  # the second contact has no normal direction
+        Ks = s.stuck_stiffness()
+        assert sp.issparse(Ks) == sparse
+        np.testing.assert_allclose(Ks.toarray() if sparse else Ks, expected, rtol=1e-15)
+        np.testing.assert_array_equal(s.K.toarray() if sparse else s.K, K)  # K itself untouched
+    empty = Structure(np.eye(2), None, np.eye(2))
+    Bt, Bn, n0 = empty.contact_directions()
+    assert Bt.shape == Bn.shape == (2, 0) and n0.shape == (0,)
+    assert [a.size for a in empty.packed_models()] == [0, 0, 0, 1, 0]

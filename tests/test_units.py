@@ -26,10 +26,22 @@ def test_unit_factor_errors():
         unit_factor("um", "force")
     with pytest.raises(ValueError, match=r"unknown unit 'parsec'; expected one of: m, mm, .*GPa"):
         unit_factor("parsec")
-    with pytest.raises(ValueError, match=re.escape("kind must be one of ['dimensionless', 'energy', 'force', "
-                                                   "'frequency', 'length', 'pressure', 'stiffness', 'time'], "
-                                                   "got 'colour'")):
+    with pytest.raises(ValueError, match=re.escape("kind must be one of ['angular frequency', 'dimensionless', "
+                                                   "'energy', 'force', 'frequency', 'length', 'pressure', "
+                                                   "'stiffness', 'time'], got 'colour'")):
         unit_factor("m", "colour")
+
+
+def test_hertz_and_radians_per_second_are_different_kinds():
+    # a unit factor cannot carry the 2 pi between Hz and rad/s: they must not be interchangeable
+    assert unit_factor("Hz", "frequency") == 1.0 and unit_factor("rad/s", "angular frequency") == 1.0
+    assert unit_factor("rad/s") == 1.0  # found without a kind, as before
+    with pytest.raises(ValueError, match=re.escape("unknown frequency unit 'rad/s'; expected one of: Hz, kHz "
+                                                   "('rad/s' is a unit of angular frequency)")):
+        unit_factor("rad/s", "frequency")
+    with pytest.raises(ValueError, match=re.escape("omega: unknown angular frequency unit 'Hz'; expected one of: "
+                                                   "rad/s ('Hz' is a unit of frequency)")):
+        parse_quantity("60Hz", "angular frequency", name="omega")
 
 
 @pytest.mark.parametrize("text, kind, default, value", [

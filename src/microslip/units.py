@@ -18,7 +18,8 @@ _UNITS = {
     "pressure": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "psi": 6894.757293168},
     "time": {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0},
     "stiffness": {"N/m": 1.0, "N/mm": 1e3, "N/um": 1e6, "N/µm": 1e6},
-    "frequency": {"Hz": 1.0, "kHz": 1e3, "rad/s": 1.0},
+    "frequency": {"Hz": 1.0, "kHz": 1e3},  # cycles per second; times 2 pi for rad/s
+    "angular frequency": {"rad/s": 1.0},
     "energy": {"J": 1.0, "mJ": 1e-3, "uJ": 1e-6, "µJ": 1e-6},
     "dimensionless": {"-": 1.0, "": 1.0, "1": 1.0},
 }
@@ -35,7 +36,10 @@ def unit_factor(unit: str, kind: str | None = None) -> float:
         Unit symbol, such as ``"mm"``, ``"N"``, ``"GPa"``, ``"in"``, ``"kip"``.
     kind : str, optional
         One of ``length``, ``force``, ``pressure``, ``time``, ``stiffness``,
-        ``frequency``, ``energy``, ``dimensionless``; the unit must be of it.
+        ``frequency`` (Hz), ``angular frequency`` (rad/s), ``energy``,
+        ``dimensionless``; the unit must be of it. Hz and rad/s are distinct
+        kinds: converting one into the other needs the factor ``2 pi``, which
+        a unit factor cannot carry.
 
     Raises
     ------
@@ -50,7 +54,9 @@ def unit_factor(unit: str, kind: str | None = None) -> float:
             return _UNITS[k][unit]
     known = ", ".join(u for k in kinds for u in _UNITS[k] if u)
     what = f"{kind} unit" if kind else "unit"
-    raise ValueError(f"unknown {what} {unit!r}; expected one of: {known}")
+    other = [k for k in _UNITS if unit in _UNITS[k]]
+    hint = f" ({unit!r} is a unit of {other[0]})" if other else ""
+    raise ValueError(f"unknown {what} {unit!r}; expected one of: {known}{hint}")
 
 
 def parse_quantity(text, kind: str, *, name: str = "value", default_unit: str | None = None) -> float:

@@ -14,7 +14,11 @@ def add_parser(sub) -> None:
                     "configuration gives the matrices (inline or .npz), the contacts (model JSON files from "
                     "'microslip tune'), the excitation and the sweep; its format is documented in "
                     "microslip.frequency.config (python -c 'import microslip.frequency.config as c; "
-                    "print(c.__doc__)'). Writes frf.csv, frf.png, contacts.png, report.html and report.md.")
+                    "print(c.__doc__)'). Writes frf.csv, frf.png, contacts.png, report.html and report.md, and prints "
+                    "each contact's static state (normal and tangential force, elements closed). Exit status: "
+                    "0 on success, 1 when the solution fails or the curve stops at [continuation] max_points "
+                    "before the end of the range (the results up to there are written), 2 for an invalid "
+                    "configuration.")
     p.add_argument("config", help="TOML configuration file")
     p.add_argument("-o", "--output", default="microslip-frf",
                    help="folder for the results (default ./microslip-frf)")
@@ -52,17 +56,21 @@ def _plots(result, cfg):
 
 def run(args) -> int:
     import sys
+    import warnings
 
     from .._io import save_figure
-    from ..frequency import ConvergenceError, NotPeriodicError, frequency_response
+    from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, frequency_response
+    from ..frequency.response import incomplete_message
     from ..frequency.config import load_config
     from ..report import Report
 
     cfg = load_config(args.config)
     out = Path(args.output)
     try:
-        result = frequency_response(cfg.structure, cfg.force, cfg.omega, harmonics=cfg.harmonics,
-                                    samples=cfg.samples, control=cfg.control, progress=not args.quiet)
+        with warnings.catch_warnings():  # an incomplete curve is reported below, as an error
+            warnings.simplefilter("ignore", IncompleteCurveWarning)
+            result = frequency_response(cfg.structure, cfg.force, cfg.omega, harmonics=cfg.harmonics,
+                                        samples=cfg.samples, control=cfg.control, progress=not args.quiet)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip frf: error: {exc}", file=sys.stderr)
         return 1
@@ -80,14 +88,33 @@ def run(args) -> int:
         rows.append([cfg.dof_names[d], f"{w:.6g}", f"{w / (2 * 3.141592653589793):.6g}", f"{a * 1e6:.6g}"])
     report.table(["DOF", "peak ω (rad/s)", "peak f (Hz)", "peak amplitude (µm)"], rows,
                  caption="Highest point of each plotted DOF's curve")
+    if not result.complete:
+        report.text(f"**Incomplete curve**: {incomplete_message(result, cfg.omega[1], cfg.control)}.")
     for c, contact in enumerate(result.structure.contacts):
-        report.text(f"Contact {contact.name}: {contact.model!r}; static normal load "
+        report.text(_static_text(result, c) + f" Along the curve: mean normal load "
                     f"{result.contact_N[:, c, 0].min():.6g} to {result.contact_N[:, c, 0].max():.6g} N; "
                     f"largest energy dissipated per cycle {result.contact_dissipation[:, c].max():.6g} J.")
+        print(_static_text(result, c))
     for name, fig, caption in _plots(result, cfg):
         save_figure(fig, out / f"{name}.png", dpi=150, bbox_inches="tight")
         report.figure(fig, name, caption, out)
     report.write(out)
     print(f"wrote {csv}, {out / 'frf.png'} and {out / 'report.html'} ({result.points} points, "
           f"{result.elapsed:.3g} s)")
+    if not result.complete:
+        print(f"microslip frf: error: incomplete curve: {incomplete_message(result, cfg.omega[1], cfg.control)} "
+              f"(set max_points in [continuation]); the results written stop there", file=sys.stderr)
+        return 1
     return 0
+
+
+def _static_text(result, c: int) -> str:
+    """One contact's static state: normal and tangential force, share of the slip force, closed elements."""
+    contact = result.structure.contacts[c]
+    N0, T0 = result.static_normal_force[c], result.static_tangential_force[c]
+    limit = contact.model.mu * N0
+    share = f"{abs(T0) / limit:.3g} of the slip force mu N0" if limit > 0 else "open"
+    preload = f" (preload {contact.preload:.6g} N on the structure)" if contact.preload else ""
+    return (f"Contact {contact.name}: {contact.model!r}; static state: normal force N0 = {N0:.6g} N{preload}, "
+            f"tangential force T0 = {T0:.6g} N ({share}), {result.static_closed_elements[c]} of "
+            f"{contact.model.elements} elements closed.")

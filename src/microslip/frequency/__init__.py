@@ -15,7 +15,8 @@
 from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
 from .continuation import ConvergenceError, StepControl
 from .hbm import HarmonicBalance
-from .response import FrequencyResponse, frequency_point, frequency_response, static_solution
+from .response import (FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response,
+                       static_solution)
 from .structure import Contact, Structure
 from .transient import SteadyState, steady_state
 
@@ -25,6 +26,7 @@ __all__ = [
     "ConvergenceError",
     "FrequencyResponse",
     "HarmonicBalance",
+    "IncompleteCurveWarning",
     "NotPeriodicError",
     "StepControl",
     "SteadyState",

@@ -288,5 +288,7 @@ def _run(models, t, n, H, samples, max_periods) -> AFTResult:
 def pack_models(models: Sequence[MicroslipModel]) -> tuple[np.ndarray, ...]:
     """Concatenated ``kt, kn, gaps``, the ``offsets`` (nc+1) and ``mu`` (nc) for the kernel."""
     offsets = np.fromiter(accumulate((m.elements for m in models), initial=0), np.int64, len(models) + 1)
+    if not models:  # no contacts: empty arrays of the kernel's types
+        return np.ones(0), np.ones(0), np.zeros(0), offsets, np.ones(0)
     return (np.concatenate([m.kt for m in models]), np.concatenate([m.kn for m in models]),
             np.concatenate([m.gaps for m in models]), offsets, np.array([m.mu for m in models]))

@@ -15,8 +15,11 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     model = "contact.json"              # from 'microslip tune' (MicroslipModel.save)
     tangential = [0.866, 0.5]           # t = b_t . q: a DOF index, a list per DOF, or {"0" = 1, "1" = -1}
     normal = [-0.5, 0.866]              # n = b_n . q + approach (omit to impose the approach)
-    preload = "37.5N"                   # static force pressing the contact (along normal)
-    # approach = "2um"                  # imposed approach at q = 0 (an interference)
+    preload = "37.5N"                   # static force on the structure along normal, shared between the
+                                        # contact and the structure's springs (the report prints what the
+                                        # contact carries, N0)
+    # approach = "2um"                  # imposed approach at q = 0 (with normal omitted: the normal load is
+                                        # then fixed, e.g. approach of the tuned contact at the wanted load)
     # name = "damper"
 
     [excitation]                        # amplitudes per DOF (N); "static" for the static force
@@ -24,7 +27,8 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # phase_h1 = [0.0, 90.0]            # degrees: F = amplitude * exp(i phase)
 
     [sweep]
-    omega = [12000, 16500]              # rad/s; or frequency = ["1.9kHz", "2.6kHz"] (Hz)
+    omega = [12000, 16500]              # rad/s; or frequency = [1900, 2600] (Hz), or strings with units:
+                                        # "60Hz" and "2kHz" mean 2 pi 60 and 2 pi 2000 rad/s wherever written
     harmonics = 7
     # samples = 128                     # AFT samples per period (default 16 H rounded up to 2^k)
 
@@ -44,8 +48,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import _checks
 from ..model import MicroslipModel
 from ..units import parse_quantity
+from .aft import check_samples
 from .continuation import StepControl
 from .structure import Structure
 
@@ -81,6 +87,14 @@ class FrfConfig:
     dof_names: list[str] = field(default_factory=list)
 
 
+def _checked(path, where: str, check, *args, **kwargs):
+    """``check(*args, **kwargs)``, its error raised as a :class:`ConfigError` prefixed with ``where``."""
+    try:
+        return check(*args, **kwargs)
+    except (ValueError, TypeError) as exc:
+        raise ConfigError(f"{path}: {where}{exc}") from None
+
+
 def _get(table: dict, key: str, where: str, path):
     if key not in table:
         raise ConfigError(f"{path}: {where} needs the key {key!r}")
@@ -99,6 +113,36 @@ def _array(value, what: str, path, kind: str = "force") -> np.ndarray:
         return np.array([_quantity(v, kind, what, path) for v in value], dtype=float)
     except TypeError:
         raise ConfigError(f"{path}: {what} must be a list of numbers, got {value!r}") from None
+
+
+# units of a frequency in [sweep]: rad/s as they are, Hz and kHz times 2 pi
+_FREQUENCY_KINDS = {"angular frequency": 1.0, "frequency": 2 * np.pi}
+
+
+def _angular_frequency(value, what: str, path, bare: str) -> float:
+    """An angular frequency (rad/s) from a number in ``bare`` units (``rad/s`` or ``Hz``) or a string with a unit.
+
+    ``"60Hz"`` is ``2 pi 60`` rad/s wherever it is written; a unit that is not a
+    frequency is refused.
+    """
+    native = "angular frequency" if bare == "rad/s" else "frequency"
+    kinds = [native] + [k for k in _FREQUENCY_KINDS if k != native]
+    for kind in kinds:
+        try:
+            return parse_quantity(value, kind, name=what, default_unit=bare if kind == native else None) \
+                * _FREQUENCY_KINDS[kind]
+        except (ValueError, TypeError):
+            continue
+    raise ConfigError(f"{path}: {what} must be a frequency: a number ({bare}) or a string with a unit of "
+                      f"angular frequency (rad/s) or frequency (Hz, kHz; converted with 2 pi), got {value!r}")
+
+
+def _frequency_range(value, what: str, path, bare: str) -> tuple[float, float]:
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise ConfigError(f"{path}: {what} must be a list [start, end], got {value!r}")
+    if len(value) != 2:
+        raise ConfigError(f"{path}: [sweep] the range must have 2 values (start, end), got {len(value)}")
+    return tuple(_angular_frequency(v, f"{what}[{i}]", path, bare) for i, v in enumerate(value))
 
 
 def _matrix(value, what: str, path) -> np.ndarray:
@@ -160,7 +204,12 @@ def load_config(path) -> FrfConfig:
     if "rayleigh" in st:
         if "C" in mats:
             raise ConfigError(f"{path}: [structure] give either C or rayleigh, not both")
-        alpha, beta = (float(v) for v in st["rayleigh"])
+        rayleigh = st["rayleigh"]
+        if isinstance(rayleigh, str) or not hasattr(rayleigh, "__len__") or len(rayleigh) != 2:
+            raise ConfigError(f"{path}: [structure] rayleigh must be a list [alpha, beta] (1/s, s) giving "
+                              f"C = alpha M + beta K, got {rayleigh!r}")
+        alpha, beta = (_quantity(v, "dimensionless", f"[structure] rayleigh[{i}]", path)
+                       for i, v in enumerate(rayleigh))
         mats["C"] = alpha * mats["M"] + beta * mats["K"]
     try:
         structure = Structure(mats["M"], mats.get("C"), mats["K"])
@@ -216,25 +265,30 @@ def load_config(path) -> FrfConfig:
     if ("omega" in sw) == ("frequency" in sw):
         raise ConfigError(f"{path}: [sweep] needs exactly one of omega (rad/s) or frequency (Hz)")
     if "omega" in sw:
-        omega = tuple(_array(sw["omega"], "[sweep] omega", path, "frequency"))
+        omega = _frequency_range(sw["omega"], "[sweep] omega", path, "rad/s")
     else:
-        omega = tuple(2 * np.pi * _array(sw["frequency"], "[sweep] frequency", path, "frequency"))
-    if len(omega) != 2:
-        raise ConfigError(f"{path}: [sweep] the range must have 2 values (start, end), got {len(omega)}")
-    harmonics = sw.get("harmonics", 5)
+        omega = _frequency_range(sw["frequency"], "[sweep] frequency", path, "Hz")
+    harmonics = _checked(path, "", _checks.positive_int, "[sweep] harmonics", sw.get("harmonics", 5))
     samples = sw.get("samples")
+    if samples is not None:
+        samples = _checked(path, "[sweep] ", check_samples, samples, harmonics)
 
     # -- continuation and output -----------------------------------------------------------
     cont = data.get("continuation", {})
     bad = set(cont) - _CONTROL_KEYS
     if bad:
         raise ConfigError(f"{path}: [continuation] unknown key(s) {sorted(bad)}; known: {sorted(_CONTROL_KEYS)}")
-    control = StepControl(**cont)
+    control = _checked(path, "[continuation] ", StepControl, **cont)
     out = data.get("output", {})
     plot_dofs = [int(d) for d in out.get("plot", range(min(ndof, 6)))]
     for d in plot_dofs:
         if not 0 <= d < ndof:
             raise ConfigError(f"{path}: [output] plot names DOF {d}; the structure has {ndof}")
     harmonic = out.get("harmonic")
+    if harmonic is not None:
+        harmonic = _checked(path, "", _checks.positive_int, "[output] harmonic", harmonic, minimum=0)
+        if harmonic > harmonics:
+            raise ConfigError(f"{path}: [output] harmonic must be at most [sweep] harmonics = {harmonics} "
+                              f"(or omitted for max |q - q0|), got {harmonic}")
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names)

@@ -1,8 +1,10 @@
 """Newton's method and pseudo-arclength continuation with step control.
 
 Works on any problem ``R(x, omega) = 0`` that provides
-``evaluate(x, omega) -> (R, dR/dx, dR/domega)``, ``solve(A, b)`` and
-``augmented(Jx, R_omega, row)`` (see :class:`~microslip.frequency.hbm.HarmonicBalance`).
+``_evaluate(x, omega, jacobian=True) -> (R, dR/dx, dR/domega)`` (``R`` alone
+without the Jacobian; unchecked: the solvers build ``x`` themselves),
+``solve(A, b)`` and ``augmented(Jx, R_omega, row)`` (see
+:class:`~microslip.frequency.hbm.HarmonicBalance`).
 All arclength geometry is done in scaled variables ``(x / x_scale, omega / omega_scale)``
 so that displacements (µm) and frequencies (rad/s) weigh alike.
 
@@ -26,6 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _checks
+
 
 @dataclass
 class StepControl:
@@ -34,17 +38,24 @@ class StepControl:
     Attributes
     ----------
     ds_initial, ds_min, ds_max : float
-        First, smallest and largest step.
+        First, smallest and largest step (positive; ``ds_initial`` is
+        clipped into ``[ds_min, ds_max]``).
     max_angle : float
-        Largest turn of the tangent per step (rad).
+        Largest turn of the tangent per step (rad), in ``(0, pi)``.
     target_iterations : int
-        Corrector iterations the step size aims at.
+        Corrector iterations the step size aims at (>= 1).
     max_iterations : int
-        Corrector iterations before a step is refused.
+        Corrector iterations before a step is refused (>= 1).
     max_points : int
-        Points after which the continuation stops.
+        Points after which the continuation stops (>= 2); the curve is then
+        incomplete (see :func:`continuation`).
     tolerance : float
-        Convergence: scaled Newton step and relative residual below this.
+        Convergence: scaled Newton step and relative residual below this, in ``(0, 1)``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        A setting of the wrong type or out of range (the message names it).
     """
 
     ds_initial: float = 0.02
@@ -55,6 +66,20 @@ class StepControl:
     max_iterations: int = 12
     max_points: int = 5000
     tolerance: float = 1e-9
+
+    def __post_init__(self):
+        for name in ("ds_initial", "ds_min", "ds_max", "max_angle", "tolerance"):
+            setattr(self, name, _checks.positive_scalar(name, getattr(self, name)))
+        for name in ("target_iterations", "max_iterations"):
+            setattr(self, name, _checks.positive_int(name, getattr(self, name)))
+        self.max_points = _checks.positive_int("max_points", self.max_points, minimum=2)
+        if self.ds_min > self.ds_max:
+            raise ValueError(f"ds_min must not exceed ds_max, got ds_min = {self.ds_min!r} > "
+                             f"ds_max = {self.ds_max!r}")
+        if self.max_angle >= np.pi:
+            raise ValueError(f"max_angle must be below pi (rad), got {self.max_angle!r}")
+        if self.tolerance >= 1:
+            raise ValueError(f"tolerance must be below 1 (a relative residual), got {self.tolerance!r}")
 
 
 class ConvergenceError(RuntimeError):
@@ -68,7 +93,7 @@ def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, toleranc
     Returns ``(x, iterations)``; raises :class:`ConvergenceError` on failure.
     """
     x = np.array(x, dtype=float)
-    R, Jx, _ = problem.evaluate(x, omega)
+    R, Jx, _ = problem._evaluate(x, omega)
     norm = np.linalg.norm(R) / r_scale
     for it in range(1, max_iterations + 1):
         dx = problem.solve(Jx, -R)
@@ -77,14 +102,14 @@ def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, toleranc
         lam = 1.0
         while True:
             x_new = x + lam * dx
-            R_new = problem.evaluate(x_new, omega, jacobian=False)
+            R_new = problem._evaluate(x_new, omega, jacobian=False)
             norm_new = np.linalg.norm(R_new) / r_scale
             if norm_new < norm or lam < 1e-4:
                 break
             lam *= 0.5
         x = x_new
         step = lam * np.max(np.abs(dx)) / x_scale
-        R, Jx, _ = problem.evaluate(x, omega)
+        R, Jx, _ = problem._evaluate(x, omega)
         norm = np.linalg.norm(R) / r_scale
         if norm < tolerance and step < max(tolerance, 1e-3) or norm < 1e-3 * tolerance:
             return x, it
@@ -112,7 +137,7 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl):
     yc = y_pred.copy()
     step = np.inf
     for it in range(ctl.max_iterations + 1):
-        R, Jx, Rw = problem.evaluate(yc[:-1], yc[-1])
+        R, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
         res = np.linalg.norm(R) / r_scale
         if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
             return yc, it
@@ -152,6 +177,10 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     omegas : ndarray, shape (points,)
     iterations : ndarray of int, shape (points,)
         Corrector iterations of each point.
+    complete : bool
+        True when the curve was followed until it left the range; False when
+        it stopped at ``control.max_points`` points first (then the last point
+        is where it stopped).
     """
     ctl = control or StepControl()
     n = x0.size
@@ -163,14 +192,15 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     lo, hi = sorted((omega_start, omega_end))
 
     y = np.append(x0, omega_start)
-    R, Jx, Rw = problem.evaluate(x0, omega_start)
+    R, Jx, Rw = problem._evaluate(x0, omega_start)
     e_w = np.zeros(n + 1)
     e_w[-1] = 1.0
     tau = _tangent(problem, Jx, Rw, e_w, scale)
     if tau[-1] * direction < 0:
         tau = -tau
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
-    ds = ctl.ds_initial
+    ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
+    complete = False
     while len(omegas) < ctl.max_points:
         refused_angle = np.inf  # turn at the last step refused for turning too much
         while True:
@@ -208,6 +238,7 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 iters.append(k)
                 if callback is not None:
                     callback(edge, len(omegas))
+            complete = True
             break
         xs.append(y[:-1].copy())
         omegas.append(float(y[-1]))
@@ -218,4 +249,4 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         turn = 0.0 if kink else angle
         factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(turn, 1e-12))
         ds = float(np.clip(ds * max(factor, 0.5), ctl.ds_min, ctl.ds_max))
-    return np.array(xs), np.array(omegas), np.array(iters)
+    return np.array(xs), np.array(omegas), np.array(iters), complete

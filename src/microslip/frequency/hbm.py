@@ -26,7 +26,7 @@ import scipy.sparse.linalg as spla
 
 from .. import _checks
 from . import _aft, _hbm
-from .aft import MAX_PERIODS, check_periodic, check_samples, cycle_work, pack_models
+from .aft import MAX_PERIODS, check_periodic, check_samples, cycle_work
 from .structure import Structure
 
 DENSE_LIMIT = 600  # unknowns up to which dense linear algebra is used
@@ -105,14 +105,11 @@ class HarmonicBalance:
         self.max_periods = _checks.positive_int("max_periods", max_periods)
         self.tables = _aft.tables(H, self.samples)
         self.f_ext = excitation(structure, force, H)
-        contacts = structure.contacts
-        self.nc = nc = len(contacts)
-        for c in contacts:
-            self.f_ext[0] += c.preload * c.normal
+        self.nc = nc = len(structure.contacts)
+        self.f_ext[0] += structure.preload_force()
         self.f = self.f_ext.ravel()
         D, W = harmonic_operators(H)
         self.dense = self.n <= DENSE_LIMIT
-        self.sparse_storage = not self.dense
         if self.dense:
             dense = [A.toarray() if sp.issparse(A) else np.asarray(A) for A in
                      (structure.K, structure.C, structure.M)]
@@ -124,11 +121,8 @@ class HarmonicBalance:
             self.Cx = sp.kron(sp.csr_matrix(D), sp.csr_matrix(structure.C), format="csc")
             self.Mx = sp.kron(sp.csr_matrix(W), sp.csr_matrix(structure.M), format="csc")
         # contact directions, (ndof, nc), and offsets of the normal approach
-        self.Bt = np.array([c.tangential for c in contacts]).T.reshape(ndof, nc)
-        self.Bn = np.array([c.normal for c in contacts]).T.reshape(ndof, nc)
-        self.n0 = np.array([c.approach for c in contacts])
-        self.packed = pack_models([c.model for c in contacts]) if nc else (
-            np.ones(0), np.ones(0), np.zeros(0), np.zeros(1, dtype=np.int64), np.ones(0))
+        self.Bt, self.Bn, self.n0 = structure.contact_directions()
+        self.packed = structure.packed_models()
         # work arrays of the AFT
         self.FT = np.zeros((nc, nb))
         self.FN = np.zeros((nc, nb))
@@ -160,15 +154,53 @@ class HarmonicBalance:
         """``Z(omega) = Kx + omega Cx - omega^2 Mx``, shape ``(n, n)`` (dense or sparse CSC)."""
         return self.Kx + omega * self.Cx - (omega * omega) * self.Mx
 
-    def evaluate(self, x, omega: float, *, jacobian: bool = True):
-        """Residual (N) and, if asked, ``dR/dx`` (N/m, ``(n, n)``) and ``dR/domega`` (N s, ``(n,)``).
+    def _point(self, x, omega) -> tuple[np.ndarray, float]:
+        """``x`` and ``omega`` checked: a finite vector of the ``n`` unknowns and a positive frequency."""
+        x = np.asarray(x)
+        if x.shape != (self.n,):
+            raise ValueError(f"x must be a vector of the n = (2H+1) ndof = {self.n} unknowns "
+                             f"(harmonic-major Fourier coefficients, m), got shape {x.shape}")
+        x = _checks.real_array("x", x)
+        return np.ascontiguousarray(x, dtype=np.float64), _checks.positive_scalar("omega", omega)
 
-        Returns ``R`` alone when ``jacobian`` is False, else ``(R, Jx, R_omega)``
-        (fresh arrays). Dense problems use the compiled kernel of
+    def evaluate(self, x, omega: float, *, jacobian: bool = True):
+        """Residual of the harmonic balance equations and its derivatives.
+
+        Parameters
+        ----------
+        x : array_like, shape (n,)
+            The unknowns: Fourier coefficients of every DOF (m), harmonic-major
+            ``[c0 (ndof), a1 (ndof), b1 (ndof), ..., bH (ndof)]``, ``n = (2H+1) ndof``.
+        omega : float
+            Excitation frequency (rad/s), positive.
+        jacobian : bool, default True
+            Also return the derivatives.
+
+        Returns
+        -------
+        R : ndarray, shape (n,)
+            Residual (N), same layout as ``x``.
+        Jx : ndarray or scipy.sparse CSC matrix, shape (n, n)
+            ``dR/dx`` (N/m); only with ``jacobian``.
+        R_omega : ndarray, shape (n,)
+            ``dR/domega`` (N s); only with ``jacobian``.
+
+        ``R`` alone when ``jacobian`` is False, else ``(R, Jx, R_omega)`` (fresh
+        arrays). Dense problems use the compiled kernel of
         :mod:`microslip.frequency._hbm`; sparse ones :meth:`evaluate_reference`.
+
+        Raises
+        ------
+        ValueError, TypeError
+            ``x`` of the wrong shape or not finite, ``omega`` not positive and finite.
         """
+        x, omega = self._point(x, omega)
+        return self._evaluate(x, omega, jacobian=jacobian)
+
+    def _evaluate(self, x, omega: float, *, jacobian: bool = True):
+        """:meth:`evaluate` without the input checks (for the solvers, which build ``x`` themselves)."""
         if not self.dense:
-            return self.evaluate_reference(x, omega, jacobian=jacobian)
+            return self._evaluate_reference(x, omega, jacobian=jacobian)
         n = self.n
         R = np.empty(n)
         J = np.empty((n, n)) if jacobian else self._J_dummy
@@ -182,7 +214,11 @@ class HarmonicBalance:
         return (R, J, Rw) if jacobian else R
 
     def evaluate_reference(self, x, omega: float, *, jacobian: bool = True):
-        """As :meth:`evaluate`, with NumPy/SciPy array operations (any storage)."""
+        """As :meth:`evaluate`, with NumPy/SciPy array operations (any storage; ``Jx`` sparse CSC when sparse)."""
+        x, omega = self._point(x, omega)
+        return self._evaluate_reference(x, omega, jacobian=jacobian)
+
+    def _evaluate_reference(self, x, omega: float, *, jacobian: bool = True):
         Z = self.dynamic_stiffness(omega)
         R = Z @ x - self.f
         if self.nc:
@@ -212,7 +248,21 @@ class HarmonicBalance:
 
     # -- linear algebra ---------------------------------------------------------
     def solve(self, A, b) -> np.ndarray:
-        """Solve ``A z = b`` (dense or sparse ``A``); NaNs when ``A`` is singular."""
+        """Solve ``A z = b`` for the Newton and continuation steps.
+
+        Parameters
+        ----------
+        A : ndarray or scipy.sparse matrix, shape (m, m)
+            A Jacobian (``m = n``) or an :meth:`augmented` system (``m = n + 1``),
+            in the units of its rows and columns (N/m, N s, ...).
+        b : ndarray, shape (m,)
+            Right-hand side.
+
+        Returns
+        -------
+        ndarray, shape (m,)
+            ``z``; all NaN when ``A`` is singular (the callers then shorten the step).
+        """
         try:
             if sp.issparse(A):
                 return spla.splu(A.tocsc()).solve(b)
@@ -221,7 +271,23 @@ class HarmonicBalance:
             return np.full(np.shape(b), np.nan)
 
     def augmented(self, Jx, R_omega, row):
-        """``[[Jx, R_omega], [row]]``, shape ``(n+1, n+1)``."""
+        """The bordered system of pseudo-arclength continuation, ``[[Jx, R_omega], [row]]``.
+
+        Parameters
+        ----------
+        Jx : ndarray or scipy.sparse matrix, shape (n, n)
+            ``dR/dx`` (N/m), possibly with scaled columns.
+        R_omega : ndarray, shape (n,)
+            ``dR/domega`` (N s), possibly scaled.
+        row : ndarray, shape (n + 1,)
+            The extra equation's coefficients (the arclength direction, in
+            the continuation's scaled, dimensionless variables).
+
+        Returns
+        -------
+        ndarray or scipy.sparse CSC matrix, shape (n + 1, n + 1)
+            Dense when ``Jx`` is dense, sparse CSC when it is sparse.
+        """
         if sp.issparse(Jx):
             return sp.vstack([sp.hstack([Jx, sp.csr_matrix(R_omega[:, None])]),
                               sp.csr_matrix(row[None, :])], format="csc")

@@ -8,6 +8,7 @@ pseudo-arclength continuation (:mod:`~microslip.frequency.continuation`).
 from __future__ import annotations
 
 import time
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import Mapping
 
@@ -58,8 +59,25 @@ class FrequencyResponse:
         Energy dissipated per cycle by each contact (J).
     iterations : ndarray of int, shape (points,)
         Newton iterations of each point.
+    static_normal_force, static_tangential_force : ndarray, shape (nc,)
+        Each contact's normal load and tangential force (N) at the static
+        equilibrium under the preloads and the static force, before any
+        vibration. A ``preload`` is a force on the structure, shared between
+        the contact and the structure's own stiffness, so the static normal
+        force can be well below it; ``|T0| = mu N0`` means the contact is
+        already in gross slip statically.
+    static_closed_elements : ndarray of int, shape (nc,)
+        Elements of each contact closed at the static equilibrium.
+    complete : bool
+        True when the curve reaches the end of the range (or leaves the range
+        past a fold); False when the continuation stopped at
+        ``StepControl.max_points`` first (:func:`frequency_response` warns).
     elapsed : float
         Wall time of the computation (s).
+    labels : dict of str
+        Display names used by :meth:`plot`: key ``"dof"``, the quantity on
+        the vertical axis (default ``"response"``). Empty by default; set with
+        ``dataclasses.replace(result, labels={"dof": "blade tip"})``.
     """
 
     structure: Structure
@@ -75,6 +93,10 @@ class FrequencyResponse:
     viscous_dissipation: np.ndarray
     contact_dissipation: np.ndarray
     iterations: np.ndarray
+    static_normal_force: np.ndarray
+    static_tangential_force: np.ndarray
+    static_closed_elements: np.ndarray
+    complete: bool = True
     elapsed: float = 0.0
     labels: dict = field(default_factory=dict)
 
@@ -238,26 +260,33 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
     structure : Structure
     force : array_like or mapping, optional
         Only its static part (key ``0`` of a mapping) is used.
+    tolerance : float
+        Relative residual of Newton's method.
     """
+    return _static_state(structure, force, tolerance=tolerance)[0]
+
+
+def _static_state(structure: Structure, force=None, *, tolerance: float = 1e-10):
+    """``(q0, N0, T0, closed)``: :func:`static_solution` and each contact's static forces (N), closed elements."""
     hb = HarmonicBalance(structure, _static_force(force) if force is not None else {}, 0)
-    # start from the structure with every contact element closed and stuck
-    x = np.zeros(hb.n)
     r_scale = max(float(np.max(np.abs(hb.f))), 1e-30)
-    K = hb.Kx.copy()
+    # start from the structure with every contact element closed and stuck
     rhs = hb.f.copy()
     for c in structure.contacts:
         m = c.model
-        for b, k in ((c.tangential, m.kt.sum()), (c.normal, m.kn.sum())):
-            K = K + k * (sp.csr_matrix(b[:, None]) @ sp.csr_matrix(b[None, :]) if hb.sparse_storage
-                         else np.outer(b, b))
         rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * c.normal
-    if hb.sparse_storage:
+    K = structure.stuck_stiffness()
+    if sp.issparse(K):
         x = spla.lsqr(K.tocsc(), rhs, atol=1e-14, btol=1e-14)[0]
     else:
         x = np.linalg.lstsq(K, rhs, rcond=None)[0]
     x_scale = max(float(np.max(np.abs(x))), 1e-12)
     x, _ = newton(hb, x, 1.0, r_scale=r_scale, x_scale=x_scale, tolerance=tolerance)
-    return x
+    _, n = hb.local(x)
+    hb._aft(x)
+    closed = np.array([int(np.count_nonzero(n[i, 0] > c.model.gaps)) for i, c in enumerate(structure.contacts)],
+                      dtype=np.int64)
+    return x, hb.FN[:, 0].copy(), hb.FT[:, 0].copy(), closed
 
 
 def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5, samples: int | None = None,
@@ -296,17 +325,25 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     Returns
     -------
     FrequencyResponse
+        With ``complete`` False when the continuation stopped at
+        ``control.max_points`` before the end of the range.
 
     Raises
     ------
     ConvergenceError
         When Newton's method fails at the start or the continuation stalls.
+
+    Warns
+    -----
+    IncompleteCurveWarning
+        When the curve stops at ``control.max_points`` points (the message
+        names the limit and the frequency reached).
     """
     start = time.perf_counter()
     lo, hi = _omega_range(omega)
     if control is not None and not isinstance(control, StepControl):
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
-    hb, x, x_scale, r_scale = _first_point(structure, force, harmonics, samples, max_periods, lo, hi)
+    hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi)
     report = Progress(10, enabled=progress)
     reached = [0]
 
@@ -316,11 +353,25 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
             reached[0] += 1
             report.step(f"omega = {w:.6g} rad/s, {count} points")
 
-    xs, omegas, iters = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale, control=control,
-                                     callback=tick)
-    result = _collect(hb, xs, omegas, iters)
+    xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
+                                               control=control, callback=tick)
+    result = _collect(hb, xs, omegas, iters, static, complete)
     report.done(f"frequency response: {omegas.size} points")
+    if not complete:
+        warnings.warn(incomplete_message(result, hi, control or StepControl()), IncompleteCurveWarning,
+                      stacklevel=2)
     return replace(result, elapsed=time.perf_counter() - start)
+
+
+class IncompleteCurveWarning(RuntimeWarning):
+    """The continuation stopped at ``StepControl.max_points`` before the end of the frequency range."""
+
+
+def incomplete_message(result: FrequencyResponse, omega_end: float, control: StepControl) -> str:
+    """Why a curve is incomplete: the point limit and the frequency reached."""
+    return (f"the continuation stopped at max_points = {control.max_points} points at omega = "
+            f"{result.omega[-1]:.6g} rad/s, before the end of the range ({omega_end:.6g} rad/s); "
+            f"raise StepControl.max_points (or ds_max) to follow the whole curve")
 
 
 def _first_point(structure, force, harmonics, samples, max_periods, lo, hi):
@@ -331,10 +382,10 @@ def _first_point(structure, force, harmonics, samples, max_periods, lo, hi):
         raise ValueError("force must have a non-zero dynamic part (harmonic >= 1)")
     r_scale = float(np.max(np.abs(hb.f)))
     x = np.zeros(hb.n)
-    x[:hb.ndof] = static_solution(structure, force)
+    x[:hb.ndof], *static = _static_state(structure, force)
     x_scale = _response_scale(hb, x, lo, hi, grid=1 if lo == hi else 24)
     x, _ = newton(hb, x, lo, r_scale=r_scale, x_scale=x_scale)
-    return hb, x, max(x_scale, float(np.max(np.abs(x[hb.ndof:])))), r_scale
+    return hb, x, max(x_scale, float(np.max(np.abs(x[hb.ndof:])))), r_scale, static
 
 
 def frequency_point(structure: Structure, force, omega: float, *, harmonics: int = 5, samples: int | None = None,
@@ -359,25 +410,27 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
     """
     start = time.perf_counter()
     omega = _checks.positive_scalar("omega", omega)
-    hb, x, _, _ = _first_point(structure, force, harmonics, samples, max_periods, omega, omega)
-    result = _collect(hb, x[None, :], np.array([omega]), np.array([0]))
+    hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega)
+    result = _collect(hb, x[None, :], np.array([omega]), np.array([0]), static, True)
     return replace(result, elapsed=time.perf_counter() - start)
 
 
 def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> float:
     """Largest dynamic response of the structure with its contacts stuck, over the range (m)."""
-    R, Jx, _ = hb.evaluate(x_static, lo)
+    R, Jx, _ = hb._evaluate(x_static, lo)
     Jc = Jx - hb.dynamic_stiffness(lo)
     best = 0.0
     for w in np.linspace(lo, hi, grid):
-        R = hb.evaluate(x_static, w, jacobian=False)
+        R = hb._evaluate(x_static, w, jacobian=False)
         dx = hb.solve(hb.dynamic_stiffness(w) + Jc, -R)
         if np.all(np.isfinite(dx)):
             best = max(best, float(np.max(np.abs(dx[hb.ndof:]))))
     return best if best > 0 else max(float(np.max(np.abs(x_static))), 1e-12)
 
 
-def _collect(hb: HarmonicBalance, xs, omegas, iters) -> FrequencyResponse:
+def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> FrequencyResponse:
+    """The result object from the solutions ``xs`` and the static state ``(N0, T0, closed)``."""
     q = hb.curve_quantities(xs, omegas)
     return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(omegas.size, hb.nb, hb.ndof),
-                             q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters)
+                             q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters,
+                             *static, complete=complete)

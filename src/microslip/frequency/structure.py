@@ -9,6 +9,14 @@ linear combinations of the degrees of freedom. A contact force acts on the
 structure along the same combinations (virtual work ``T dt + N dn``), so a
 single DOF ``i`` means a contact between that DOF and the ground, and
 ``{i: 1, j: -1}`` a contact between DOFs ``i`` and ``j``.
+
+Static normal load. A contact is closed either by a ``preload`` -- an
+external static force ``P b_n`` on the structure, which the structure's own
+stiffness along ``b_n`` shares with the contact, so that the contact carries
+``N0 <= P`` (found with the static equilibrium, reported as
+``FrequencyResponse.static_normal_force``) -- or by an imposed ``approach``
+(with ``normal=None`` the normal load is then fixed, e.g. at
+``model.approach(N)`` it is ``N`` whatever the structure does).
 """
 
 from __future__ import annotations
@@ -18,9 +26,11 @@ from typing import Mapping
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from .. import _checks
 from ..model import MicroslipModel
+from .aft import pack_models
 
 
 def _matrix(name: str, value, ndof: int | None):
@@ -37,6 +47,35 @@ def _matrix(name: str, value, ndof: int | None):
     if ndof is not None and A.shape[0] != ndof:
         raise ValueError(f"{name} must be {ndof} x {ndof} like M, got shape {A.shape}")
     return A
+
+
+def _positive_definite(name: str, A) -> None:
+    """Raise unless ``A`` (dense or sparse, square) is symmetric positive definite."""
+    asym = abs(A - A.T).max() if sp.issparse(A) else np.max(np.abs(A - A.T))
+    if asym > 1e-12 * abs(A).max():
+        raise ValueError(f"{name} must be symmetric, got |{name} - {name}^T| up to {asym:.3g}")
+    diag = A.diagonal()
+    if np.any(diag <= 0):
+        i = int(np.argmax(diag <= 0))
+        raise ValueError(f"{name} must be positive definite: its diagonal entry {i} is {float(diag[i])!r} "
+                         f"(every DOF needs a positive mass)")
+    if sp.issparse(A):
+        # symmetric ordering without pivoting: A = L U with positive pivots iff A is positive definite
+        try:
+            lu = spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                           options={"SymmetricMode": True})
+            ok = np.array_equal(lu.perm_r, lu.perm_c) and bool(np.all(lu.U.diagonal() > 0))
+        except RuntimeError:  # exactly singular
+            ok = False
+    else:
+        try:
+            np.linalg.cholesky(A)
+            ok = True
+        except np.linalg.LinAlgError:
+            ok = False
+    if not ok:
+        raise ValueError(f"{name} must be positive definite (a mass matrix); it is symmetric with a positive "
+                         f"diagonal but singular or indefinite")
 
 
 def direction(name: str, spec, ndof: int, *, allow_none: bool = False) -> np.ndarray:
@@ -83,8 +122,9 @@ class Contact:
         ``t = tangential . q``, ``n = normal . q + approach`` (``normal`` is
         zero for a contact whose approach is imposed).
     preload : float
-        Static force pressing the contact closed (N), applied to the
-        structure along ``normal``.
+        External static force (N) applied to the structure along ``normal``
+        (the force vector ``preload * normal``); not the contact's normal
+        load, see :meth:`Structure.add_contact`.
     approach : float
         Imposed normal approach (interference) at ``q = 0`` (m).
     name : str
@@ -105,8 +145,16 @@ class Structure:
     Parameters
     ----------
     M, C, K : array_like or scipy.sparse matrix, shape (ndof, ndof)
-        Mass (kg), viscous damping (N s/m) and stiffness (N/m) matrices.
-        ``C`` may be ``None`` (no viscous damping).
+        Mass (kg), viscous damping (N s/m) and stiffness (N/m) matrices,
+        finite. ``M`` must be symmetric positive definite (every DOF carries
+        mass: time integration factorises it). ``C`` may be ``None`` (no
+        viscous damping).
+
+    Raises
+    ------
+    ValueError
+        A matrix that is not square and finite, of another size than ``M``,
+        or an ``M`` that is not symmetric positive definite.
 
     Examples
     --------
@@ -120,6 +168,7 @@ class Structure:
 
     def __init__(self, M, C, K):
         self.M = _matrix("M", M, None)
+        _positive_definite("M", self.M)
         ndof = self.M.shape[0]
         self.K = _matrix("K", K, ndof)
         self.C = sp.csr_matrix((ndof, ndof)) if C is None and sp.issparse(self.M) else (
@@ -155,9 +204,18 @@ class Structure:
             ``n = b_n . q + approach``, same forms; ``None``: the normal
             approach is not coupled to the structure (it is ``approach``).
         preload : float, optional
-            Static force pressing the contact closed (N), applied along
-            ``normal``; the static normal approach is then an unknown solved
-            with the rest.
+            An external static force (N) on the structure, ``preload * normal``
+            (e.g. the centrifugal load of a damper body). It is *not* the
+            contact's normal load: the static normal approach is an unknown,
+            and the structure's own stiffness along ``normal`` carries part of
+            the preload, so the contact carries ``N0 <= preload``
+            (:attr:`FrequencyResponse.static_normal_force
+            <microslip.frequency.FrequencyResponse.static_normal_force>` reports
+            it). The contact carries the whole preload only when nothing else
+            resists the motion along ``normal`` (e.g. ``normal`` is a DOF of a
+            damper body with no spring). To impose a normal load ``N``
+            regardless of the structure, give ``approach=model.approach(N)``
+            with ``normal=None``.
         approach : float, optional
             Imposed normal approach at ``q = 0`` (m), an interference fit.
             Needed when ``normal`` is None.
@@ -190,6 +248,49 @@ class Structure:
         contact = Contact(model, bt, bn, P, n0, name)
         self.contacts.append(contact)
         return contact
+
+    # -- assembled contact data (shared by harmonic balance and time integration) -----------
+    def contact_directions(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every contact's directions and imposed approach.
+
+        Returns
+        -------
+        Bt, Bn : ndarray, shape (ndof, nc)
+            Tangential and normal directions of the ``nc`` contacts, as columns.
+        n0 : ndarray, shape (nc,)
+            Imposed normal approach of each contact at ``q = 0`` (m).
+        """
+        nc = len(self.contacts)
+        Bt = np.array([c.tangential for c in self.contacts]).T.reshape(self.ndof, nc)
+        Bn = np.array([c.normal for c in self.contacts]).T.reshape(self.ndof, nc)
+        return Bt, Bn, np.array([c.approach for c in self.contacts])
+
+    def preload_force(self) -> np.ndarray:
+        """Static force of the contacts' preloads on the structure (N), ``sum_c P_c b_n,c``, shape ``(ndof,)``."""
+        f = np.zeros(self.ndof)
+        for c in self.contacts:
+            f += c.preload * c.normal
+        return f
+
+    def packed_models(self) -> tuple[np.ndarray, ...]:
+        """The contacts' laws packed for the compiled kernels (see :func:`~microslip.frequency.aft.pack_models`)."""
+        return pack_models([c.model for c in self.contacts])
+
+    def stuck_stiffness(self):
+        """Stiffness with every contact element closed and stuck (N/m), shape ``(ndof, ndof)``.
+
+        ``K + sum_c (sum kt) b_t b_t^T + (sum kn) b_n b_n^T``, stored like ``K``
+        (dense array or sparse CSR): the largest stiffness the contacts can add.
+        """
+        K = self.K.copy()
+        for c in self.contacts:
+            for b, k in ((c.tangential, c.model.kt.sum()), (c.normal, c.model.kn.sum())):
+                if sp.issparse(K):
+                    col = sp.csr_matrix(b[:, None])
+                    K = K + k * (col @ col.T)
+                else:
+                    K += k * np.outer(b, b)
+        return K
 
     def force_vector(self, force, name: str = "force") -> np.ndarray:
         """A real or complex force vector of length ``ndof`` (N), checked."""

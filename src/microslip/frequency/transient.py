@@ -21,7 +21,6 @@ from .. import _checks
 from .._kernels import march_totals
 from .._progress import Progress
 from . import _transient
-from .aft import pack_models
 from .hbm import excitation
 from .response import static_solution
 from .structure import Structure, direction
@@ -122,14 +121,10 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     M, C, K = dense
     contacts = structure.contacts
     ndof = structure.ndof
-    Bt = np.array([c.tangential for c in contacts]).T.reshape(ndof, len(contacts))
-    Bn = np.array([c.normal for c in contacts]).T.reshape(ndof, len(contacts))
-    n0 = np.array([c.approach for c in contacts])
+    Bt, Bn, n0 = structure.contact_directions()
     # stability: dt < 2 / omega_max with every contact element closed and stuck
-    K_max = K.copy()
-    for c in contacts:
-        K_max += c.model.kt.sum() * np.outer(c.tangential, c.tangential)
-        K_max += c.model.kn.sum() * np.outer(c.normal, c.normal)
+    K_max = structure.stuck_stiffness()
+    K_max = K_max.toarray() if sp.issparse(K_max) else K_max
     w_max = float(np.sqrt(np.max(np.abs(sla.eigvals(K_max, M)))))
     period = 2 * np.pi / omega
     steps = max(steps, int(np.ceil(period * w_max / 1.8)))
@@ -138,8 +133,7 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     B1 = 2 * M / dt**2
     B0 = M / dt**2 - C / (2 * dt)
     coef = excitation(structure, force, max(force) if isinstance(force, Mapping) and force else 1)
-    for c in contacts:
-        coef[0] += c.preload * c.normal
+    coef[0] += structure.preload_force()
     tau = 2 * np.pi * (np.arange(steps)) / steps
     f = np.tile(coef[0], (steps, 1))
     for h in range(1, (coef.shape[0] - 1) // 2 + 1):
@@ -147,8 +141,7 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     # initial state: static equilibrium, contacts loaded statically from the virgin state
     q = static_solution(structure, force)
     q_prev = q.copy()
-    kt, kn, gaps, offsets, mu = pack_models([c.model for c in contacts]) if contacts else (
-        np.ones(0), np.ones(0), np.zeros(0), np.zeros(1, dtype=np.int64), np.ones(0))
+    kt, kn, gaps, offsets, mu = structure.packed_models()
     sliders = np.zeros(kt.size)
     for i, c in enumerate(contacts):
         lo, hi = offsets[i], offsets[i + 1]
