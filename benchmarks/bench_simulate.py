@@ -3,8 +3,10 @@
 What is measured
 ----------------
 * Element updates per second (steps x J / wall time) of ``simulate`` for J = 4, 16 and 256
-  elements over 10^6 steps, with ``per_element=True`` (records every element's force and
-  condition) and ``per_element=False`` (totals only). Best of ``--repeat`` runs; the first,
+  elements over 10^6 steps, in three modes: ``per_element=True`` (records every element's
+  force and condition, and the friction work), ``per_element=False`` (totals and friction
+  work) and ``per_element=False, work=False`` (the total forces only: the same output as the
+  NumPy baseline). Best of ``--repeat`` runs; the first,
   compiling call is excluded (numba caches the kernels on disk anyway).
 * The same for a plain NumPy implementation of the same return mapping: vectorised over the
   elements, a Python loop over the steps. It is run on fewer steps (``--baseline-steps``,
@@ -73,6 +75,10 @@ def best_time(fn, repeat):
     return min(times)
 
 
+MODES = [("elements + work", {}), ("totals + work", {"per_element": False}),
+         ("totals only", {"per_element": False, "work": False})]
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--steps", type=int, default=1_000_000, help="steps of the compiled march (default 1e6)")
@@ -88,7 +94,7 @@ def main(argv=None) -> int:
           f"Python {platform.python_version()}, NumPy {np.__version__}")
     print(f"compiled: {args.steps:.0e} steps; NumPy baseline: {args.baseline_steps:.0e} steps "
           f"(its cost per step is independent of the number of steps); best of {args.repeat}\n")
-    header = (f"{'J':>5} {'per_element':>11} {'time (s)':>9} {'updates/s':>10} "
+    header = (f"{'J':>5} {'records':>22} {'time (s)':>9} {'updates/s':>10} "
               f"{'NumPy updates/s':>15} {'ratio':>7}")
     print(header)
     print("-" * len(header))
@@ -104,12 +110,12 @@ def main(argv=None) -> int:
         assert np.allclose(T_base, ref.T, rtol=0, atol=1e-12 * scale), "NumPy baseline disagrees with simulate"
         base_time = best_time(lambda: numpy_march(model, tb, nb), max(1, args.repeat - 1))
         base_rate = args.baseline_steps * J / base_time
-        for per_element in (True, False):
-            model.simulate(t[:10], n[:10], per_element=per_element)  # compiled (or loaded) already
-            elapsed = best_time(lambda: model.simulate(t, n, per_element=per_element), args.repeat)
+        for label, options in MODES:
+            model.simulate(t[:10], n[:10], **options)  # compiled (or loaded) already
+            elapsed = best_time(lambda: model.simulate(t, n, **options), args.repeat)
             rate = args.steps * J / elapsed
-            results.append((J, per_element, rate, rate / base_rate))
-            print(f"{J:>5} {str(per_element):>11} {elapsed:>9.3f} {rate:>10.3g} {base_rate:>15.3g} "
+            results.append((J, label, rate, rate / base_rate))
+            print(f"{J:>5} {label:>22} {elapsed:>9.3f} {rate:>10.3g} {base_rate:>15.3g} "
                   f"{rate / base_rate:>6.0f}x")
 
     model = tune(sphere, N_TOT, elements=4)
@@ -117,19 +123,20 @@ def main(argv=None) -> int:
     model.simulate(t100, n100)
     number = 2000
     call = min(timeit.repeat(lambda: model.simulate(t100, n100), number=number, repeat=7)) / number
-    call_totals = min(timeit.repeat(lambda: model.simulate(t100, n100, per_element=False),
+    call_totals = min(timeit.repeat(lambda: model.simulate(t100, n100, per_element=False, work=False),
                                     number=number, repeat=7)) / number
     print(f"\n100-step simulate call, J = 4, checks included: {call * 1e6:.1f} µs "
-          f"(per_element=False: {call_totals * 1e6:.1f} µs)")
+          f"(totals only: {call_totals * 1e6:.1f} µs)")
 
     print("\ntargets (issue 2):")
     big = [r for r in results if r[0] >= 16]
     ok_rate = all(r[2] >= 3e8 for r in big)
-    ok_ratio = all(r[3] >= 200 for r in results)
+    ok_ratio = all(r[3] >= 200 for r in results if r[1] == MODES[-1][0])
     print(f"  >= 3e8 element updates/s for J >= 16: {'met' if ok_rate else 'MISSED'} "
           f"(lowest {min(r[2] for r in big):.3g})" if big else "  (no J >= 16 measured)")
-    print(f"  >= 200x the NumPy baseline:          {'met' if ok_ratio else 'MISSED'} "
-          f"(lowest {min(r[3] for r in results):.0f}x)")
+    same = [r for r in results if r[1] == MODES[-1][0]]
+    print(f"  >= 200x the NumPy baseline (same output, totals only): {'met' if ok_ratio else 'MISSED'} "
+          f"(lowest {min(r[3] for r in same):.0f}x)")
     print(f"  100-step call < 50 µs:               {'met' if call < 50e-6 else 'MISSED'} ({call * 1e6:.1f} µs)")
     return 0
 

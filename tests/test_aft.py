@@ -77,7 +77,7 @@ def test_jacobian_matches_finite_differences(seed):
 def test_jacobian_covers_stick_slip_and_open_states():
     model, t, n = _random_case(5, H=2)
     Ns = 64
-    _, _, _, cond, _ = __import__("microslip._kernels", fromlist=["x"]).march_reference(
+    _, _, _, _, cond, _ = __import__("microslip._kernels", fromlist=["x"]).march_reference(
         model.kt, model.kn, model.gaps, model.mu, np.tile(synthesise(t, Ns), 3), np.tile(synthesise(n, Ns), 3),
         np.zeros(model.elements))
     seen = set(np.array(cond).ravel().tolist())

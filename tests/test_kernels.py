@@ -20,24 +20,26 @@ from microslip.model import OPEN, SLIP, STICK
 def compiled(model, t, n, s0):
     steps, J = t.size, model.elements
     s = np.array(s0, dtype=float)
-    T, N = np.empty(steps), np.empty(steps)
+    T, N, W = np.empty(steps), np.empty(steps), np.empty(steps)
     Ti, cond = np.empty((steps, J)), np.empty((steps, J), dtype=np.int8)
-    _kernels.march_elements(model.kt, model.kn, model.gaps, model.mu, t, n, s, T, N, Ti, cond)
+    _kernels.march_elements(model.kt, model.kn, model.gaps, model.mu, t, n, s, T, N, W, Ti, cond)
     s_tot = np.array(s0, dtype=float)
-    T_tot, N_tot = np.empty(steps), np.empty(steps)
-    _kernels.march_totals(model.kt, model.kn, model.gaps, model.mu, t, n, s_tot, T_tot, N_tot)
-    return T, N, Ti, cond, s, T_tot, N_tot, s_tot
+    T_tot, N_tot, W_tot = np.empty(steps), np.empty(steps), np.empty(steps)
+    _kernels.march_totals(model.kt, model.kn, model.gaps, model.mu, t, n, s_tot, T_tot, N_tot, W_tot)
+    return T, N, W, Ti, cond, s, T_tot, N_tot, W_tot, s_tot
 
 
 def assert_twins_agree(model, t, n, s0):
     s0 = np.asarray(s0, dtype=float)
     s0_copy = s0.copy()
-    T_ref, N_ref, Ti_ref, cond_ref, s_ref = _kernels.march_reference(
+    T_ref, N_ref, W_ref, Ti_ref, cond_ref, s_ref = _kernels.march_reference(
         model.kt, model.kn, model.gaps, model.mu, t, n, s0)
     np.testing.assert_array_equal(s0, s0_copy)  # the twin does not touch its input state
-    T, N, Ti, cond, s, T_tot, N_tot, s_tot = compiled(model, t, n, s0)
+    T, N, W, Ti, cond, s, T_tot, N_tot, W_tot, s_tot = compiled(model, t, n, s0)
     np.testing.assert_array_equal(T, T_ref)
     np.testing.assert_array_equal(N, N_ref)
+    np.testing.assert_array_equal(W, W_ref)
+    np.testing.assert_array_equal(W_tot, W_ref)
     np.testing.assert_array_equal(Ti, np.array(Ti_ref).reshape(Ti.shape))
     np.testing.assert_array_equal(cond, np.array(cond_ref).reshape(cond.shape))
     np.testing.assert_array_equal(s, s_ref)
@@ -90,9 +92,10 @@ def test_simulate_uses_the_compiled_kernel_with_the_same_numbers():
     rng = np.random.default_rng(1)
     t, n = rng.uniform(-2, 2, 500) * UM, rng.uniform(-0.5, 2, 500) * UM
     r = model.simulate(t, n)
-    T_ref, N_ref, Ti_ref, cond_ref, s_ref = _kernels.march_reference(
+    T_ref, N_ref, W_ref, Ti_ref, cond_ref, s_ref = _kernels.march_reference(
         model.kt, model.kn, model.gaps, model.mu, t, n, np.zeros(2))
     np.testing.assert_array_equal(r.T, T_ref)
+    np.testing.assert_array_equal(r.friction_work, W_ref)
     np.testing.assert_array_equal(r.Ti, Ti_ref)
     np.testing.assert_array_equal(r.condition, cond_ref)
     np.testing.assert_array_equal(r.state.sliders, s_ref)

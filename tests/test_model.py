@@ -420,3 +420,15 @@ def test_numeric_strings_booleans_and_complex_are_not_real_numbers(bad):
 def test_arrays_of_strings_are_refused_not_converted():
     with pytest.raises(TypeError, match=r"kt must be an array of real numbers, got \['1', '2'\]"):
         MicroslipModel(kt=["1", "2"], kn=[1.0, 1.0], gaps=[0.0, 0.0], mu=0.3)
+
+
+def test_friction_work_can_be_left_out_and_then_dissipation_says_so(paper_model):
+    t = np.linspace(0.0, 2e-6, 50)
+    n = 1.9e-6
+    full = paper_model.simulate(t, n, per_element=False)
+    fast = paper_model.simulate(t, n, per_element=False, work=False)
+    np.testing.assert_array_equal(full.T, fast.T)
+    assert fast.friction_work is None
+    with pytest.raises(ValueError, match=r"computed with work=False: run simulate\(\.\.\., work=True\)"):
+        fast.dissipation
+    np.testing.assert_array_equal(full.friction_work, paper_model.simulate(t, n).friction_work)

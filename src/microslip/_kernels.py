@@ -31,6 +31,8 @@ def element_step(kt, kn, gap, mu, t, n, s):  # pragma: no cover - compiled
     Branch-free form of the return mapping: clipping the trial force to
     ``[-mu N_i, mu N_i]`` is the slip rule, and the slider moves only when
     the clip changed the force. Same arithmetic as the pure-Python twin.
+    The slider lands at ``t - T_i / kt_i``, a function of the sample alone,
+    so a periodic history gives an exactly periodic state.
     """
     Ni = kn * max(n - gap, 0.0)
     lim = mu * Ni
@@ -40,78 +42,111 @@ def element_step(kt, kn, gap, mu, t, n, s):  # pragma: no cover - compiled
     return Ti, Ni, slipped, (t - Ti / kt if slipped else s)
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def friction_work(Ti, s_old, s_new):  # pragma: no cover - compiled
+    """Work of the element's force on its slider's travel in one step (J).
+
+    Zero in stick; in slip positive, since the slider moves the way the
+    force points (the ``max`` only absorbs a rounding of the last unit when
+    the travel is a few ulps). At constant ``N_i`` it is the exact
+    dissipation of the step for a displacement linear between the samples.
+    """
+    return max(Ti * (s_new - s_old), 0.0)
+
+
 @nb.njit(cache=True, nogil=True)
-def march_totals(kt, kn, gaps, mu, t, n, s, T, N):  # pragma: no cover - compiled
+def march_totals(kt, kn, gaps, mu, t, n, s, T, N, W):  # pragma: no cover - compiled
     """March ``t``, ``n`` from slider state ``s`` (updated in place).
 
-    Writes the total forces into ``T`` and ``N`` (shape ``(steps,)``).
+    Writes the total forces into ``T`` and ``N`` and, unless ``W`` is
+    empty, the friction work of each step into ``W`` (all shape ``(steps,)``).
     """
+    work = W.shape[0] > 0  # loop invariant: the compiler splits the loop on it
     for k in range(t.shape[0]):
         tsum = 0.0
         nsum = 0.0
+        wsum = 0.0
         for i in range(kt.shape[0]):
-            Ti, Ni, _, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s[i])
+            s_old = s[i]
+            Ti, Ni, _, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s_old)
             tsum += Ti
             nsum += Ni
+            if work:
+                wsum += friction_work(Ti, s_old, s[i])
         T[k] = tsum
         N[k] = nsum
+        if work:
+            W[k] = wsum
 
 
 @nb.njit(cache=True, nogil=True)
-def march_elements(kt, kn, gaps, mu, t, n, s, T, N, Ti, cond):  # pragma: no cover
+def march_elements(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cover
     """As :func:`march_totals`, also recording each element's force and condition.
 
     ``Ti`` has shape ``(steps, J)`` (float64), ``cond`` shape ``(steps, J)``
     (int8: 0 open, 1 stick, 2 slip).
     """
+    work = W.shape[0] > 0
     for k in range(t.shape[0]):
         tsum = 0.0
         nsum = 0.0
+        wsum = 0.0
         for i in range(kt.shape[0]):
-            Tk, Ni, slipped, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s[i])
+            s_old = s[i]
+            Tk, Ni, slipped, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s_old)
             Ti[k, i] = Tk
             cond[k, i] = (Ni > 0.0) * (1 + slipped)
             tsum += Tk
             nsum += Ni
+            if work:
+                wsum += friction_work(Tk, s_old, s[i])
         T[k] = tsum
         N[k] = nsum
+        if work:
+            W[k] = wsum
 
 
 def march_reference(kt, kn, gaps, mu, t, n, s):
     """Slow, obviously correct pure-Python twin of :func:`march_elements`.
 
-    Used only by the tests. Returns ``(T, N, Ti, cond, s)`` as lists of
-    Python floats and ints; ``s`` is not modified.
+    Used only by the tests. Returns ``(T, N, W, Ti, cond, s)`` as lists of
+    Python floats and ints (``W``: friction work of each step, the force
+    times the slider's travel); ``s`` is not modified.
     """
     s = [float(v) for v in s]
-    T, N, Ti_all, cond_all = [], [], [], []
+    T, N, W, Ti_all, cond_all = [], [], [], [], []
     for tk, nk in zip(t, n):
-        row_T, row_c = [], []
+        row_T, row_c, row_W = [], [], []
         for i in range(len(kt)):
             Ni = kn[i] * max(nk - gaps[i], 0.0)
             trial = kt[i] * (tk - s[i])
             if abs(trial) > mu * Ni:
                 Ti = mu * Ni if trial > 0 else -mu * Ni
-                s[i] = tk - Ti / kt[i]
+                s_new = tk - Ti / kt[i]
+                work = max(Ti * (s_new - s[i]), 0.0)
+                s[i] = s_new
                 c = SLIP
             else:
                 Ti = trial
+                work = 0.0
                 c = STICK
             if Ni == 0.0:
                 c = OPEN
             row_T.append(Ti)
             row_c.append(c)
+            row_W.append(work)
         Ti_all.append(row_T)
         cond_all.append(row_c)
         T.append(sum(row_T))
         N.append(sum(kn[i] * max(nk - gaps[i], 0.0) for i in range(len(kt))))
-    return T, N, Ti_all, cond_all, s
+        W.append(sum(row_W))
+    return T, N, W, Ti_all, cond_all, s
 
 
 def warm_up() -> None:
     """Compile (or load from cache) both kernels on a tiny input."""
     one = np.ones(1)
     z = np.zeros(1)
-    march_totals(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1))
-    march_elements(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1),
+    march_totals(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1), np.empty(1))
+    march_elements(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1), np.empty(1),
                    np.empty((1, 1)), np.empty((1, 1), dtype=np.int8))

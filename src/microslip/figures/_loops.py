@@ -16,13 +16,15 @@ def array_loop(model, amplitude: float, n: float, points: int = 401):
     -------
     t, T : ndarray, shape (2 * points - 1,)
         Displacement (m) and force (N), in the same order as :func:`microslip.reference.masing.loop`.
+    energy : float
+        Energy dissipated by friction over the loop (J), exact for the array.
     """
     up = np.linspace(0.0, amplitude, points)
     down = np.linspace(amplitude, -amplitude, points)
     back = down[::-1][1:]
     t = np.concatenate([up, down[1:], back])
-    T = model.simulate(t, n, per_element=False).T
-    return t[points - 1:], T[points - 1:]
+    r = model.simulate(t, n, per_element=False)
+    return t[points - 1:], r.T[points - 1:], float(r.friction_work[points:].sum())
 
 
 def loop_energy(t, T) -> float:

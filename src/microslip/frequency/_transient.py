@@ -34,6 +34,7 @@ def integrate(A_inv, K, B1, B0, force, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sl
     n1 = np.empty(1)
     T1 = np.empty(1)
     N1 = np.empty(1)
+    W1 = np.empty(0)  # friction work not recorded
     q_next = np.empty(ndof)
     for k in range(steps):
         fk = force[k % period]
@@ -52,7 +53,7 @@ def integrate(A_inv, K, B1, B0, force, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sl
             n1[0] = nc_
             lo = offsets[c]
             hi = offsets[c + 1]
-            march_totals(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[c], t1, n1, sliders[lo:hi], T1, N1)
+            march_totals(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[c], t1, n1, sliders[lo:hi], T1, N1, W1)
             for i in range(ndof):
                 rhs[i] -= Bt[i, c] * T1[0] + Bn[i, c] * N1[0]
         for i in range(ndof):
@@ -81,7 +82,7 @@ def integrate_reference(A_inv, K, B1, B0, force, Bt, Bn, n0, models, sliders, q_
         for c, model in enumerate(models):
             t = float(Bt[:, c] @ q)
             n = float(Bn[:, c] @ q + n0[c])
-            T, N, _, _, sliders[c] = march_reference(model.kt, model.kn, model.gaps, model.mu, [t], [n], sliders[c])
+            T, N, _, _, _, sliders[c] = march_reference(model.kt, model.kn, model.gaps, model.mu, [t], [n], sliders[c])
             rhs = rhs - Bt[:, c] * T[0] - Bn[:, c] * N[0]
         q_prev, q = q, A_inv @ rhs
         out.append(q.copy())

@@ -146,7 +146,7 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     for i, c in enumerate(contacts):
         lo, hi = offsets[i], offsets[i + 1]
         march_totals(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([Bt[:, i] @ q]),
-                     np.array([Bn[:, i] @ q + n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1))
+                     np.array([Bn[:, i] @ q + n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), np.empty(0))
     out = np.empty((steps, ndof))
     report = Progress(max_periods, enabled=progress)
     previous = None
