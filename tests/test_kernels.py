@@ -22,10 +22,11 @@ def compiled(model, t, n, s0):
     s = np.array(s0, dtype=float)
     T, N, W = np.empty(steps), np.empty(steps), np.empty(steps)
     Ti, cond = np.empty((steps, J)), np.empty((steps, J), dtype=np.int8)
-    _kernels.march_elements(model.kt, model.kn, model.gaps, model.mu, t, n, s, T, N, W, Ti, cond)
+    _kernels.march(model.kt, model.kn, model.gaps, model.mu, t, n, s, T, N, W, Ti, cond)
     s_tot = np.array(s0, dtype=float)
     T_tot, N_tot, W_tot = np.empty(steps), np.empty(steps), np.empty(steps)
-    _kernels.march_totals(model.kt, model.kn, model.gaps, model.mu, t, n, s_tot, T_tot, N_tot, W_tot)
+    _kernels.march(model.kt, model.kn, model.gaps, model.mu, t, n, s_tot, T_tot, N_tot, W_tot,
+                   _kernels.NO_ELEMENTS, _kernels.NO_CONDITIONS)
     return T, N, W, Ti, cond, s, T_tot, N_tot, W_tot, s_tot
 
 
@@ -103,6 +104,6 @@ def test_simulate_uses_the_compiled_kernel_with_the_same_numbers():
 
 def test_kernels_are_compiled_and_cached():
     _kernels.warm_up()
-    for kernel in (_kernels.march_totals, _kernels.march_elements):
+    for kernel in (_kernels.march,):
         assert kernel.signatures  # compiled for float64 arrays
         assert type(kernel._cache).__name__ != "NullCache"  # cache=True

@@ -55,38 +55,18 @@ def friction_work(Ti, s_old, s_new):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
-def march_totals(kt, kn, gaps, mu, t, n, s, T, N, W):  # pragma: no cover - compiled
+def march(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cover - compiled
     """March ``t``, ``n`` from slider state ``s`` (updated in place).
 
-    Writes the total forces into ``T`` and ``N`` and, unless ``W`` is
-    empty, the friction work of each step into ``W`` (all shape ``(steps,)``).
-    """
-    work = W.shape[0] > 0  # loop invariant: the compiler splits the loop on it
-    for k in range(t.shape[0]):
-        tsum = 0.0
-        nsum = 0.0
-        wsum = 0.0
-        for i in range(kt.shape[0]):
-            s_old = s[i]
-            Ti, Ni, _, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s_old)
-            tsum += Ti
-            nsum += Ni
-            if work:
-                wsum += friction_work(Ti, s_old, s[i])
-        T[k] = tsum
-        N[k] = nsum
-        if work:
-            W[k] = wsum
-
-
-@nb.njit(cache=True, nogil=True)
-def march_elements(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cover
-    """As :func:`march_totals`, also recording each element's force and condition.
-
-    ``Ti`` has shape ``(steps, J)`` (float64), ``cond`` shape ``(steps, J)``
-    (int8: 0 open, 1 stick, 2 slip).
+    Writes the total forces into ``T`` and ``N`` (shape ``(steps,)``) and,
+    unless they are empty, the friction work of each step into ``W``
+    (``(steps,)``), each element's force into ``Ti`` (``(steps, J)``,
+    float64) and its condition into ``cond`` (``(steps, J)``, int8: 0 open,
+    1 stick, 2 slip). What is recorded is fixed for the whole march, so the
+    compiler splits the loop on it and an unrecorded output costs nothing.
     """
     work = W.shape[0] > 0
+    elements = Ti.shape[0] > 0
     for k in range(t.shape[0]):
         tsum = 0.0
         nsum = 0.0
@@ -94,20 +74,26 @@ def march_elements(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no 
         for i in range(kt.shape[0]):
             s_old = s[i]
             Tk, Ni, slipped, s[i] = element_step(kt[i], kn[i], gaps[i], mu, t[k], n[k], s_old)
-            Ti[k, i] = Tk
-            cond[k, i] = (Ni > 0.0) * (1 + slipped)
             tsum += Tk
             nsum += Ni
             if work:
                 wsum += friction_work(Tk, s_old, s[i])
+            if elements:
+                Ti[k, i] = Tk
+                cond[k, i] = (Ni > 0.0) * (1 + slipped)
         T[k] = tsum
         N[k] = nsum
         if work:
             W[k] = wsum
 
 
+NO_WORK = np.empty(0)
+NO_ELEMENTS = np.empty((0, 0))
+NO_CONDITIONS = np.empty((0, 0), dtype=np.int8)
+
+
 def march_reference(kt, kn, gaps, mu, t, n, s):
-    """Slow, obviously correct pure-Python twin of :func:`march_elements`.
+    """Slow, obviously correct pure-Python twin of :func:`march`.
 
     Used only by the tests. Returns ``(T, N, W, Ti, cond, s)`` as lists of
     Python floats and ints (``W``: friction work of each step, the force
@@ -144,9 +130,8 @@ def march_reference(kt, kn, gaps, mu, t, n, s):
 
 
 def warm_up() -> None:
-    """Compile (or load from cache) both kernels on a tiny input."""
+    """Compile (or load from cache) the kernel on a tiny input."""
     one = np.ones(1)
     z = np.zeros(1)
-    march_totals(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1), np.empty(1))
-    march_elements(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1), np.empty(1),
-                   np.empty((1, 1)), np.empty((1, 1), dtype=np.int8))
+    march(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1), np.empty(1),
+          np.empty((1, 1)), np.empty((1, 1), dtype=np.int8))

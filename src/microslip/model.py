@@ -349,15 +349,15 @@ class MicroslipModel:
         steps = t.size
         T = np.empty(steps)
         N = np.empty(steps)
-        W = np.empty(steps if work else 0)
+        W = np.empty(steps) if work else _kernels.NO_WORK
         if per_element:
             Ti = np.empty((steps, self.elements))
             cond = np.empty((steps, self.elements), dtype=np.int8)
-            _kernels.march_elements(self.kt, self.kn, self.gaps, self.mu, t, n, s, T, N, W, Ti, cond)
         else:
-            Ti = cond = None
-            _kernels.march_totals(self.kt, self.kn, self.gaps, self.mu, t, n, s, T, N, W)
-        return Response(self, t, n, T, N, W if work else None, Ti, cond, State(s))
+            Ti, cond = _kernels.NO_ELEMENTS, _kernels.NO_CONDITIONS
+        _kernels.march(self.kt, self.kn, self.gaps, self.mu, t, n, s, T, N, W, Ti, cond)
+        return Response(self, t, n, T, N, W if work else None, Ti if per_element else None,
+                        cond if per_element else None, State(s))
 
     def trial(self, state: State | None, t: float, n: float) -> Step:
         """One trial step from a committed state; nothing is changed.

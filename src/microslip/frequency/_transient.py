@@ -5,7 +5,7 @@ Central differences: with ``A = M/dt^2 + C/(2 dt)``,
 ``A q[k+1] = f[k] - K q[k] - F_c(q[k]) + (2 M/dt^2) q[k] - (M/dt^2 - C/(2 dt)) q[k-1]``
 
 where ``F_c`` are the contact forces, marched one step with the same kernel
-as :meth:`microslip.MicroslipModel.simulate` (:func:`microslip._kernels.march_totals`).
+as :meth:`microslip.MicroslipModel.simulate` (:func:`microslip._kernels.march`).
 Stable for ``dt < 2 / omega_max``.
 """
 
@@ -14,7 +14,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .._kernels import march_reference, march_totals
+from .._kernels import march, march_reference
 
 
 @nb.njit(cache=True, nogil=True)
@@ -34,7 +34,9 @@ def integrate(A_inv, K, B1, B0, force, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sl
     n1 = np.empty(1)
     T1 = np.empty(1)
     N1 = np.empty(1)
-    W1 = np.empty(0)  # friction work not recorded
+    W1 = np.empty(0)  # friction work and element forces not recorded
+    no_el = np.empty((0, 0))
+    no_cond = np.empty((0, 0), dtype=np.int8)
     q_next = np.empty(ndof)
     for k in range(steps):
         fk = force[k % period]
@@ -53,7 +55,7 @@ def integrate(A_inv, K, B1, B0, force, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sl
             n1[0] = nc_
             lo = offsets[c]
             hi = offsets[c + 1]
-            march_totals(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[c], t1, n1, sliders[lo:hi], T1, N1, W1)
+            march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[c], t1, n1, sliders[lo:hi], T1, N1, W1, no_el, no_cond)
             for i in range(ndof):
                 rhs[i] -= Bt[i, c] * T1[0] + Bn[i, c] * N1[0]
         for i in range(ndof):

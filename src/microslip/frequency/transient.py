@@ -18,7 +18,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from .. import _checks
-from .._kernels import march_totals
+from .._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from .._progress import Progress
 from . import _transient
 from .hbm import excitation
@@ -145,8 +145,9 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     sliders = np.zeros(kt.size)
     for i, c in enumerate(contacts):
         lo, hi = offsets[i], offsets[i + 1]
-        march_totals(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([Bt[:, i] @ q]),
-                     np.array([Bn[:, i] @ q + n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), np.empty(0))
+        march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([Bt[:, i] @ q]),
+                     np.array([Bn[:, i] @ q + n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), NO_WORK,
+              NO_ELEMENTS, NO_CONDITIONS)
     out = np.empty((steps, ndof))
     report = Progress(max_periods, enabled=progress)
     previous = None
