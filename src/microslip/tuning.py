@@ -218,23 +218,12 @@ def tuning_points(reference, normal_load, *, forces=None, displacements=None,
         J = _checks.positive_int("elements", elements)
         forces = limit * np.arange(1, J + 1) / J
     if forces is not None:
-        T = _checks.positive_array("forces", forces, ndim=1, min_size=1)
-        _strictly_increasing("forces", T, "N")
-        if abs(T[-1] - limit) > _GROSS_SLIP_RTOL * limit:
-            raise ValueError(f"forces: the last point must be at gross slip, mu*N_tot = {limit:.6g} N, "
-                             f"got {T[-1]:.6g} N")
-        T = T.copy()
-        T[-1] = limit
+        T = _ends_at_gross_slip("forces", forces, limit, "N", f"mu*N_tot = {limit:.6g} N")
         t = np.asarray(reference.backbone_displacement(T, N_tot), dtype=float)
         t[-1] = t_gs
     else:
-        t = _checks.positive_array("displacements", displacements, ndim=1, min_size=1)
-        _strictly_increasing("displacements", t, "m")
-        if abs(t[-1] - t_gs) > _GROSS_SLIP_RTOL * t_gs:
-            raise ValueError(f"displacements: the last point must be at gross slip, "
-                             f"t_gs = {t_gs:.6g} m at N_tot = {N_tot:g} N, got {t[-1]:.6g} m")
-        t = t.copy()
-        t[-1] = t_gs
+        t = _ends_at_gross_slip("displacements", displacements, t_gs, "m",
+                                f"t_gs = {t_gs:.6g} m at N_tot = {N_tot:g} N")
         T = np.asarray(reference.backbone(t, N_tot), dtype=float)
         T[-1] = limit
     return TuningPoints(t=t, T=T, normal_load=N_tot, approach=float(reference.approach(N_tot)))
@@ -414,6 +403,18 @@ def model_from_points(reference, points: TuningPoints) -> MicroslipModel:
     s = points.t[::-1]  # element e slips at t_{J+1-e}
     kn, gaps = normal_parameters(reference, kt, s, points.normal_load)
     return MicroslipModel(kt=kt, kn=kn, gaps=gaps, mu=reference.mu)
+
+
+def _ends_at_gross_slip(name, values, target, unit, target_text):
+    """Checked tuning points: positive, strictly increasing, the last at ``target`` (snapped to it)."""
+    values = _checks.positive_array(name, values, ndim=1, min_size=1)
+    _strictly_increasing(name, values, unit)
+    if abs(values[-1] - target) > _GROSS_SLIP_RTOL * target:
+        raise ValueError(f"{name}: the last point must be at gross slip, {target_text}, "
+                         f"got {values[-1]:.6g} {unit}")
+    values = values.copy()
+    values[-1] = target
+    return values
 
 
 def _strictly_increasing(name, values, unit):
