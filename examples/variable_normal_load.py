@@ -12,35 +12,41 @@ cycle by both and writes ``variable_normal_load.png`` next to this file.
 
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
 
-matplotlib.use("Agg")  # writes a file; no window
-import matplotlib.pyplot as plt  # noqa: E402
+from microslip import Sphere, mdr, paths, tune
 
-from microslip import Sphere, mdr, paths, tune  # noqa: E402
 
-sphere = Sphere.paper()
-exact = mdr(sphere, max_load=37.5, elements=2000)         # the continuous contact, exact to ~1e-6
-paper = tune(sphere, 37.5, elements=4)                    # the paper's array
+def main(out=Path(__file__).with_name("variable_normal_load.png"), N_m=20.0, N_a=12.0):
+    """Run both models on three phases; print and return the energies per cycle (J), save the figure."""
+    sphere = Sphere.paper()
+    exact = mdr(sphere, max_load=37.5, elements=2000)       # the continuous contact, exact to ~1e-6
+    paper = tune(sphere, 37.5, elements=4)                  # the paper's array
+    t_a = 1.0 * float(sphere.gross_slip_displacement(N_m - N_a))
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4), sharey=True)
+    energies = {}
+    for ax, phase in zip(axes, (0.0, 90.0, 180.0)):
+        path = paths.variable_load_cycles(sphere, N_m, N_a, t_a, phase)
+        steady = path.steady
+        for model, style, name in ((exact, "k-", "exact (MDR, 2000 elements)"),
+                                   (paper, "--", "paper's array, J = 4")):
+            r = path.simulate(model)
+            W = float(r.friction_work[steady][1:].sum())  # the work of the steps inside the steady cycle
+            energies[phase, name] = W
+            ax.plot(r.t[steady] * 1e6, r.T[steady], style, lw=1.8, label=f"{name}: {W * 1e6:.3f} µJ/cycle")
+            print(f"phase {phase:5.1f}°  {name:28s} energy per cycle {W * 1e6:8.4f} µJ")
+        ax.set_title(f"N = {N_m:g} + {N_a:g} sin(τ + {phase:g}°) N")
+        ax.set_xlabel("tangential displacement t (µm)")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8, loc="upper left")
+    axes[0].set_ylabel("tangential force T (N)")
+    fig.suptitle("Steady loops under a varying normal load: exact contact against the paper's 4-element array")
+    fig.tight_layout()
+    fig.savefig(out, dpi=130)
+    plt.close(fig)
+    print(f"wrote {out}")
+    return energies
 
-N_m, N_a = 20.0, 12.0                                      # mean load and its amplitude (N)
-t_a = 1.0 * float(sphere.gross_slip_displacement(N_m - N_a))
-fig, axes = plt.subplots(1, 3, figsize=(13, 4), sharey=True)
-for ax, phase in zip(axes, (0.0, 90.0, 180.0)):
-    path = paths.variable_load_cycles(sphere, N_m, N_a, t_a, phase)
-    steady = path.steady
-    for model, style, name in ((exact, "k-", "exact (MDR, 2000 elements)"), (paper, "--", "paper's array, J = 4")):
-        r = path.simulate(model)
-        W = r.friction_work[steady][1:].sum()
-        ax.plot(r.t[steady] * 1e6, r.T[steady], style, lw=1.8, label=f"{name}: {W * 1e6:.3f} µJ/cycle")
-        print(f"phase {phase:5.1f}°  {name:28s} energy per cycle {W * 1e6:8.4f} µJ")
-    ax.set_title(f"N = {N_m:g} + {N_a:g} sin(τ + {phase:g}°) N")
-    ax.set_xlabel("tangential displacement t (µm)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
-axes[0].set_ylabel("tangential force T (N)")
-fig.suptitle("Steady loops under a varying normal load: exact contact against the paper's 4-element array")
-fig.tight_layout()
-out = Path(__file__).with_name("variable_normal_load.png")
-fig.savefig(out, dpi=130)
-print(f"wrote {out}")
+
+if __name__ == "__main__":
+    main()
