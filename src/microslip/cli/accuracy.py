@@ -18,10 +18,15 @@ def add_parser(sub) -> None:
                     "summary.txt (worst and median of each metric and where the worst occurs), "
                     "accuracy-maps.png (error maps) and accuracy-amplitude.png (error against amplitude).")
     p.add_argument("model", help="model JSON file")
-    p.add_argument("--reference", choices=["sphere"], default="sphere",
-                   help="the exact contact to compare with (default: sphere, Hertz + Cattaneo-Mindlin + "
-                        "Mindlin-Deresiewicz through MDR)")
+    p.add_argument("--reference", choices=["sphere", "punch"], default="sphere",
+                   help="the exact contact to compare with, through MDR: sphere (Hertz + Cattaneo-Mindlin + "
+                        "Mindlin-Deresiewicz, the default) or punch (flat punch with rounded edges, "
+                        "--flat-radius, --edge-radius; the material options below apply to both)")
     add_sphere_options(p)
+    p.add_argument("--flat-radius", type=quantity("length"), default=1e-3,
+                   help="with --reference punch: radius of the flat face, e.g. 1mm (default 1mm)")
+    p.add_argument("--edge-radius", type=quantity("length"), default=5e-3,
+                   help="with --reference punch: radius of the rounded edge, e.g. 5mm (default 5mm)")
     p.add_argument("--load", type=quantity("force"), default=37.5,
                    help="tuning load N_tot of the model, the top of the family's loads, e.g. 37.5N "
                         "(default 37.5N)")
@@ -43,23 +48,37 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     import matplotlib.pyplot as plt
 
-    from .._checks import positive_int
+    from .._checks import positive_int, positive_scalar
     from .._io import atomic_write, save_figure
     from .._progress import Progress
     from ..accuracy import accuracy
     from ..model import MicroslipModel
     from ..paths import default_family
     from ..reference.mdr import mdr
+    from ..reference.profiles import RoundedPunch
 
     model = MicroslipModel.load(args.model)
     positive_int("--mdr-elements", args.mdr_elements)
     positive_int("--steps-per-cycle", args.steps_per_cycle, minimum=8)
-    reference = sphere_from(args)
+    positive_scalar("--load", args.load)
+    if args.min_load is not None:
+        positive_scalar("--min-load", args.min_load)
+    positive_scalar("--min-amplitude", args.min_amplitude, allow_zero=True)
+    material = sphere_from(args)
+    if abs(model.mu - material.mu) > 1e-12 * material.mu:
+        raise ValueError(f"the model's friction coefficient ({model.mu:g}, from {args.model}) differs from the "
+                         f"reference's (--mu {material.mu:g}): give the mu the model was tuned with")
     out = Path(args.out)
     bar = Progress(4, enabled=not args.quiet)
     bar.step("load paths and exact reference")
+    if args.reference == "punch":
+        profile = RoundedPunch(args.flat_radius, args.edge_radius)
+        exact = mdr(material, max_load=args.load, elements=args.mdr_elements, profile=profile)
+        reference = exact.as_reference()
+    else:
+        reference = material
+        exact = mdr(material, max_load=args.load, elements=args.mdr_elements)
     family = default_family(reference, args.load, steps_per_cycle=args.steps_per_cycle)
-    exact = mdr(reference, max_load=args.load, elements=args.mdr_elements)
     bar.step(f"running both models on {len(family)} paths")
     report = accuracy(model, exact, family, progress=not args.quiet)
     bar.step("writing")
@@ -69,6 +88,11 @@ def run(args) -> int:
     if args.min_load is not None:
         Nmin = report.param("N_m") - report.param("N_a")
         mask = (Nmin >= args.min_load * (1 - 1e-12)) & (report.param("amplitude") >= args.min_amplitude)
+        if not mask.any():
+            raise ValueError(f"no path of the family has its lowest load >= --min-load {args.min_load:g} N and "
+                             f"an amplitude >= --min-amplitude {args.min_amplitude:g} t_gs(N_min); the lowest "
+                             f"loads run from {Nmin.min():.4g} to {Nmin.max():.4g} N, the amplitudes up to "
+                             f"{report.param('amplitude').max():g}")
         text += ["", f"paths with N >= {args.min_load:g} N and t_a >= {args.min_amplitude:g} t_gs(N_min):",
                  report.where(mask).summary_text()]
     threshold = report.threshold_amplitude(0.10)

@@ -92,15 +92,100 @@ class MDRModel(MicroslipModel):
         """As :meth:`MicroslipModel.element_normal_forces`; refuses ``n > max_approach``."""
         return super().element_normal_forces(self.check_approach(n))
 
-    def simulate(self, t, n, state: State | None = None, *, per_element: bool = True):
-        """As :meth:`MicroslipModel.simulate`; refuses ``n > max_approach`` (:class:`LoadLimitError`)."""
+    def simulate(self, t, n, state: State | None = None, *, per_element: bool = True, work: bool = True):
+        """As :meth:`MicroslipModel.simulate`; refuses ``n > max_approach`` (:class:`LoadLimitError`).
+
+        An MDR array has thousands of elements: for long histories pass
+        ``per_element=False`` (``(steps, J)`` arrays of 10^5 steps x 2000
+        elements take 1.8 GB) and, when no energy is wanted, ``work=False``.
+        """
         self.check_approach(n)
-        return super().simulate(t, n, state, per_element=per_element)
+        return super().simulate(t, n, state, per_element=per_element, work=work)
 
     def trial(self, state: State | None, t: float, n: float) -> Step:
         """As :meth:`MicroslipModel.trial`; refuses ``n > max_approach`` (:class:`LoadLimitError`)."""
         self.check_approach(n)
         return super().trial(state, t, n)
+
+    def approach(self, N) -> np.ndarray:
+        """As :meth:`MicroslipModel.approach`; refuses ``N > max_load`` (:class:`LoadLimitError`)."""
+        N = _checks.positive_array("N", N, allow_zero=True)
+        if N.size and float(N.max()) > self.max_load * (1.0 + _APPROACH_RTOL):
+            raise LoadLimitError(f"N reaches {float(N.max()):.6g} N, beyond max_load = {self.max_load:.6g} N "
+                                 "this MDR model was built for; build it with a larger max_load")
+        return super().approach(N)
+
+    def to_dict(self) -> dict:
+        """Refused: the saved form of a plain array would lose the load limit (use :func:`mdr` again)."""
+        raise TypeError("an MDRModel is not saved: its file would be a plain MicroslipModel without the "
+                        "max_load it may be used up to; rebuild it with mdr(reference, max_load=..., "
+                        "elements=...) instead")
+
+    def as_reference(self) -> "MDRContact":
+        """This array as a :class:`~microslip.tuning.ContactReference` (loads in N), for :func:`~microslip.tune`."""
+        return MDRContact(self)
+
+
+@dataclass(frozen=True)
+class MDRContact:
+    """A continuous contact given by its MDR array, seen as a reference: loads in, forces out.
+
+    Satisfies :class:`~microslip.tuning.ContactReference`, so the paper's
+    tuning and the load paths work for any axisymmetric profile, not only
+    for the sphere's closed forms. Every quantity comes from the array at
+    the approach that carries the load, exactly as the continuous contact.
+
+    Parameters
+    ----------
+    model : MDRModel
+        The array (from :func:`mdr`).
+    """
+
+    model: MDRModel
+
+    @property
+    def mu(self) -> float:
+        """Friction coefficient."""
+        return self.model.mu
+
+    @property
+    def max_load(self) -> float:
+        """Largest load (N) the array covers."""
+        return self.model.max_load
+
+    def approach(self, N):
+        """Normal approach (m) at load ``N`` (N); refuses loads beyond ``max_load``."""
+        return self.model.approach(N)
+
+    def normal_force(self, n):
+        """Normal force (N) at approach ``n`` (m); refuses approaches beyond the limit."""
+        return self.model.normal_force(n)
+
+    def backbone(self, t, N):
+        """Virgin tangential force (N) at displacement ``t`` (m) and constant load ``N`` (N), broadcast."""
+        return self.model.backbone(t, self.approach(N))
+
+    def gross_slip_displacement(self, N):
+        """Displacement (m) at which every element slips at load ``N`` (N): ``max_i mu N_i / kt_i``."""
+        Ni = self.model.element_normal_forces(self.approach(N))
+        return (self.mu * Ni / self.model.kt).max(axis=-1)
+
+    def backbone_displacement(self, T, N):
+        """Inverse of :meth:`backbone` for ``|T| <= mu N`` (odd in ``T``); ``N`` a scalar load (N).
+
+        The array's backbone is piecewise linear between the displacements
+        at which its elements slip, so the inverse is exact interpolation.
+        """
+        T = _checks.real_array("T", T)
+        N = _checks.positive_scalar("N", N)
+        limit = self.mu * float(self.model.normal_force(self.approach(N)))
+        if np.any(np.abs(T) > limit * (1 + 1e-12)):
+            raise ValueError(f"T must satisfy |T| <= mu*N = {limit:.6g} N (gross slip), got up to "
+                             f"{float(np.abs(T).max()):.6g} N")
+        slips = np.unique(np.concatenate([[0.0], self.mu * self.model.element_normal_forces(self.approach(N))
+                                          / self.model.kt]))
+        forces = self.backbone(slips, N)
+        return np.sign(T) * np.interp(np.abs(T), forces, slips)
 
 
 def contact_radius(profile, E_star: float, normal_load: float) -> float:
@@ -199,6 +284,9 @@ def mdr(reference, *, max_load, elements: int = 2000, profile=None) -> MDRModel:
     gaps = np.asarray(profile.mdr(x), dtype=float)
     if np.any(np.diff(gaps) < 0):
         raise ValueError(_DECREASING)
-    return MDRModel(kt=np.full(J, 2.0 * G_P * dx), kn=np.full(J, 2.0 * E_star * dx), gaps=gaps,
-                    mu=float(reference.mu), max_load=load, max_approach=float(profile.mdr(a)),
-                    contact_radius=a, profile=profile)
+    kt, kn = np.full(J, 2.0 * G_P * dx), np.full(J, 2.0 * E_star * dx)
+    # the limit is the profile's approach at a_max, or the array's own approach at max_load when the
+    # midpoint rule puts that a hair beyond (relative ~1/J^2): both mean "the load it was built for"
+    own = float(MicroslipModel(kt=kt, kn=kn, gaps=gaps, mu=float(reference.mu)).approach(load))
+    return MDRModel(kt=kt, kn=kn, gaps=gaps, mu=float(reference.mu), max_load=load,
+                    max_approach=max(float(profile.mdr(a)), own), contact_radius=a, profile=profile)
