@@ -125,3 +125,8 @@ def test_plot():
     ax = paths.from_arrays([0.0, 1e-6, 0.0], n=1e-6).plot()
     assert ax.get_title() == "user path"
     plt.close("all")
+
+
+def test_a_periodic_path_must_close():
+    with pytest.raises(ValueError, match=r"periodic: the steady part must close, but t goes from 0 m"):
+        paths.from_arrays([0.0, 1e-6, 2e-6], n=[1e-6] * 3, periodic=True)

@@ -5,9 +5,12 @@ continuous contact, :func:`microslip.mdr`) along the same paths and measures,
 over each path's steady cycle,
 
 ``energy_error``
-    ``W / W_ref - 1``, with ``W = ∮ T dt`` the energy dissipated per cycle
-    (over a closed cycle the normal work ``∮ N dn`` vanishes, ``N`` being a
-    function of ``n``);
+    ``W / W_ref - 1``, with ``W`` the energy dissipated over the steady
+    part: on a periodic path ``W = ∮ T dt`` per cycle by the trapezoidal
+    rule (over a closed cycle the normal work ``∮ N dn`` vanishes, ``N``
+    being a function of ``n``); on an open path, where ``∫ T dt`` would
+    also count the elastic energy stored, the friction work of its steps
+    (``Response.friction_work``);
 ``peak_error``
     ``max|T| / max|T_ref| - 1``;
 ``force_difference``
@@ -69,18 +72,23 @@ class PathBatch:
         self.t = np.concatenate([np.append(p.t, 0.0) for p in self.paths])
         self._n = np.concatenate([np.append(p.n, 0.0) for p in self.paths])
         self._sep = self.starts + sizes  # separator samples
-        # the steady samples, gathered: index into the batch, trapezoid weights, first of each path
-        index, weight, first = [], [], [0]
+        # the steady samples, gathered: index into the batch, first of each path, and the weights of
+        # the energy: trapezoid weights on T for a periodic path, ones on the friction work of the steps
+        # (but the one ending at its first steady sample) for an open one
+        index, weight, work, first = [], [], [], [0]
         for p, k0 in zip(self.paths, self.starts):
             t = p.t[p.steady]
             w = np.zeros(t.size)
-            w[:-1] += 0.5 * np.diff(t)
-            w[1:] += 0.5 * np.diff(t)
+            if p.periodic:
+                w[:-1] += 0.5 * np.diff(t)
+                w[1:] += 0.5 * np.diff(t)
             index.append(k0 + np.arange(p.steady.start, p.steady.stop))
             weight.append(w)
+            work.append(np.zeros(t.size) if p.periodic else np.r_[0.0, np.ones(t.size - 1)])
             first.append(first[-1] + t.size)
         self.steady_index = np.concatenate(index)
         self.steady_weight = np.concatenate(weight)
+        self.steady_work_weight = np.concatenate(work)
         self.steady_starts = np.array(first[:-1])
 
     def __len__(self) -> int:
@@ -94,18 +102,24 @@ class PathBatch:
         return n
 
     def run(self, model, *, chunks: int = 1, progress: Progress | None = None):
-        """Total forces ``(T, N)`` (N) of ``model`` over the whole batch, shape ``(samples,)`` each."""
+        """Total forces ``(T, N)`` (N) and friction work ``W`` (J) of each step of ``model`` over the batch.
+
+        Returns
+        -------
+        T, N, W : ndarray, shape (samples,)
+        """
         n = self.n_for(model)
         T = np.empty_like(self.t)
         N = np.empty_like(self.t)
+        W = np.empty_like(self.t)
         cuts = self.starts[np.linspace(0, len(self), max(1, min(chunks, len(self))) + 1)[:-1].astype(int)]
         cuts = np.append(cuts, self.t.size)
         for c, (lo, hi) in enumerate(zip(cuts[:-1], cuts[1:])):
             if progress is not None:
                 progress.step(f"{type(model).__name__} J = {model.elements}: part {c + 1} of {cuts.size - 1}")
             r = model.simulate(self.t[lo:hi], n[lo:hi], per_element=False)
-            T[lo:hi], N[lo:hi] = r.T, r.N
-        return T, N
+            T[lo:hi], N[lo:hi], W[lo:hi] = r.T, r.N, r.friction_work
+        return T, N, W
 
     def per_path(self, values, how: str = "sum") -> np.ndarray:
         """Sum (``how='sum'``) or maximum (``'max'``) per path of ``values`` on the steady samples.
@@ -115,11 +129,12 @@ class PathBatch:
         op = np.add if how == "sum" else np.maximum
         return op.reduceat(values, self.steady_starts)
 
-    def steady_metrics(self, T, N):
-        """``(energy, peak |T|, sum N)`` per path over the steady parts of batch forces ``T``, ``N``."""
-        Ts = T[self.steady_index]
-        return (self.per_path(self.steady_weight * Ts), self.per_path(np.abs(Ts), "max"),
-                self.per_path(N[self.steady_index]))
+    def steady_metrics(self, T, N, W):
+        """``(energy, peak |T|, sum N)`` per path over the steady parts of batch arrays from :meth:`run`."""
+        k = self.steady_index
+        Ts = T[k]
+        energy = self.per_path(self.steady_weight * Ts + self.steady_work_weight * W[k])
+        return energy, self.per_path(np.abs(Ts), "max"), self.per_path(N[k])
 
     def split(self, values) -> list:
         """``values`` over the batch cut back into one array per path."""
@@ -137,12 +152,15 @@ class ReferenceRun:
     batch : PathBatch
     T, N : ndarray, shape (samples,)
         Forces (N) over the batch.
+    W : ndarray, shape (samples,)
+        Friction work of each step (J).
     """
 
     reference_model: object
     batch: PathBatch
     T: np.ndarray
     N: np.ndarray
+    W: np.ndarray
 
     @property
     def paths(self) -> tuple:
@@ -151,7 +169,7 @@ class ReferenceRun:
     @cached_property
     def metrics(self):
         """``(energy, peak |T|, sum N)`` per path over the steady parts (J, N, N)."""
-        return self.batch.steady_metrics(self.T, self.N)
+        return self.batch.steady_metrics(self.T, self.N, self.W)
 
 
 def reference_run(reference_model, paths, *, progress: Progress | None = None, chunks: int = 1) -> ReferenceRun:
@@ -168,8 +186,7 @@ def reference_run(reference_model, paths, *, progress: Progress | None = None, c
     """
     _check_model("reference_model", reference_model)
     batch = paths if isinstance(paths, PathBatch) else PathBatch(paths)
-    T, N = batch.run(reference_model, chunks=chunks, progress=progress)
-    return ReferenceRun(reference_model, batch, T, N)
+    return ReferenceRun(reference_model, batch, *batch.run(reference_model, chunks=chunks, progress=progress))
 
 
 def _check_paths(paths) -> tuple:
@@ -224,8 +241,8 @@ def accuracy(model, reference_model, paths=None, *, progress: bool = False) -> "
             raise ValueError("paths is required unless reference_model is a ReferenceRun")
         ref = reference_run(reference_model, paths, progress=bar, chunks=4)
     b = ref.batch
-    T, N = b.run(model, chunks=4 if progress else 1, progress=bar)
-    energy, peak, sum_N = b.steady_metrics(T, N)
+    T, N, W = b.run(model, chunks=4 if progress else 1, progress=bar)
+    energy, peak, sum_N = b.steady_metrics(T, N, W)
     energy_ref, peak_ref, sum_N_ref = ref.metrics
     k = b.steady_index
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -245,7 +262,9 @@ class AccuracyReport:
     ----------
     paths : tuple of Path, length P
     energy, energy_reference : ndarray, shape (P,)
-        ``∮ T dt`` over the steady cycle of the model and of the reference (J).
+        Energy dissipated over the steady part of the model and of the
+        reference (J): ``∮ T dt`` per cycle for a periodic path, the friction
+        work for an open one.
     peak, peak_reference : ndarray, shape (P,)
         ``max |T|`` over the steady cycle (N).
     force_difference : ndarray, shape (P,)

@@ -85,6 +85,13 @@ class Path:
                 raise ValueError(f"N must have the same shape as t {t.shape}, got {N.shape}")
             object.__setattr__(self, "N", _frozen(N))
         object.__setattr__(self, "params", dict(self.params))
+        if self.periodic:
+            k0, k1 = self.steady.start, self.steady.stop - 1
+            for name, x in (("t", t), ("n", n)):
+                if abs(x[k1] - x[k0]) > 1e-9 * max(float(np.abs(x).max()), 1e-300):
+                    raise ValueError(f"periodic: the steady part must close, but {name} goes from {x[k0]:.6g} m "
+                                     f"at sample {k0} to {x[k1]:.6g} m at sample {k1}; give periodic=False "
+                                     f"or a steady slice over whole cycles")
 
     def __len__(self) -> int:
         return self.t.size
