@@ -79,3 +79,12 @@ def test_accuracy_command_with_a_punch_reference_and_its_input_errors(tmp_path, 
     assert "no path of the family has its lowest load >= --min-load 100 N" in capsys.readouterr().err
     assert main(["accuracy", str(model_file), "--min-amplitude", "-1", *fast]) == 2
     assert "--min-amplitude must be non-negative, got -1.0" in capsys.readouterr().err
+
+
+def test_accuracy_names_the_path_beyond_the_reference_limit():
+    from microslip import accuracy
+
+    small = mdr(SPHERE, max_load=20.0, elements=200)
+    family = paths.default_family(SPHERE, 37.5, ratios=(0.0,), amplitudes=(1.0,), levels=(0.5, 1.0))
+    with pytest.raises(LoadLimitError, match=r"paths\[1\] \(.*\) reaches the approach .* max_load = 20 N"):
+        accuracy(tune(SPHERE, 37.5, elements=4), small, family)

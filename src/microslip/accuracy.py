@@ -34,6 +34,7 @@ from . import _checks
 from ._io import write_csv
 from ._progress import Progress
 from .paths import Path
+from .reference.mdr import LoadLimitError
 
 #: the metrics and their labels (no '|', which would break Markdown tables)
 METRICS = {
@@ -164,6 +165,7 @@ class ReferenceRun:
 
     @property
     def paths(self) -> tuple:
+        """The paths run (tuple of :class:`~microslip.paths.Path`)."""
         return self.batch.paths
 
     @cached_property
@@ -186,6 +188,12 @@ def reference_run(reference_model, paths, *, progress: Progress | None = None, c
     """
     _check_model("reference_model", reference_model)
     batch = paths if isinstance(paths, PathBatch) else PathBatch(paths)
+    limit = getattr(reference_model, "max_approach", np.inf)
+    for k, p in enumerate(batch.paths):
+        if float(p.n.max()) > limit * (1.0 + 1e-9):
+            raise LoadLimitError(f"paths[{k}] ({p.label}) reaches the approach {float(p.n.max()):.6g} m, beyond "
+                                 f"the {limit:.6g} m of max_load = {reference_model.max_load:.6g} N the reference "
+                                 f"was built for; build it with a larger max_load (mdr(..., max_load=...))")
     return ReferenceRun(reference_model, batch, *batch.run(reference_model, chunks=chunks, progress=progress))
 
 
