@@ -216,3 +216,19 @@ def test_cli_target_bad_options(args, capsys):
     with pytest.raises(SystemExit):
         main(["target"] + args)
     assert "expected" in capsys.readouterr().err
+
+
+def test_cli_target_sweep_from_stored_points_is_no_worse(tmp_path, capsys, paper_problem):
+    import json
+
+    from microslip.cli import main
+
+    saved = tmp_path / "points.json"
+    assert main(["target", "--sweep", "3", "--start-from-stored", "--budget", "8", "--seed", "1",
+                 "--out", str(tmp_path), "--save-points", str(saved), "--quiet"]) == 0
+    capsys.readouterr()
+    found = np.array(json.loads(saved.read_text())["fractions"]["3"])
+    stored = load_optimal_points()["fractions"][3]
+    score = {name: paper_problem.score(paper_problem.tune_fractions(u)[0]) for name, u in
+             (("found", found), ("stored", stored))}
+    assert score["found"] <= score["stored"] + 1e-12

@@ -17,7 +17,7 @@ The objective is the worst normalised error over the family,
 differential evolution seeded with the best of a few two-parameter spacing
 laws, then Nelder--Mead on all the points (:func:`optimal_points`;
 deterministic, fixed seed). Pass
-``force_target=inf`` to minimise the worst energy error alone.
+``force_target=1e9`` (any large value) to minimise the worst energy error alone.
 
 Below ``min_amplitude`` a finite array dissipates too little by construction
 (Mindlin's loss grows as the cube of the amplitude; the array's begins only
@@ -584,7 +584,7 @@ class ElementSweep:
 
 
 def element_sweep(problem: TargetProblem, elements=range(2, 33), *, spacings=SPACINGS, fractions=None,
-                  progress: bool = False, **options) -> ElementSweep:
+                  starts=None, progress: bool = False, **options) -> ElementSweep:
     """Worst errors of the three spacings against ``J``.
 
     Parameters
@@ -597,6 +597,10 @@ def element_sweep(problem: TargetProblem, elements=range(2, 33), *, spacings=SPA
     fractions : dict of int -> array, optional
         Optimised points already known (e.g. :func:`load_optimal_points`):
         they are only re-measured, not searched again.
+    starts : dict of int -> array, optional
+        Points to start the search of each ``J`` from, besides the spacing
+        laws and the previous ``J``'s result resampled (the search never
+        returns worse than its best start).
     progress : bool
     **options
         Passed to :func:`optimal_points`.
@@ -606,6 +610,7 @@ def element_sweep(problem: TargetProblem, elements=range(2, 33), *, spacings=SPA
         if s not in SPACINGS:
             raise ValueError(f"spacings must be among {', '.join(SPACINGS)}, got {s!r}")
     known = {int(k): np.asarray(v, dtype=float) for k, v in (fractions or {}).items()}
+    seeds = {int(k): np.asarray(v, dtype=float) for k, v in (starts or {}).items()}
     bar = Progress(len(Js), enabled=progress)
     energy = {s: np.empty(len(Js)) for s in spacings}
     force = {s: np.empty(len(Js)) for s in spacings}
@@ -619,8 +624,8 @@ def element_sweep(problem: TargetProblem, elements=range(2, 33), *, spacings=SPA
                 model, pts = problem.tune_fractions(known[J])
                 res = problem.result(model, pts, "optimal")
             else:
-                previous = [_resample(u, J) for u in found.values()][-1:]
-                res = optimal_points(problem, J, start=previous or None, **options)
+                given = [_resample(u, J) for u in found.values()][-1:] + ([seeds[J]] if J in seeds else [])
+                res = optimal_points(problem, J, start=given or None, **options)
             energy[s][k], force[s][k] = res.energy_error, res.force_difference
             if s == "optimal":
                 found[int(J)] = res.points.t / res.points.t[-1]

@@ -81,6 +81,9 @@ def add_parser(sub) -> None:
     p.add_argument("--reuse-points", action="store_true",
                    help="with --sweep: re-measure the optimised points stored with the package instead of "
                         "searching again (fast; the paper's sphere and load range only)")
+    p.add_argument("--start-from-stored", action="store_true",
+                   help="with --sweep: start each J's search from the points stored with the package too (the "
+                        "result is then never worse than them)")
     p.add_argument("--save-points", default=None, help="with --sweep: write the optimised points to this JSON file")
     p.add_argument("-o", "--output", default="model.json", help="model file to write (default model.json)")
     p.add_argument("--out", default="microslip-target", help="folder for the sweep's outputs")
@@ -133,8 +136,9 @@ def _sweep(args, problem) -> int:
     from .._io import atomic_write, save_figure, write_csv
     from ..tuning_target import element_sweep, load_optimal_points, points_record
 
-    known = load_optimal_points()["fractions"] if args.reuse_points else None
-    sweep = element_sweep(problem, args.sweep, fractions=known, progress=not args.quiet, **_search(args))
+    stored = load_optimal_points()["fractions"] if args.reuse_points or args.start_from_stored else None
+    sweep = element_sweep(problem, args.sweep, fractions=stored if args.reuse_points else None,
+                          starts=stored if args.start_from_stored else None, progress=not args.quiet, **_search(args))
     out = Path(args.out)
     write_csv(out / "sweep.csv", sweep.columns(),
               header_comment=f"worst errors over the family within {problem.load_range} N, amplitude >= "
