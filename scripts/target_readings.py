@@ -23,7 +23,9 @@ mean, lowest >= 0.2
     mean loads 0.1 to 1 ``N_tot`` with ``N_a / N_m`` up to 0.9 (peaks up to
     1.9 ``N_tot``, beyond the tuning load), lowest load ``>= 0.2 N_tot``;
 mean, mean >= 0.2
-    the same with the restriction on the mean load.
+    the same with the restriction on the mean load;
+peak, mean >= 0.2
+    the default family restricted on the mean load ``N_m >= 0.2 N_tot``.
 """
 
 from __future__ import annotations
@@ -45,6 +47,7 @@ READINGS = {
     "mean, capped": dict(levels_of="mean", restrict="lowest", cap=True),
     "mean, lowest >= 0.2": dict(levels_of="mean", restrict="lowest", cap=False),
     "mean, mean >= 0.2": dict(levels_of="mean", restrict="mean", cap=False),
+    "peak, mean >= 0.2": dict(levels_of="peak", restrict="mean", cap=True),
 }
 AMPLITUDE_GRIDS = {
     "default (0.1 ... 3, 9)": AMPLITUDES,
