@@ -449,7 +449,8 @@ def tune_to_target(reference, load_range, *, elements: int, energy_target=0.02, 
     problem : TargetProblem, optional
         A prepared problem (reused to save the reference runs).
     **options
-        Passed to :func:`optimal_points` (``start``, ``maxfev``, ``restarts``).
+        Passed to :func:`optimal_points` (``start``, ``method``, ``budget``, ``seed``, ``maxfev``,
+        ``restarts``).
 
     Returns
     -------
