@@ -61,15 +61,29 @@ def add_parser(sub) -> None:
     p.add_argument("--min-amplitude", type=float, default=0.5,
                    help="smallest tangential amplitude of the family, as a multiple of the gross-slip "
                         "displacement at a path's lowest load (default 0.5)")
+    p.add_argument("--dense", action="store_true",
+                   help="sample the family densely (40 amplitudes from --min-amplitude to 3, 10 load levels; "
+                        "1560 paths instead of 96 at the defaults): the worst error over the continuous ranges "
+                        "rather than over the default family's samples (about 15x slower per model)")
     what = p.add_mutually_exclusive_group()
     what.add_argument("--elements", type=int, default=None, help="optimise the points of this many elements")
     what.add_argument("--sweep", type=_elements_list, default=None,
                       help="sweep these J, e.g. 2-16,20,24,28,32, and write sweep.csv and sweep.png to --out")
+    p.add_argument("--method", choices=("global", "local"), default="global",
+                   help="point search: 'global' (differential evolution seeded by spacing laws, then "
+                        "Nelder-Mead; default) or 'local' (Nelder-Mead from the best spacing law only)")
+    p.add_argument("--budget", type=int, default=None,
+                   help="models evaluated by the differential evolution per J (default 600 J; about 3 ms each "
+                        "on the default family)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the differential evolution (default 0)")
     p.add_argument("--max-elements", type=int, default=32,
                    help="largest J tried when searching for the smallest (default 32)")
     p.add_argument("--reuse-points", action="store_true",
                    help="with --sweep: re-measure the optimised points stored with the package instead of "
                         "searching again (fast; the paper's sphere and load range only)")
+    p.add_argument("--start-from-stored", action="store_true",
+                   help="with --sweep: start each J's search from the points stored with the package too (the "
+                        "result is then never worse than them)")
     p.add_argument("--save-points", default=None, help="with --sweep: write the optimised points to this JSON file")
     p.add_argument("-o", "--output", default="model.json", help="model file to write (default model.json)")
     p.add_argument("--out", default="microslip-target", help="folder for the sweep's outputs")
@@ -85,15 +99,16 @@ def run(args) -> int:
     bar = Progress(1, enabled=not args.quiet)
     bar.step("load paths and exact reference")
     problem = TargetProblem(reference, args.load_range, energy_target=args.energy_target / 100,
-                            force_target=args.force_target / 100, min_amplitude=args.min_amplitude)
+                            force_target=args.force_target / 100, min_amplitude=args.min_amplitude,
+                            dense=args.dense)
     if args.sweep is not None:
         return _sweep(args, problem)
     if args.elements is not None:
-        res = optimal_points(problem, args.elements, progress=not args.quiet)
+        res = optimal_points(problem, args.elements, progress=not args.quiet, **_search(args))
     else:
         try:
             res = smallest_elements(reference, args.load_range, problem=problem, max_elements=args.max_elements,
-                                    progress=not args.quiet)
+                                    progress=not args.quiet, **_search(args))
         except TargetNotMet as exc:
             exc.best.model.save(args.output)
             print(json.dumps(_summary(exc.best, args.output, meets=False)))
@@ -102,6 +117,11 @@ def run(args) -> int:
     res.model.save(args.output)
     print(json.dumps(_summary(res, args.output, meets=res.meets)))
     return 0
+
+
+def _search(args) -> dict:
+    """Options of the point search from the command line."""
+    return {"method": args.method, "budget": args.budget, "seed": args.seed}
 
 
 def _summary(res, path, meets):
@@ -116,12 +136,14 @@ def _sweep(args, problem) -> int:
     from .._io import atomic_write, save_figure, write_csv
     from ..tuning_target import element_sweep, load_optimal_points, points_record
 
-    known = load_optimal_points()["fractions"] if args.reuse_points else None
-    sweep = element_sweep(problem, args.sweep, fractions=known, progress=not args.quiet)
+    stored = load_optimal_points()["fractions"] if args.reuse_points or args.start_from_stored else None
+    sweep = element_sweep(problem, args.sweep, fractions=stored if args.reuse_points else None,
+                          starts=stored if args.start_from_stored else None, progress=not args.quiet, **_search(args))
     out = Path(args.out)
     write_csv(out / "sweep.csv", sweep.columns(),
               header_comment=f"worst errors over the family within {problem.load_range} N, amplitude >= "
-                             f"{problem.min_amplitude:g} t_gs(N_min), against the exact contact (MDR)")
+                             f"{problem.min_amplitude:g} t_gs(N_min), {len(problem.family)} paths"
+                             f"{' (dense sampling)' if problem.dense else ''}, against the exact contact (MDR)")
     fig = sweep.plot()
     save_figure(fig, out / "sweep.png", dpi=130, bbox_inches="tight")
     plt.close(fig)

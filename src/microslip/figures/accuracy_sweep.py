@@ -41,7 +41,7 @@ def tables(data) -> list:
 def error_rows(data) -> list:
     s = data["sweep"]
     rows = []
-    expected = {"force": "", "displacement": "issue: about 16 on its measurement",
+    expected = {"force": "", "displacement": "issue: about 16 on its measurement (coarser amplitude samples: README)",
                 "optimal": "issue target: at most 10 (not reached, see README)"}
     for name in s.energy_error:
         J = s.smallest(name)
