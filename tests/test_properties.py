@@ -189,8 +189,10 @@ def test_friction_work_is_never_negative_on_any_path(model, path):
     s = t[:, None] - r.Ti / model.kt                      # (steps, J) rebuilt slider positions
     s_prev = np.vstack([np.zeros((1, model.elements)), s[:-1]])  # every slider starts at 0
     power = r.Ti * (s - s_prev)                           # force times travel, per element and step
-    # rounding of s: a few ulps of |t| and of |T_i| / kt_i, times |T_i|
-    tol = 8 * EPS * np.abs(r.Ti) * (np.abs(t)[:, None] + np.abs(r.Ti) / model.kt + np.abs(s_prev))
+    # rounding of both rebuilt positions: a few ulps of the |t| and |T_i| / kt_i they come from, times |T_i|
+    scale = np.abs(t)[:, None] + np.abs(r.Ti) / model.kt
+    scale_prev = np.vstack([np.zeros((1, model.elements)), scale[:-1]])
+    tol = 8 * EPS * np.abs(r.Ti) * (scale + scale_prev)
     assert (power >= -tol).all()
     np.testing.assert_allclose(r.friction_work, np.maximum(power, 0.0).sum(axis=1),
                                rtol=0, atol=float(tol.sum(axis=1).max()) + 1e-300)
