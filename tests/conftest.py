@@ -1,0 +1,14 @@
+"""Test-suite settings: under CI the hypothesis examples are derandomised.
+
+Locally every run draws new examples (and keeps the failures it finds in
+``.hypothesis/``); under CI (``CI`` set in the environment, as ``.ci/run``
+runs) the same examples are drawn every time, so the gate is reproducible.
+"""
+
+import os
+
+from hypothesis import settings
+
+settings.register_profile("ci", derandomize=True, print_blob=True)
+if os.environ.get("CI"):
+    settings.load_profile("ci")
