@@ -469,7 +469,8 @@ def tune_to_target(reference, load_range, *, elements: int, energy_target=0.02, 
 
 def smallest_elements(reference, load_range, *, energy_target=0.02, force_target=0.02, min_amplitude=0.5,
                       max_elements: int = 32, spacing: str = "optimal", start: int = 2,
-                      problem: TargetProblem | None = None, progress: bool = False, **options) -> TargetTuning:
+                      problem: TargetProblem | None = None, fractions=None, progress: bool = False,
+                      **options) -> TargetTuning:
     """The smallest number of elements whose tuned array meets the accuracy target.
 
     Tries ``J = start, start + 1, ... max_elements`` in turn.
@@ -485,6 +486,10 @@ def smallest_elements(reference, load_range, *, energy_target=0.02, force_target
     start : int, default 2
         First ``J`` tried.
     problem : TargetProblem, optional
+    fractions : dict of int -> array, optional
+        Optimised points already known for this problem (e.g.
+        :func:`stored_fractions`), as fractions of ``t_gs(N_hi)``: with
+        ``spacing='optimal'`` a ``J`` found there is re-measured, not searched.
     progress : bool
         Show progress on standard error.
 
@@ -503,13 +508,19 @@ def smallest_elements(reference, load_range, *, energy_target=0.02, force_target
         raise ValueError(f"spacing must be one of {', '.join(SPACINGS)}, got {spacing!r}")
     J0 = _checks.positive_int("start", start, minimum=1)
     Jmax = _checks.positive_int("max_elements", max_elements, minimum=J0)
+    known = {int(k): np.asarray(v, dtype=float) for k, v in (fractions or {}).items()}
     problem = problem or TargetProblem(reference, load_range, energy_target=energy_target,
                                        force_target=force_target, min_amplitude=min_amplitude)
     bar = Progress(Jmax - J0 + 1, enabled=progress)
     best = None
     for J in range(J0, Jmax + 1):
-        bar.step(f"J = {J} ({spacing} points)")
-        res = (optimal_points(problem, J, **options) if spacing == "optimal" else problem.tune_spacing(spacing, J))
+        bar.step(f"J = {J} ({spacing} points{', stored' if spacing == 'optimal' and J in known else ''})")
+        if spacing != "optimal":
+            res = problem.tune_spacing(spacing, J)
+        elif J in known:
+            res = problem.result(*problem.tune_fractions(known[J]), "optimal")
+        else:
+            res = optimal_points(problem, J, **options)
         if res.meets:
             bar.done(f"J = {J} meets the target")
             return res
@@ -662,3 +673,94 @@ def points_record(problem: TargetProblem, sweep: ElementSweep) -> dict:
                         "load_range": list(problem.load_range), "min_amplitude": problem.min_amplitude,
                         "energy_target": problem.energy_target, "force_target": problem.force_target},
             "fractions": {str(J): [float(x) for x in u] for J, u in sorted(sweep.fractions.items())}}
+
+
+def stored_mismatch(reference, load_range, *, min_amplitude=0.5, energy_target=0.02, force_target=0.02,
+                    data=None) -> str | None:
+    """Why the stored optimised points do not solve a problem, or None when they do.
+
+    The points solve the problem they were optimised on: the same reference
+    (type, ``radius`` (m), ``E`` (Pa), ``nu``, ``mu``), load range (N) and
+    ``min_amplitude``, and the same ratio ``energy_target / force_target``
+    (the minimax objective is unchanged when both targets scale together).
+
+    Parameters
+    ----------
+    reference : Sphere or similar
+    load_range : (float, float)
+        ``(N_lo, N_hi)`` (N).
+    min_amplitude, energy_target, force_target : float
+        As in :class:`TargetProblem`.
+    data : dict, optional
+        A record as :func:`load_optimal_points` returns (default: the stored one).
+
+    Returns
+    -------
+    str or None
+        The first difference, in words, or None.
+    """
+    p = (data or load_optimal_points())["problem"]
+    lo, hi = _load_range(load_range)
+    name = type(reference).__name__
+    if name != p["reference"]:
+        return f"they are for a {p['reference']}, not a {name}"
+    for key, unit in (("radius", "m"), ("E", "Pa"), ("nu", ""), ("mu", "")):
+        mine = getattr(reference, key, None)
+        if mine is None or p[key] is None or not np.isclose(float(mine), p[key], rtol=1e-9, atol=0.0):
+            return f"they are for {key} = {p[key]:g}{unit and ' ' + unit}, not {mine}{unit and ' ' + unit}"
+    if not np.allclose([lo, hi], p["load_range"], rtol=1e-9, atol=0.0):
+        return f"they are for the load range {p['load_range'][0]:g}-{p['load_range'][1]:g} N, not {lo:g}-{hi:g} N"
+    if not np.isclose(min_amplitude, p["min_amplitude"], rtol=1e-9, atol=0.0):
+        return f"they are for min_amplitude {p['min_amplitude']:g}, not {min_amplitude:g}"
+    if not np.isclose(energy_target / force_target, p["energy_target"] / p["force_target"], rtol=1e-9, atol=0.0):
+        return (f"they are for energy_target / force_target = {p['energy_target'] / p['force_target']:g}, "
+                f"not {energy_target / force_target:g}")
+    return None
+
+
+def stored_fractions(reference, load_range, **problem) -> dict | None:
+    """The stored optimised points ``{J: fractions of t_gs(N_hi)}`` when they solve this problem, else None.
+
+    Parameters are those of :func:`stored_mismatch`.
+    """
+    data = load_optimal_points()
+    return None if stored_mismatch(reference, load_range, data=data, **problem) else data["fractions"]
+
+
+def tune_over_range(reference, normal_load, load_range, *, elements=None, energy_target=None, force_target=None,
+                    forces=None, displacements=None, progress: bool = False):
+    """:func:`microslip.tune` with ``load_range=``: the points, or J and the points, chosen by measurement.
+
+    See :func:`microslip.tune`. With ``elements`` the points are optimised
+    (:func:`tune_to_target`); without, the smallest J meeting the targets is
+    found (:func:`smallest_elements`). When the problem is the one the
+    package's stored points solve (:func:`stored_fractions`) they are used
+    instead of a search: milliseconds for a given J, seconds for the smallest
+    J; a fresh search takes minutes.
+
+    Returns
+    -------
+    MicroslipModel
+    """
+    if forces is not None or displacements is not None:
+        raise ValueError("load_range= chooses the tuning points itself: give elements= or energy_target=/"
+                         "force_target= with it, not forces= or displacements=")
+    lo, hi = _load_range(load_range)
+    N = _checks.positive_scalar("normal_load", normal_load)
+    if not np.isclose(N, hi, rtol=1e-9, atol=0.0):
+        raise ValueError(f"normal_load must be the top of load_range (the model is tuned there): got "
+                         f"normal_load = {N:g} N with load_range ({lo:g}, {hi:g}) N")
+    J = None if elements is None else _checks.positive_int("elements", elements, minimum=1)
+    if J is None and energy_target is None and force_target is None:
+        raise ValueError("load_range= needs elements= (optimise the points of J elements) or energy_target= / "
+                         "force_target= (find the smallest J meeting them)")
+    et = 0.02 if energy_target is None else _checks.positive_scalar("energy_target", energy_target)
+    ft = 0.02 if force_target is None else _checks.positive_scalar("force_target", force_target)
+    known = stored_fractions(reference, (lo, hi), energy_target=et, force_target=ft) or {}
+    if J is not None and J in known:
+        t = known[J] * float(reference.gross_slip_displacement(hi))
+        return tune(reference, hi, displacements=t)
+    problem = TargetProblem(reference, (lo, hi), energy_target=et, force_target=ft)
+    if J is not None:
+        return optimal_points(problem, J, progress=progress).model
+    return smallest_elements(reference, (lo, hi), problem=problem, fractions=known, progress=progress).model
