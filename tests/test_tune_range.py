@@ -95,8 +95,10 @@ def test_cli_tune_load_range(tmp_path, capsys):
     (["--load-range", "7.5N,37.5N", "--load", "30N"], "normal_load must be the top of load_range"),
     (["--load-range", "7.5N,37.5N", "--forces", "15N"], "--load-range chooses the tuning points itself"),
 ])
-def test_cli_tune_load_range_errors(args, message, tmp_path, capsys):
-    from microslip.cli import main
+def test_cli_tune_load_range_errors(args, message, tmp_path):
+    from microslip.cli import build_parser
 
-    assert main(["tune", *args, "-o", str(tmp_path / "m.json")]) == 2
-    assert message in capsys.readouterr().err
+    parsed = build_parser().parse_args(["tune", *args, "-o", str(tmp_path / "m.json")])
+    with pytest.raises(ValueError, match=message):
+        parsed.func(parsed)
+    assert not (tmp_path / "m.json").exists()
