@@ -102,3 +102,14 @@ def test_cli_tune_load_range_errors(args, message, tmp_path):
     with pytest.raises(ValueError, match=message):
         parsed.func(parsed)
     assert not (tmp_path / "m.json").exists()
+
+
+def test_tune_to_target_checks_elements_before_building_the_reference(monkeypatch):
+    def fail(*args, **kwargs):
+        raise AssertionError("the problem was built before the arguments were checked")
+
+    monkeypatch.setattr(tt, "TargetProblem", fail)
+    with pytest.raises(TypeError, match="elements must be an integer, got '4'"):
+        tune_to_target(SPHERE, (7.5, 37.5), elements="4")
+    with pytest.raises(ValueError, match="elements must be an integer >= 1, got 0"):
+        tune_to_target(SPHERE, (7.5, 37.5), elements=0)

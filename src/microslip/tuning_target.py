@@ -462,9 +462,10 @@ def tune_to_target(reference, load_range, *, elements: int, energy_target=0.02, 
     >>> from microslip import Sphere, tune_to_target
     >>> best = tune_to_target(Sphere.paper(), (7.5, 37.5), elements=6)   # doctest: +SKIP
     """
+    J = _checks.positive_int("elements", elements, minimum=1)  # before the reference is built
     problem = problem or TargetProblem(reference, load_range, energy_target=energy_target,
                                        force_target=force_target, min_amplitude=min_amplitude)
-    return optimal_points(problem, elements, **options)
+    return optimal_points(problem, J, **options)
 
 
 def smallest_elements(reference, load_range, *, energy_target=0.02, force_target=0.02, min_amplitude=0.5,
