@@ -35,7 +35,7 @@ from scipy import optimize
 
 from . import _checks
 from ._progress import Progress
-from .accuracy import AccuracyReport, accuracy, reference_run
+from .accuracy import AccuracyReport, accuracy, reference_run, restriction_mask
 from .paths import default_family
 from .reference.mdr import mdr
 from .tuning import TuningError, TuningPoints, tune, tuning_points
@@ -185,9 +185,7 @@ class TargetProblem:
         options = {**(dense_options(self.min_amplitude) if dense else {}), **dict(family_options or {})}
         family = default_family(reference, hi, steps_per_cycle=steps_per_cycle, **options)
         self.full_family = family
-        keep = [p for p in family
-                if p.params["N_m"] - p.params["N_a"] >= lo * (1 - 1e-12)
-                and p.params["amplitude"] >= self.min_amplitude * (1 - 1e-12)]
+        keep = [p for p, k in zip(family, restriction_mask(family, lo, self.min_amplitude)) if k]
         if not keep:
             raise ValueError(f"load_range {self.load_range} and min_amplitude {self.min_amplitude:g} leave no path "
                              "of the family; lower N_lo or min_amplitude")
@@ -210,8 +208,8 @@ class TargetProblem:
     def amplitude_report(self, model) -> AccuracyReport:
         """Accuracy of ``model`` on the whole family (all amplitudes, loads >= N_lo), for error vs amplitude."""
         if self._full_run is None:
-            lo = self.load_range[0]
-            paths = [p for p in self.full_family if p.params["N_m"] - p.params["N_a"] >= lo * (1 - 1e-12)]
+            mask = restriction_mask(self.full_family, self.load_range[0])
+            paths = [p for p, k in zip(self.full_family, mask) if k]
             self._full_run = reference_run(self.reference_model, paths)
         return accuracy(model, self._full_run)
 
