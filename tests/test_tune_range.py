@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+import microslip.target_search as target_search
 import microslip.tuning_target as tt
 from microslip import Sphere, TargetNotMet, TargetProblem, tune, tune_to_target
 from microslip.tuning_target import load_optimal_points, stored_fractions, stored_mismatch
@@ -50,7 +51,7 @@ def test_other_problems_are_searched_afresh():
 def test_unreachable_targets_raise_with_the_best_found(monkeypatch):
     # every J up to 32 "stored" (resampled) so the test re-measures rather than searches
     known = {J: tt._resample(STORED["fractions"][16], J) for J in range(2, 33)}
-    monkeypatch.setattr(tt, "stored_fractions", lambda *a, **k: known)
+    monkeypatch.setattr(target_search, "stored_fractions", lambda *a, **k: known)
     with pytest.raises(TargetNotMet, match=r"no J up to max_elements = 32 meets the target .* best found is J = \d+"):
         tune(SPHERE, 37.5, load_range=(7.5, 37.5), energy_target=1e-4, force_target=1e-4)
 
@@ -108,7 +109,7 @@ def test_tune_to_target_checks_elements_before_building_the_reference(monkeypatc
     def fail(*args, **kwargs):
         raise AssertionError("the problem was built before the arguments were checked")
 
-    monkeypatch.setattr(tt, "TargetProblem", fail)
+    monkeypatch.setattr(target_search, "TargetProblem", fail)
     with pytest.raises(TypeError, match="elements must be an integer, got '4'"):
         tune_to_target(SPHERE, (7.5, 37.5), elements="4")
     with pytest.raises(ValueError, match="elements must be an integer >= 1, got 0"):
