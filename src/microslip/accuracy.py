@@ -192,7 +192,7 @@ class ReferenceRun:
 
     @property
     def paths(self) -> tuple:
-        """The paths run (tuple of :class:`~microslip.paths.Path`)."""
+        """The paths run: tuple of :class:`~microslip.paths.Path`, length P, in batch order (m)."""
         return self.batch.paths
 
     @cached_property

@@ -54,6 +54,7 @@ class TargetTuning:
 
     @property
     def elements(self) -> int:
+        """Number of elements ``J`` of the tuned array (int)."""
         return self.model.elements
 
     def plot(self, reference, ax=None):
@@ -191,6 +192,25 @@ class TargetProblem:
         return max(e / self.energy_target, f / self.force_target)
 
     def result(self, model, points, spacing, evaluations=1) -> TargetTuning:
+        """``model`` measured on the problem's family, with its points.
+
+        Parameters
+        ----------
+        model : MicroslipModel
+            The tuned array (``J`` elements).
+        points : TuningPoints
+            Its tuning points at ``N_hi`` (m, N), shape (J,) each.
+        spacing : str
+            ``'force'``, ``'displacement'`` or ``'optimal'``.
+        evaluations : int, default 1
+            Models evaluated to find it.
+
+        Returns
+        -------
+        TargetTuning
+            With the worst ``|energy error|`` and force difference over the
+            family (fractions) and whether both meet the targets.
+        """
         e, f = self.worst(model)
         return TargetTuning(model=model, points=points, spacing=spacing, energy_error=e, force_difference=f,
                             meets=bool(e <= self.energy_target and f <= self.force_target),
