@@ -13,7 +13,6 @@ cycle by both and writes ``variable_normal_load.png`` next to this file.
 from pathlib import Path
 
 import matplotlib.pyplot as plt
-import numpy as np
 
 from microslip import Sphere, mdr, paths, tune
 
@@ -27,7 +26,7 @@ def main(out=Path(__file__).with_name("variable_normal_load.png"), N_m=20.0, N_a
     fig, axes = plt.subplots(1, 3, figsize=(13, 4), sharey=True)
     energies = {}
     for ax, phase in zip(axes, (0.0, 90.0, 180.0)):
-        path = paths.variable_load_cycles(sphere, N_m, N_a, t_a, np.radians(phase))
+        path = paths.variable_load_cycles(sphere, N_m, N_a, t_a, phase)
         steady = path.steady
         for model, style, name in ((exact, "k-", "exact (MDR, 2000 elements)"),
                                    (paper, "--", "paper's array, J = 4")):

@@ -27,16 +27,17 @@ def test_loop_at_constant_load():
 
 def test_variable_load_cycles_follow_the_formula():
     Nm, Na, phi = 20.0, 8.0, np.radians(90)
-    p = paths.variable_load_cycles(SPHERE, Nm, Na, 5e-7, phi, cycles=2, steps_per_cycle=64)
+    p = paths.variable_load_cycles(SPHERE, Nm, Na, 5e-7, 90.0, cycles=2, steps_per_cycle=64)
     tau = 2 * np.pi * np.arange(129) / 64
     assert np.allclose(p.t, 5e-7 * np.sin(tau), rtol=0, atol=1e-22)
     assert np.allclose(p.N, Nm + Na * np.sin(tau + phi))
     assert np.allclose(p.n, SPHERE.approach(p.N))  # through the reference's normal law
     assert p.steady == slice(64, 129) and p.params["N_a"] == Na
+    assert p.params["phase_deg"] == 90.0 and p.params["phase"] == phi and "90°" in p.label
 
 
 @settings(max_examples=30, deadline=None)
-@given(Nm=st.floats(0.5, 40.0), ratio=st.floats(0.0, 1.0), phase=st.floats(-np.pi, np.pi),
+@given(Nm=st.floats(0.5, 40.0), ratio=st.floats(0.0, 1.0), phase=st.floats(-180.0, 180.0),
        amp=st.floats(1e-8, 3e-6))
 def test_variable_load_cycles_are_closed_and_never_pull(Nm, ratio, phase, amp):
     p = paths.variable_load_cycles(SPHERE, Nm, ratio * Nm, amp, phase, steps_per_cycle=40)
@@ -54,7 +55,7 @@ def test_second_cycle_is_already_steady(model_name):
     for Nm, ratio, phi, amp in [(19.7, 0.9, 90, 1.0), (23.4, 0.6, 180, 0.35), (28.8, 0.3, 0, 3.0)]:
         spc = 90
         p = paths.variable_load_cycles(SPHERE, Nm, ratio * Nm, amp * SPHERE.gross_slip_displacement(Nm * (1 - ratio)),
-                                       np.radians(phi), cycles=3, steps_per_cycle=spc)
+                                       phi, cycles=3, steps_per_cycle=spc)
         T = p.simulate(model).T
         # measured: identical to round-off (<= 1e-13 of the peak)
         assert np.max(np.abs(T[spc:2 * spc + 1] - T[2 * spc:])) <= 1e-10 * np.max(np.abs(T))
@@ -96,11 +97,44 @@ def test_from_arrays():
     (lambda: paths.paper_fig4(SPHERE, raised_at=1.5), ValueError, r"raised_at must lie in \[0.0, 1.0\]"),
     (lambda: paths.loop(object(), 10.0, 1e-6), TypeError, "reference must provide approach"),
     (lambda: paths.default_family(SPHERE, 37.5, ratios=[0.5, 1.0]), ValueError, "ratios must be below 1"),
+    (lambda: paths.default_family(None, 37.5), TypeError,
+     r"reference must provide approach\(\), gross_slip_displacement\(\) .* got NoneType"),
+    (lambda: paths.paper_fig4(_OnlyNormal()), TypeError,
+     r"reference must provide backbone_displacement\(\), gross_slip_displacement\(\) .* got _OnlyNormal"),
+    (lambda: paths.paper_fig4(_NoMu()), TypeError, "reference must provide mu .* got _NoMu"),
+    (lambda: paths.loop(_OnlyNormal(), 10.0, 1e-6).N[0], None, None),
+    (lambda: paths.variable_load_cycles(None, 10.0, 1.0, 1e-6), TypeError, r"reference must provide approach\(\)"),
+    (lambda: paths.variable_load_cycles(SPHERE, 10.0, 1.0, 1e-6, phase_deg="90"), TypeError,
+     "phase_deg must be a real number, got '90'"),
+    (lambda: paths.from_arrays([0.0, 1.0, 2.0], n=[1e-6, 1e-6]), ValueError,
+     r"n must be a scalar or have the shape of t \(3,\), got shape \(2,\)"),
+    (lambda: paths.from_arrays([0.0, 1.0, 2.0], N=[1.0, 2.0], reference=SPHERE), ValueError,
+     r"N must be a scalar or have the shape of t \(3,\), got shape \(2,\)"),
     (lambda: paths.default_family(SPHERE, 37.5, levels=[0.5, 1.2]), ValueError, "levels must not exceed 1"),
 ])
 def test_bad_input(call, exc, message):
+    if exc is None:  # accepted: what it needs is there
+        call()
+        return
     with pytest.raises(exc, match=message):
         call()
+
+
+class _OnlyNormal:
+    """A reference with a normal law only (enough for loop, not for paper_fig4)."""
+
+    def approach(self, N):
+        return SPHERE.approach(N)
+
+
+class _NoMu(_OnlyNormal):
+    """Every method paper_fig4 calls, but no friction coefficient."""
+
+    def backbone_displacement(self, T, N):
+        return SPHERE.backbone_displacement(T, N)
+
+    def gross_slip_displacement(self, N):
+        return SPHERE.gross_slip_displacement(N)
 
 
 def test_default_family():

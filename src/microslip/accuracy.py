@@ -51,6 +51,33 @@ SHAKEDOWN_RTOL = 1e-9
 PARAMS = ("ratio", "phase_deg", "level", "amplitude", "N_m", "N_a", "phase", "t_a")
 
 
+def restriction_mask(paths, min_load: float = 0.0, min_amplitude: float = 0.0) -> np.ndarray:
+    """Which paths have their lowest load and their amplitude factor at least the given ones.
+
+    Parameters
+    ----------
+    paths : sequence of Path, length P
+        Paths with the default family's ``params`` (``N_m``, ``N_a`` in N,
+        ``amplitude``); a path lacking them is not kept.
+    min_load : float, default 0
+        Smallest lowest load ``N_m - N_a`` kept (N).
+    min_amplitude : float, default 0
+        Smallest amplitude factor kept (multiple of the gross-slip
+        displacement at the path's lowest load).
+
+    Returns
+    -------
+    ndarray of bool, shape (P,)
+        Both bounds met, with a relative tolerance of 1e-12 (round-off of the
+        loads computed from the levels).
+    """
+    lo = _checks.positive_scalar("min_load", min_load, allow_zero=True)
+    amin = _checks.positive_scalar("min_amplitude", min_amplitude, allow_zero=True)
+    get = lambda name: np.array([float(p.params.get(name, np.nan)) for p in paths])  # noqa: E731
+    with np.errstate(invalid="ignore"):
+        return (get("N_m") - get("N_a") >= lo * (1 - 1e-12)) & (get("amplitude") >= amin * (1 - 1e-12))
+
+
 class PathBatch:
     """Paths laid end to end for one kernel call, with the weights that turn forces into metrics.
 
@@ -165,7 +192,7 @@ class ReferenceRun:
 
     @property
     def paths(self) -> tuple:
-        """The paths run (tuple of :class:`~microslip.paths.Path`)."""
+        """The paths run: tuple of :class:`~microslip.paths.Path`, length P, in batch order (m)."""
         return self.batch.paths
 
     @cached_property
@@ -343,6 +370,32 @@ class AccuracyReport:
                               force_difference=self.force_difference[idx],
                               normal_difference=self.normal_difference[idx])
 
+    def restrict(self, min_load: float, min_amplitude: float = 0.0) -> "AccuracyReport":
+        """The report on the paths with lowest load ``N_m - N_a >= min_load`` (N) and amplitude factor
+        ``>= min_amplitude`` (:func:`restriction_mask`)."""
+        mask = restriction_mask(self.paths, min_load, min_amplitude)
+        if not mask.any():
+            raise ValueError(f"min_load {min_load:g} N and min_amplitude {min_amplitude:g} leave no path of the "
+                             "report")
+        return self.where(mask)
+
+    def worst_by_amplitude(self) -> tuple[np.ndarray, np.ndarray]:
+        """Worst ``|energy_error|`` (fraction) over the paths of each amplitude factor.
+
+        Returns
+        -------
+        amplitudes, worst : ndarray, shape (A,)
+            The distinct amplitude factors (increasing) and their worst error;
+            NaN where every path of that amplitude shakes down.
+        """
+        amp = self.param("amplitude")
+        if np.all(np.isnan(amp)):
+            raise ValueError("needs paths with an 'amplitude' parameter (default_family)")
+        levels = np.unique(amp[~np.isnan(amp)])
+        err = np.abs(self.energy_error)
+        worst = [np.nanmax(err[amp == a]) if np.any(~np.isnan(err[amp == a])) else np.nan for a in levels]
+        return levels, np.array(worst, dtype=float)
+
     def worst(self, name: str) -> tuple[float, int]:
         """Worst value of metric ``name`` (largest magnitude, sign kept) and the index of its path."""
         v = self.metric(name)
@@ -471,15 +524,13 @@ class AccuracyReport:
         """
         import matplotlib.pyplot as plt
 
-        amp = self.param("amplitude")
-        if np.all(np.isnan(amp)):
-            raise ValueError("plot_amplitude() needs paths with an 'amplitude' parameter (default_family)")
+        try:
+            levels, worst = self.worst_by_amplitude()
+        except ValueError as exc:
+            raise ValueError(f"plot_amplitude() {exc}") from None
         if ax is None:
             _, ax = plt.subplots(figsize=(5.5, 4))
-        levels = np.unique(amp[~np.isnan(amp)])
-        err = np.abs(self.energy_error) * 100
-        worst = [np.nanmax(err[amp == a]) if np.any(~np.isnan(err[amp == a])) else np.nan for a in levels]
-        ax.loglog(levels, worst, "o-", label=label, **kwargs)
+        ax.loglog(levels, 100 * worst, "o-", label=label, **kwargs)
         ax.axhline(10, color="0.5", ls=":", lw=1)
         ax.set_xlabel("tangential amplitude t_a / t_gs(N_min) (-)")
         ax.set_ylabel("worst |energy error| (%)")

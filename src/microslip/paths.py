@@ -15,7 +15,8 @@ Builders
     the Mindlin--Deresiewicz path of the paper's Fig. 4 (raise ``N`` at
     constant ``T``, then raise ``T``);
 :func:`variable_load_cycles`
-    ``t = t_a sin(tau)``, ``N = N_m + N_a sin(tau + phi)``;
+    ``t = t_a sin(tau)``, ``N = N_m + N_a sin(tau + phi)`` (``phi`` in degrees,
+    as everywhere in this module);
 :func:`from_arrays`
     any user history, given as approaches or as loads;
 :func:`default_family`
@@ -97,7 +98,21 @@ class Path:
         return self.t.size
 
     def simulate(self, model, *, per_element: bool = False):
-        """Run ``model`` (a :class:`~microslip.MicroslipModel`) along the path from the virgin state."""
+        """Run ``model`` along the path from the virgin state.
+
+        Parameters
+        ----------
+        model : MicroslipModel
+            The contact model to drive with ``t`` and ``n`` (m).
+        per_element : bool, default False
+            Record each element's force and condition too.
+
+        Returns
+        -------
+        Response
+            Forces in N, shapes ``(steps,)`` and, per element, ``(steps, J)``
+            (:meth:`MicroslipModel.simulate`).
+        """
         return model.simulate(self.t, self.n, per_element=per_element)
 
     def plot(self, ax=None):
@@ -128,6 +143,14 @@ class Path:
         return ax
 
 
+def _require(reference, *names):
+    """Refuse a reference lacking any of the methods ``names``, naming them."""
+    missing = [m for m in names if not callable(getattr(reference, m, None))]
+    if missing:
+        raise TypeError(f"reference must provide {', '.join(m + '()' for m in missing)} (e.g. a microslip.Sphere), "
+                        f"got {type(reference).__name__}")
+
+
 def _approach(reference, N, name="N"):
     """Approaches (m) of loads ``N`` (N) through ``reference.approach``; negative loads refused."""
     N = _checks.real_array(name, N)
@@ -135,8 +158,7 @@ def _approach(reference, N, name="N"):
         k = int(np.argmin(N))
         raise ValueError(f"{name} must be non-negative for the normal law (a contact cannot pull), "
                          f"got {float(N.ravel()[k]):.6g} N at sample {k}")
-    if not hasattr(reference, "approach"):
-        raise TypeError(f"reference must provide approach(N) (its normal law), got {type(reference).__name__}")
+    _require(reference, "approach")
     return np.asarray(reference.approach(N), dtype=float)
 
 
@@ -177,7 +199,7 @@ def loop(reference, normal_load, amplitude, *, cycles: int = 2, steps_per_cycle:
                 params={"N_m": N, "N_a": 0.0, "phase": 0.0, "t_a": ta})
 
 
-def variable_load_cycles(reference, mean_load, load_amplitude, amplitude, phase=0.0, *, cycles: int = 3,
+def variable_load_cycles(reference, mean_load, load_amplitude, amplitude, phase_deg=0.0, *, cycles: int = 3,
                          steps_per_cycle: int = 360) -> Path:
     """Periodic cycles ``t = t_a sin(tau)``, ``N = N_m + N_a sin(tau + phi)``.
 
@@ -191,8 +213,9 @@ def variable_load_cycles(reference, mean_load, load_amplitude, amplitude, phase=
         ``N_a`` (N), ``0 <= N_a <= N_m`` (the contact must stay closed).
     amplitude : float
         ``t_a`` (m), positive.
-    phase : float, default 0
-        ``phi`` (rad): the lead of the normal load on the tangential motion.
+    phase_deg : float, default 0
+        ``phi`` (degrees, as in :func:`default_family` and the path labels):
+        the lead of the normal load on the tangential motion.
     cycles : int, default 3
         Number of cycles; the last is the steady one.
     steps_per_cycle : int, default 360
@@ -201,20 +224,24 @@ def variable_load_cycles(reference, mean_load, load_amplitude, amplitude, phase=
     Returns
     -------
     Path
-        Periodic; starts at ``t = 0`` with ``N = N_m + N_a sin(phi)``.
+        Periodic; starts at ``t = 0`` with ``N = N_m + N_a sin(phi)``;
+        ``params`` ``N_m``, ``N_a`` (N), ``phase_deg`` (degrees), ``phase``
+        (the same in rad) and ``t_a`` (m).
     """
     Nm = _checks.positive_scalar("mean_load", mean_load)
     Na = _checks.positive_scalar("load_amplitude", load_amplitude, allow_zero=True)
     ta = _checks.positive_scalar("amplitude", amplitude)
-    phi = _checks.real_scalar("phase", phase)
+    phi_deg = _checks.real_scalar("phase_deg", phase_deg)
+    phi = np.radians(phi_deg)
     if Na > Nm:
         raise ValueError(f"load_amplitude must not exceed mean_load = {Nm:.6g} N (the normal load "
                          f"N_m - N_a would be negative), got {Na:.6g} N")
+    _require(reference, "approach")
     tau, steady = _cycles_grid(cycles, steps_per_cycle)
     N = np.maximum(Nm + Na * np.sin(tau + phi), 0.0)  # clip round-off below 0 when N_a = N_m
     return Path(t=ta * np.sin(tau), n=_approach(reference, N), N=N, steady=steady, periodic=True,
-                label=f"N = {Nm:.4g} + {Na:.4g} sin(tau + {np.degrees(phi):.0f}°) N, t_a = {ta * 1e6:.4g} µm",
-                params={"N_m": Nm, "N_a": Na, "phase": phi, "t_a": ta})
+                label=f"N = {Nm:.4g} + {Na:.4g} sin(tau + {phi_deg:.0f}°) N, t_a = {ta * 1e6:.4g} µm",
+                params={"N_m": Nm, "N_a": Na, "phase": phi, "phase_deg": phi_deg, "t_a": ta})
 
 
 def paper_fig4(reference, normal_load: float = 25.0, load_step: float = 12.5, raised_at: float = 0.5, *,
@@ -251,6 +278,9 @@ def paper_fig4(reference, normal_load: float = 25.0, load_step: float = 12.5, ra
     x = _checks.in_range("raised_at", raised_at, 0.0, 1.0)
     beyond = _checks.positive_scalar("beyond", beyond)
     steps = _checks.positive_int("steps", steps, minimum=2)
+    _require(reference, "approach", "backbone_displacement", "gross_slip_displacement")
+    if not hasattr(reference, "mu"):
+        raise TypeError(f"reference must provide mu (its friction coefficient), got {type(reference).__name__}")
     tA = float(reference.backbone_displacement(x * reference.mu * N, N))
     t_end = max(beyond * float(reference.gross_slip_displacement(N + dN)), tA)
     leg1 = np.linspace(0.0, tA, steps)
@@ -289,12 +319,20 @@ def from_arrays(t, n=None, *, N=None, reference=None, steady=None, periodic: boo
     if N is not None:
         if reference is None:
             raise ValueError("N= needs reference= (its normal law turns loads into approaches)")
-        N = np.broadcast_to(_checks.real_array("N", N), t.shape)
+        N = np.broadcast_to(_like_t("N", N, t), t.shape)
         n = _approach(reference, N)
     else:
-        n = np.broadcast_to(_checks.real_array("n", n), t.shape)
+        n = np.broadcast_to(_like_t("n", n, t), t.shape)
     return Path(t=t, n=n, N=None if N is None else N, steady=slice(0, t.size) if steady is None else steady,
                 periodic=periodic, label=label)
+
+
+def _like_t(name, values, t):
+    """``values`` checked finite and either a scalar or of the shape of ``t``."""
+    v = _checks.real_array(name, values)
+    if v.ndim and v.shape != t.shape:
+        raise ValueError(f"{name} must be a scalar or have the shape of t {t.shape}, got shape {v.shape}")
+    return v
 
 
 #: defaults of :func:`default_family`
@@ -326,7 +364,15 @@ def default_family(reference, normal_load, *, ratios=RATIOS, phases_deg=PHASES_D
         Normal law and gross-slip displacement.
     normal_load : float
         The tuning load ``N_tot`` (N).
-
+    ratios : array_like, shape (R,), default (0, 0.3, 0.6, 0.9)
+        Load ratios ``N_a / N_m`` (-), each in ``[0, 1)``.
+    phases_deg : array_like, shape (F,), default (0, 90, 180)
+        Phases ``phi`` (degrees) of the normal load on the tangential motion.
+    amplitudes : array_like, shape (A,), default (0.1, 0.2, 0.35, 0.5, 0.75, 1, 1.5, 2, 3)
+        Tangential amplitude factors (-), positive: multiples of the
+        gross-slip displacement at the path's lowest load.
+    levels : array_like, shape (L,), default (0.1, 0.325, 0.55, 0.775, 1)
+        Peak loads ``N_m + N_a`` (-) as fractions of ``normal_load``, in ``(0, 1]``.
     cycles : int, default 2
         Cycles per path; the last is measured. The first cycle already
         brings both the exact contact and the paper's array to their
@@ -338,8 +384,9 @@ def default_family(reference, normal_load, *, ratios=RATIOS, phases_deg=PHASES_D
     Returns
     -------
     list of Path
-        Each with ``params`` ``ratio``, ``phase_deg``, ``level``,
-        ``amplitude`` (the factor), ``N_m``, ``N_a``, ``t_a``.
+        ``(R - 1) F L A + L A`` paths when ``ratios`` holds one 0 (one phase
+        at ratio 0), each with ``params`` ``ratio``, ``phase_deg``, ``level``,
+        ``amplitude`` (the factor), ``N_m``, ``N_a`` (N), ``t_a`` (m).
 
     Notes
     -----
@@ -347,6 +394,7 @@ def default_family(reference, normal_load, *, ratios=RATIOS, phases_deg=PHASES_D
     mirror-image steady cycles (``t -> -t`` half a cycle later), so their
     metrics coincide.
     """
+    _require(reference, "approach", "gross_slip_displacement")
     N_tot = _checks.positive_scalar("normal_load", normal_load)
     ratios = _checks.positive_array("ratios", ratios, ndim=1, min_size=1, allow_zero=True)
     if float(ratios.max()) >= 1.0:
@@ -364,7 +412,7 @@ def default_family(reference, normal_load, *, ratios=RATIOS, phases_deg=PHASES_D
                 Na = r * Nm
                 t_gs = float(reference.gross_slip_displacement(Nm - Na))
                 for a in amps:
-                    p = variable_load_cycles(reference, Nm, Na, a * t_gs, np.radians(phi), cycles=cycles,
+                    p = variable_load_cycles(reference, Nm, Na, a * t_gs, phi, cycles=cycles,
                                              steps_per_cycle=steps_per_cycle)
                     paths.append(replace(p, params={**p.params, "ratio": float(r), "level": float(lev),
                                                     "phase_deg": float(phi) if r else 0.0,

@@ -336,7 +336,8 @@ def _next_gap(reference, kn, gaps, n_tot, element):
     return optimize.brentq(residual, x_max, n_tot, xtol=1e-15 * n_tot, rtol=4 * np.finfo(float).eps)
 
 
-def tune(reference, normal_load, *, forces=None, displacements=None, elements=None) -> MicroslipModel:
+def tune(reference, normal_load, *, forces=None, displacements=None, elements=None, load_range=None,
+         energy_target=None, force_target=None, progress: bool = False) -> MicroslipModel:
     """Tune the paper's microslip array on a reference contact.
 
     Parameters
@@ -355,7 +356,24 @@ def tune(reference, normal_load, *, forces=None, displacements=None, elements=No
         increasing, the last at the gross-slip displacement.
     elements : int, optional
         Number of elements ``J``; the points are then evenly spaced in force,
-        ``T_j = j mu N_tot / J`` (the paper's choice).
+        ``T_j = j mu N_tot / J`` (the paper's choice), unless ``load_range``
+        is given.
+    load_range : (float, float), optional
+        ``(N_lo, N_hi)`` (N), ``N_hi = normal_load``: choose the points by
+        measurement instead, to minimise the worst error against the exact
+        contact over the variable-normal-load cycles within that range
+        (:mod:`microslip.tuning_target`). With ``elements`` the ``J`` points
+        are optimised; without, the smallest ``J`` (up to 32) meeting
+        ``energy_target`` and ``force_target`` is found, with its optimised
+        points. The paper's sphere over 7.5-37.5 N (amplitudes from half the
+        gross-slip displacement, equal targets) reuses the points stored with
+        the package: milliseconds for a given J, seconds for the smallest J;
+        any other problem is searched afresh, which takes minutes.
+    energy_target, force_target : float, optional
+        With ``load_range``: worst allowed ``|energy error|`` and force
+        difference (fractions; 0.02 each when not given).
+    progress : bool, default False
+        With ``load_range``: show the search's progress on standard error.
 
     Returns
     -------
@@ -369,6 +387,9 @@ def tune(reference, normal_load, *, forces=None, displacements=None, elements=No
     TuningError
         Points not concave (names the point), or eq. (9) without solution
         for some element (names it and the condition that fails).
+    TargetNotMet
+        With ``load_range`` and no ``elements``: no J up to 32 meets the
+        targets (its ``best`` holds the best found).
 
     Examples
     --------
@@ -376,7 +397,18 @@ def tune(reference, normal_load, *, forces=None, displacements=None, elements=No
     >>> model = tune(Sphere.paper(), 37.5, elements=4)
     >>> model.elements, round(float(model.slip_force(Sphere.paper().approach(37.5))), 6)
     (4, 15.0)
+    >>> tune(Sphere.paper(), 37.5, elements=6, load_range=(7.5, 37.5)).elements
+    6
     """
+    if load_range is not None or energy_target is not None or force_target is not None:
+        if load_range is None:
+            raise ValueError("energy_target= and force_target= need load_range=(N_lo, N_hi) in N (the loads the "
+                             "targets are measured over)")
+        from .tuning_target import tune_over_range  # lazy: tuning_target imports this module
+
+        return tune_over_range(reference, normal_load, load_range, elements=elements, energy_target=energy_target,
+                               force_target=force_target, forces=forces, displacements=displacements,
+                               progress=progress)
     pts = tuning_points(reference, normal_load, forces=forces, displacements=displacements,
                         elements=elements)
     return model_from_points(reference, pts)

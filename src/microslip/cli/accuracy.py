@@ -51,7 +51,7 @@ def run(args) -> int:
     from .._checks import positive_int, positive_scalar
     from .._io import atomic_write, save_figure
     from .._progress import Progress
-    from ..accuracy import accuracy
+    from ..accuracy import accuracy, restriction_mask
     from ..model import MicroslipModel
     from ..paths import default_family
     from ..reference.mdr import mdr
@@ -86,9 +86,9 @@ def run(args) -> int:
     text = [f"model {args.model} (J = {model.elements}) against the exact contact (MDR, "
             f"{args.mdr_elements} elements), tuning load {args.load:g} N", "", "all paths:", report.summary_text()]
     if args.min_load is not None:
-        Nmin = report.param("N_m") - report.param("N_a")
-        mask = (Nmin >= args.min_load * (1 - 1e-12)) & (report.param("amplitude") >= args.min_amplitude)
+        mask = restriction_mask(report.paths, args.min_load, args.min_amplitude)
         if not mask.any():
+            Nmin = report.param("N_m") - report.param("N_a")
             raise ValueError(f"no path of the family has its lowest load >= --min-load {args.min_load:g} N and "
                              f"an amplitude >= --min-amplitude {args.min_amplitude:g} t_gs(N_min); the lowest "
                              f"loads run from {Nmin.min():.4g} to {Nmin.max():.4g} N, the amplitudes up to "

@@ -80,7 +80,8 @@ def add_parser(sub) -> None:
                    help="largest J tried when searching for the smallest (default 32)")
     p.add_argument("--reuse-points", action="store_true",
                    help="with --sweep: re-measure the optimised points stored with the package instead of "
-                        "searching again (fast; the paper's sphere and load range only)")
+                        "searching again (fast; refused unless the problem is theirs: the paper's sphere, "
+                        "7.5N,37.5N, --min-amplitude 0.5, equal targets)")
     p.add_argument("--start-from-stored", action="store_true",
                    help="with --sweep: start each J's search from the points stored with the package too (the "
                         "result is then never worse than them)")
@@ -95,6 +96,7 @@ def run(args) -> int:
     from .._progress import Progress
     from ..tuning_target import TargetNotMet, TargetProblem, optimal_points, smallest_elements
 
+    _check_options(args)
     reference = sphere_from(args)
     bar = Progress(1, enabled=not args.quiet)
     bar.step("load paths and exact reference")
@@ -119,6 +121,25 @@ def run(args) -> int:
     return 0
 
 
+def _check_options(args) -> None:
+    """Refuse bad numbers naming the option, the value as typed and its unit (before any computation)."""
+    for option, value, unit in (("--energy-target", args.energy_target, "%"),
+                                ("--force-target", args.force_target, "% of the reference's peak force")):
+        if not (value > 0 and value < float("inf")):
+            raise ValueError(f"{option} must be a positive percentage, got {value:g} ({unit})")
+    if not (args.min_amplitude >= 0 and args.min_amplitude < float("inf")):
+        raise ValueError(f"--min-amplitude must be a non-negative multiple of the gross-slip displacement, "
+                         f"got {args.min_amplitude:g}")
+    for option, value in (("--elements", args.elements), ("--max-elements", args.max_elements),
+                          ("--budget", args.budget)):
+        if value is not None and value < 1:
+            raise ValueError(f"{option} must be a positive integer, got {value}")
+    if args.seed < 0:
+        raise ValueError(f"--seed must be a non-negative integer, got {args.seed}")
+    if args.reuse_points and args.sweep is None:
+        raise ValueError("--reuse-points applies to --sweep only")
+
+
 def _search(args) -> dict:
     """Options of the point search from the command line."""
     return {"method": args.method, "budget": args.budget, "seed": args.seed}
@@ -134,9 +155,15 @@ def _sweep(args, problem) -> int:
     import matplotlib.pyplot as plt
 
     from .._io import atomic_write, save_figure, write_csv
-    from ..tuning_target import element_sweep, load_optimal_points, points_record
+    from ..tuning_target import element_sweep, load_optimal_points, points_record, stored_mismatch
 
     stored = load_optimal_points()["fractions"] if args.reuse_points or args.start_from_stored else None
+    if args.reuse_points:
+        why = stored_mismatch(problem.reference, problem.load_range, min_amplitude=problem.min_amplitude,
+                              energy_target=problem.energy_target, force_target=problem.force_target)
+        if why:
+            raise ValueError(f"--reuse-points: the stored points do not solve this problem ({why}); drop "
+                             "--reuse-points to search (minutes), or --start-from-stored to start from them")
     sweep = element_sweep(problem, args.sweep, fractions=stored if args.reuse_points else None,
                           starts=stored if args.start_from_stored else None, progress=not args.quiet, **_search(args))
     out = Path(args.out)

@@ -26,6 +26,12 @@ def _quantity_list(kind):
     return convert
 
 
+def _load_range(text):
+    from .target import _load_range as parse  # lazy: cli.target imports this module
+
+    return parse(text)
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser(
         "tune", help="tune a microslip model and write it as JSON",
@@ -54,6 +60,11 @@ def add_parser(sub) -> None:
                      help="tuning forces, comma-separated, increasing, last = mu*N_tot (e.g. 3.75N,7.5N,11.25N,15N)")
     pts.add_argument("--displacements", type=_quantity_list("length"), default=None,
                      help="tuning displacements, comma-separated, increasing, last at gross slip")
+    p.add_argument("--load-range", type=_load_range, default=None,
+                   help="sphere only: loads N_lo,N_hi the contact meets, e.g. 7.5N,37.5N; the points of --elements "
+                        "are then optimised for the worst error over that range (see 'microslip target'); --load "
+                        "defaults to N_hi. The paper's sphere over 7.5N,37.5N reuses stored points (instant); "
+                        "other problems are searched afresh (minutes)")
     g = p.add_argument_group("measured loops (with LOOPS): cylinder on a plane; --radius, --E, --nu above apply")
     g.add_argument("--normal-law", default="palmgren",
                    help="normal force-approach law: 'palmgren' (Harris), 'lundberg' (Lundberg-Sjovall), or a "
@@ -78,6 +89,8 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    if args.loops and args.load_range is not None:
+        raise ValueError("--load-range applies to the sphere only, not to measured LOOPS")
     if args.loops:
         return _run_loops(args)
     from ..tuning import tune
@@ -86,9 +99,16 @@ def run(args) -> int:
         args.mu = 0.4
     reference = sphere_from(args)
     points_given = args.forces is not None or args.displacements is not None
-    model = tune(reference, 37.5 if args.load is None else args.load, forces=args.forces,
-                 displacements=args.displacements,
-                 elements=None if points_given else (4 if args.elements is None else args.elements))
+    load = 37.5 if args.load is None else args.load
+    extra = {}
+    if args.load_range is not None:
+        if points_given:
+            raise ValueError("--load-range chooses the tuning points itself: give --elements, not --forces or "
+                             "--displacements")
+        load = args.load_range[1] if args.load is None else args.load
+        extra = {"load_range": args.load_range, "progress": not args.quiet}
+    model = tune(reference, load, forces=args.forces, displacements=args.displacements,
+                 elements=None if points_given else (4 if args.elements is None else args.elements), **extra)
     model.save(args.output)
     print(json.dumps({"written": args.output, "elements": model.elements, "mu": model.mu}))
     return 0

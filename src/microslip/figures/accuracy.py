@@ -23,9 +23,8 @@ SUMMARY_HEADERS = ["metric", "worst (%)", "median of abs (%)", "where the worst 
 
 def compute(case) -> dict:
     report = accuracy(case.model, family_run(case))
-    Nmin = report.param("N_m") - report.param("N_a")
-    mask = (Nmin >= LOW_LOAD * case.normal_load * (1 - 1e-12)) & (report.param("amplitude") >= 0.5)
-    return {"report": report, "restricted": report.where(mask), "normal_load": case.normal_load}
+    return {"report": report, "restricted": report.restrict(LOW_LOAD * case.normal_load, 0.5),
+            "normal_load": case.normal_load}
 
 
 def plot(data):

@@ -4,12 +4,10 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-import numpy as np
-
 from ..accuracy import reference_run
 from ..paths import default_family
 from ..reference.mdr import mdr
-from ..tuning_target import TargetProblem, element_sweep, load_optimal_points
+from ..tuning_target import TargetProblem, element_sweep, stored_fractions
 
 #: lowest load of the target family, as a fraction of the tuning load (the issue's N >= 0.2 N_tot)
 LOW_LOAD = 0.2
@@ -32,12 +30,7 @@ def problem(case) -> TargetProblem:
 
 def stored_points(case):
     """The optimised points stored with the package, or None when they were found for another problem."""
-    data = load_optimal_points()
-    p, s = data["problem"], case.sphere
-    same = (np.isclose(p["radius"], s.radius) and np.isclose(p["E"], s.E) and np.isclose(p["nu"], s.nu)
-            and np.isclose(p["mu"], s.mu)
-            and np.allclose(p["load_range"], [LOW_LOAD * case.normal_load, case.normal_load]))
-    return data["fractions"] if same else None
+    return stored_fractions(case.sphere, (LOW_LOAD * case.normal_load, case.normal_load))
 
 
 @lru_cache(maxsize=2)
