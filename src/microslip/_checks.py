@@ -88,6 +88,15 @@ def in_range(name: str, value, lo: float, hi: float, *, lo_open=False, hi_open=F
     return x
 
 
+def positive_pair(name: str, value, what: str) -> tuple[float, float]:
+    """Two positive finite numbers ``(a, b)``; ``what`` describes them in the message (e.g. ``"(lo, hi) in N"``)."""
+    try:
+        a, b = value
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a pair {what}, got {_show(value)}") from None
+    return positive_scalar(f"{name}[0]", a), positive_scalar(f"{name}[1]", b)
+
+
 def positive_int(name: str, value, *, minimum: int = 1) -> int:
     """An integer >= ``minimum``."""
     if type(value) is not int and (  # a plain int passes at once (the hot paths)

@@ -263,12 +263,7 @@ def dense_options(min_amplitude: float = 0.5, *, amplitudes: int = 40, levels: i
 
 
 def _load_range(load_range):
-    try:
-        lo, hi = load_range
-    except (TypeError, ValueError):
-        raise TypeError(f"load_range must be a pair (N_lo, N_hi) in N, got {load_range!r}") from None
-    lo = _checks.positive_scalar("load_range[0]", lo)
-    hi = _checks.positive_scalar("load_range[1]", hi)
+    lo, hi = _checks.positive_pair("load_range", load_range, "(N_lo, N_hi) in N")
     if not lo < hi:
         raise ValueError(f"load_range must satisfy N_lo < N_hi, got ({lo:g}, {hi:g}) N")
     return lo, hi

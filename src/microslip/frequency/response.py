@@ -235,12 +235,7 @@ class FrequencyResponse:
 
 
 def _omega_range(omega) -> tuple[float, float]:
-    try:
-        lo, hi = omega
-    except (TypeError, ValueError):
-        raise TypeError(f"omega must be a pair (start, end) of frequencies in rad/s, got {omega!r}") from None
-    lo = _checks.positive_scalar("omega[0]", lo)
-    hi = _checks.positive_scalar("omega[1]", hi)
+    lo, hi = _checks.positive_pair("omega", omega, "(start, end) of frequencies in rad/s")
     if lo == hi:
         raise ValueError(f"omega must span a range, got start = end = {lo!r}")
     return lo, hi
