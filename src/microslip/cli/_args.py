@@ -20,6 +20,13 @@ def quantity(kind: str, default_unit: str | None = None):
     return convert
 
 
+def add_output_folder(parser, default: str, *names: str) -> None:
+    """``--out DIR`` (and any extra ``names``) for a command that writes a folder, plus ``--quiet``."""
+    parser.add_argument(*names, "--out", dest="out", default=default,
+                        help=f"folder to write into, created if needed (default ./{default})")
+    parser.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
+
+
 def add_sphere_options(parser) -> None:
     """Options that describe a sphere on a plane (defaults: the paper's benchmark)."""
     g = parser.add_argument_group("sphere on a plane (defaults: the paper's benchmark)")

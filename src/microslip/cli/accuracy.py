@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ._args import add_sphere_options, quantity, sphere_from
+from ._args import add_output_folder, add_sphere_options, quantity, sphere_from
 
 
 def add_parser(sub) -> None:
@@ -39,9 +39,7 @@ def add_parser(sub) -> None:
     p.add_argument("--min-amplitude", type=float, default=0.5,
                    help="with --min-load: and whose amplitude is at least this multiple of the gross-slip "
                         "displacement at their lowest load (default 0.5)")
-    p.add_argument("--out", default="microslip-accuracy",
-                   help="folder to write into, created if needed (default ./microslip-accuracy)")
-    p.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
+    add_output_folder(p, "microslip-accuracy")
     p.set_defaults(func=run)
 
 

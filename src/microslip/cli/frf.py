@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ._args import add_output_folder
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser(
@@ -20,9 +22,7 @@ def add_parser(sub) -> None:
                     "before the end of the range (the results up to there are written), 2 for an invalid "
                     "configuration.")
     p.add_argument("config", help="TOML configuration file")
-    p.add_argument("-o", "--output", default="microslip-frf",
-                   help="folder for the results (default ./microslip-frf)")
-    p.add_argument("--quiet", action="store_true", help="do not report progress along the curve")
+    add_output_folder(p, "microslip-frf", "-o", "--output")
     p.set_defaults(func=run)
 
 
@@ -65,7 +65,7 @@ def run(args) -> int:
     from ..report import Report
 
     cfg = load_config(args.config)
-    out = Path(args.output)
+    out = Path(args.out)
     try:
         with warnings.catch_warnings():  # an incomplete curve is reported below, as an error
             warnings.simplefilter("ignore", IncompleteCurveWarning)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ._args import add_output_folder
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser(
@@ -12,9 +14,7 @@ def add_parser(sub) -> None:
                     "steel E = 200 GPa, nu = 0.3, mu = 0.4, tuned at 37.5 N with 4 elements): each as PNG "
                     "plus a CSV of the plotted data, then report.html (self-contained) and report.md with "
                     "a table of the differences between the discrete model and the continuous reference.")
-    p.add_argument("--out", default="microslip-results",
-                   help="folder to write into, created if needed (default ./microslip-results)")
-    p.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
+    add_output_folder(p, "microslip-results")
     p.set_defaults(func=run)
 
 

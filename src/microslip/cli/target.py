@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ._args import add_sphere_options, sphere_from
+from ._args import add_output_folder, add_sphere_options, sphere_from
 from .tune import _quantity_list
 
 
@@ -87,8 +87,7 @@ def add_parser(sub) -> None:
                         "result is then never worse than them)")
     p.add_argument("--save-points", default=None, help="with --sweep: write the optimised points to this JSON file")
     p.add_argument("-o", "--output", default="model.json", help="model file to write (default model.json)")
-    p.add_argument("--out", default="microslip-target", help="folder for the sweep's outputs")
-    p.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
+    add_output_folder(p, "microslip-target")
     p.set_defaults(func=run)
 
 
