@@ -377,21 +377,18 @@ class MicroslipModel:
         t = _checks.real_scalar("t", t)
         n = _checks.real_scalar("n", n)
         s = self._check_state(state)
-        Ni = self.kn * np.maximum(n - self.gaps, 0.0)
-        lim = self.mu * Ni
-        trial = self.kt * (t - s)
-        slip = np.abs(trial) > lim
-        Ti = np.where(slip, np.sign(trial) * lim, trial)
-        s = np.where(slip, t - Ti / self.kt, s)
-        closed = Ni > 0
-        cond = np.where(closed, np.where(slip, SLIP, STICK), OPEN).astype(np.int8)
-        stick = cond == STICK
-        slipping = cond == SLIP
+        T, N = np.empty(1), np.empty(1)
+        Ti = np.empty((1, self.elements))
+        cond = np.empty((1, self.elements), dtype=np.int8)
+        _kernels.march(self.kt, self.kn, self.gaps, self.mu, np.array([t]), np.array([n]), s, T, N,
+                       _kernels.NO_WORK, Ti, cond)  # the one return mapping, on one sample
+        Ti, cond = Ti[0], cond[0]
+        stick, slipping = cond == STICK, cond == SLIP
         return Step(
-            T=float(Ti.sum()), N=float(Ni.sum()), Ti=Ti, Ni=Ni, condition=cond,
+            T=float(T[0]), N=float(N[0]), Ti=Ti, Ni=self.kn * np.maximum(n - self.gaps, 0.0), condition=cond,
             dT_dt=float(self.kt[stick].sum()),
             dT_dn=float((np.sign(Ti) * self.mu * self.kn)[slipping].sum()),
-            dN_dn=float(self.kn[closed].sum()),
+            dN_dn=float(self.kn[cond != OPEN].sum()),
             state=State(s),
         )
 
