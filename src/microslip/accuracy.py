@@ -322,7 +322,7 @@ class AccuracyReport:
     @property
     def work_scale(self) -> np.ndarray:
         """``max|T_ref| * (max t - min t)`` over the steady part of each path (J): the elastic work's scale."""
-        return self.peak_reference * np.array([np.ptp(p.t[p.steady]) for p in self.paths])
+        return self.peak_reference * np.array([p.steady_span for p in self.paths])
 
     @property
     def shakedown(self) -> np.ndarray:

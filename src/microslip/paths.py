@@ -29,6 +29,7 @@ Normal loads are turned into approaches through the reference's normal law
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -96,6 +97,11 @@ class Path:
 
     def __len__(self) -> int:
         return self.t.size
+
+    @cached_property
+    def steady_span(self) -> float:
+        """``max t - min t`` over the steady part (m)."""
+        return float(np.ptp(self.t[self.steady]))
 
     def simulate(self, model, *, per_element: bool = False):
         """Run ``model`` along the path from the virgin state.
