@@ -13,7 +13,7 @@ from . import _checks
 from .accuracy import AccuracyReport, accuracy, reference_run, restriction_mask
 from .paths import default_family
 from .reference.mdr import mdr
-from .tuning import TuningPoints, tune, tuning_points
+from .tuning import TuningPoints, model_from_points, tuning_points
 
 SPACINGS = ("force", "displacement", "optimal")
 
@@ -221,14 +221,14 @@ class TargetProblem:
         """Tune at ``N_hi`` on the points ``t_j = fractions[j] * t_gs(N_hi)``; returns ``(model, points)``."""
         t = np.asarray(fractions, dtype=float) * float(self.reference.gross_slip_displacement(self.normal_load))
         pts = tuning_points(self.reference, self.normal_load, displacements=t)
-        return tune(self.reference, self.normal_load, displacements=t), pts
+        return model_from_points(self.reference, pts), pts
 
     def tune_spacing(self, spacing: str, elements: int) -> TargetTuning:
         """The model with ``elements`` points spaced evenly in ``'force'`` or ``'displacement'``."""
         J = _checks.positive_int("elements", elements, minimum=1)
         if spacing == "force":
             pts = tuning_points(self.reference, self.normal_load, elements=J)
-            model = tune(self.reference, self.normal_load, elements=J)
+            model = model_from_points(self.reference, pts)
         elif spacing == "displacement":
             model, pts = self.tune_fractions(np.arange(1, J + 1) / J)
         else:
