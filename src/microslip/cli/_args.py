@@ -20,6 +20,25 @@ def quantity(kind: str, default_unit: str | None = None):
     return convert
 
 
+def quantity_list(kind: str):
+    """An argparse ``type`` for comma-separated quantities, ``"3.75N,7.5N"`` -> ``[3.75, 7.5]`` (SI)."""
+    one = quantity(kind)
+
+    def convert(text):
+        return [one(p) for p in str(text).split(",") if p.strip()]
+
+    convert.__name__ = f"comma-separated {kind} quantities"
+    return convert
+
+
+def load_range(text):
+    """An argparse ``type`` for two loads ``N_lo,N_hi`` (``"7.5N,37.5N"``) -> ``(7.5, 37.5)`` (N)."""
+    loads = quantity_list("force")(text)
+    if len(loads) != 2:
+        raise argparse.ArgumentTypeError(f"expected two loads N_lo,N_hi such as 7.5N,37.5N, got {text!r}")
+    return tuple(loads)
+
+
 def add_output_folder(parser, default: str, *names: str) -> None:
     """``--out DIR`` (and any extra ``names``) for a command that writes a folder, plus ``--quiet``."""
     parser.add_argument(*names, "--out", dest="out", default=default,

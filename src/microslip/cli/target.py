@@ -5,17 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ._args import add_output_folder, add_sphere_options, sphere_from
-from .tune import _quantity_list
-
-
-def _load_range(text):
-    import argparse
-
-    loads = _quantity_list("force")(text)
-    if len(loads) != 2:
-        raise argparse.ArgumentTypeError(f"expected two loads N_lo,N_hi such as 7.5N,37.5N, got {text!r}")
-    return tuple(loads)
+from ._args import add_output_folder, add_sphere_options, load_range, sphere_from
 
 
 def _elements_list(text):
@@ -52,7 +42,7 @@ def add_parser(sub) -> None:
     p.add_argument("--reference", choices=["sphere"], default="sphere",
                    help="the reference contact (default: sphere)")
     add_sphere_options(p)
-    p.add_argument("--load-range", type=_load_range, default=(7.5, 37.5),
+    p.add_argument("--load-range", type=load_range, default=(7.5, 37.5),
                    help="loads N_lo,N_hi the contact meets, e.g. 7.5N,37.5N (default); tuned at N_hi")
     p.add_argument("--energy-target", type=float, default=2.0,
                    help="worst allowed |energy-per-cycle error|, %% (default 2)")

@@ -13,23 +13,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ._args import add_sphere_options, quantity, sphere_from
-
-
-def _quantity_list(kind):
-    one = quantity(kind)
-
-    def convert(text):
-        return [one(p) for p in str(text).split(",") if p.strip()]
-
-    convert.__name__ = f"comma-separated {kind} quantities"
-    return convert
-
-
-def _load_range(text):
-    from .target import _load_range as parse  # lazy: cli.target imports this module
-
-    return parse(text)
+from ._args import add_sphere_options, load_range, quantity, quantity_list, sphere_from
 
 
 def add_parser(sub) -> None:
@@ -56,11 +40,11 @@ def add_parser(sub) -> None:
     pts = p.add_mutually_exclusive_group()
     pts.add_argument("--elements", type=int, default=None,
                      help="number of elements J; points evenly spaced in force (default 4)")
-    pts.add_argument("--forces", type=_quantity_list("force"), default=None,
+    pts.add_argument("--forces", type=quantity_list("force"), default=None,
                      help="tuning forces, comma-separated, increasing, last = mu*N_tot (e.g. 3.75N,7.5N,11.25N,15N)")
-    pts.add_argument("--displacements", type=_quantity_list("length"), default=None,
+    pts.add_argument("--displacements", type=quantity_list("length"), default=None,
                      help="tuning displacements, comma-separated, increasing, last at gross slip")
-    p.add_argument("--load-range", type=_load_range, default=None,
+    p.add_argument("--load-range", type=load_range, default=None,
                    help="sphere only: loads N_lo,N_hi the contact meets, e.g. 7.5N,37.5N; the points of --elements "
                         "are then optimised for the worst error over that range (see 'microslip target'); --load "
                         "defaults to N_hi. The paper's sphere over 7.5N,37.5N reuses stored points (instant); "
