@@ -41,7 +41,7 @@ def plot_elements(result, normal_load=None, ax=None):
     """Paper Fig. 6a-b: the measured loop, the model's loop and each element's loop at a load (N)."""
     import matplotlib.pyplot as plt
 
-    from .figures.case import element_colors
+    from ._style import element_colors
 
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 4.4))
@@ -73,7 +73,7 @@ def plot_normal(result, ax=None, *, others=()):
     """
     import matplotlib.pyplot as plt
 
-    from .figures.case import element_colors
+    from ._style import element_colors
 
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 4.4))

@@ -5,7 +5,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 
-import numpy as np
 
 from ..model import MicroslipModel
 from ..reference import Sphere
@@ -54,11 +53,3 @@ class PaperCase:
     def gross_slip(self) -> float:
         """Gross-slip displacement at the tuning load (m)."""
         return float(self.sphere.gross_slip_displacement(self.normal_load))
-
-
-def element_colors(J: int):
-    """One colour per element, consistent across the figures (element 1 first)."""
-    import matplotlib
-
-    cmap = matplotlib.colormaps["viridis"]
-    return [cmap(x) for x in np.linspace(0.0, 0.85, J)]
