@@ -5,7 +5,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 
-
 from ..model import MicroslipModel
 from ..reference import Sphere
 from ..tuning import TuningPoints, model_from_points, tuning_points
