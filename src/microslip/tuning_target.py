@@ -31,9 +31,8 @@ importable from here.
 """
 
 from .target_points import load_optimal_points, points_record, stored_fractions, stored_mismatch
-from .target_problem import _load_range  # noqa: F401  (private helpers kept importable from here)
 from .target_problem import REFERENCE_ELEMENTS, SPACINGS, TargetProblem, TargetTuning, dense_options
-from .target_search import _evolve, _fractions, _log_spacings, _resample, _starts  # noqa: F401  (as above)
+from .target_search import _fractions, _log_spacings  # noqa: F401  (private helpers the tests use)
 from .target_search import (METHODS, POPULATION, TargetNotMet, optimal_points, smallest_elements, tune_over_range,
                             tune_to_target)
 from .target_sweep import ElementSweep, element_sweep
