@@ -4,7 +4,6 @@ import numpy as np
 import pytest
 
 import microslip.target_search as target_search
-import microslip.tuning_target as tt
 from microslip import Sphere, TargetNotMet, TargetProblem, tune, tune_to_target
 from microslip.tuning_target import load_optimal_points, stored_fractions, stored_mismatch
 
@@ -50,7 +49,7 @@ def test_other_problems_are_searched_afresh():
 
 def test_unreachable_targets_raise_with_the_best_found(monkeypatch):
     # every J up to 32 "stored" (resampled) so the test re-measures rather than searches
-    known = {J: tt._resample(STORED["fractions"][16], J) for J in range(2, 33)}
+    known = {J: target_search._resample(STORED["fractions"][16], J) for J in range(2, 33)}
     monkeypatch.setattr(target_search, "stored_fractions", lambda *a, **k: known)
     with pytest.raises(TargetNotMet, match=r"no J up to max_elements = 32 meets the target .* best found is J = \d+"):
         tune(SPHERE, 37.5, load_range=(7.5, 37.5), energy_target=1e-4, force_target=1e-4)
