@@ -412,11 +412,11 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
 
 def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> float:
     """Largest dynamic response of the structure with its contacts stuck, over the range (m)."""
+    # x_static has no harmonics, so the residual R does not depend on omega: evaluated once
     R, Jx, _ = hb._evaluate(x_static, lo)
     Jc = Jx - hb.dynamic_stiffness(lo)
     best = 0.0
     for w in np.linspace(lo, hi, grid):
-        R = hb._evaluate(x_static, w, jacobian=False)
         dx = hb.solve(hb.dynamic_stiffness(w) + Jc, -R)
         if np.all(np.isfinite(dx)):
             best = max(best, float(np.max(np.abs(dx[hb.ndof:]))))
