@@ -19,6 +19,7 @@ import scipy.sparse.linalg as spla
 from .. import _checks
 from .._io import write_csv
 from .._progress import Progress
+from ..units import unit_factor
 from .aft import MAX_PERIODS, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance
@@ -181,8 +182,9 @@ class FrequencyResponse:
             Where to draw (a new figure if omitted).
         label : str, optional
             Legend label.
-        unit : {"µm", "mm", "m"}
-            Displacement unit of the plot.
+        unit : str, default "µm"
+            Displacement unit of the plot: a length unit of :mod:`microslip.units`
+            ("µm", "mm", "m", "nm", "in", ...).
         **kwargs
             Passed to ``Axes.plot``.
 
@@ -192,9 +194,10 @@ class FrequencyResponse:
         """
         import matplotlib.pyplot as plt
 
-        factor = {"µm": 1e6, "um": 1e6, "mm": 1e3, "m": 1.0}.get(unit)
-        if factor is None:
-            raise ValueError(f"unit must be one of 'µm', 'mm', 'm', got {unit!r}")
+        try:
+            factor = 1.0 / unit_factor(unit, "length")
+        except ValueError as exc:
+            raise ValueError(f"unit must be one of the length units, got {unit!r} ({exc})") from None
         if ax is None:
             _, ax = plt.subplots(figsize=(6, 4))
         ax.plot(self.omega, self.amplitude(dof, harmonic) * factor, label=label, **kwargs)
