@@ -102,7 +102,7 @@ class HarmonicBalance:
         self.nb = nb = 2 * H + 1
         self.ndof = ndof = structure.ndof
         self.n = nb * ndof
-        self.samples = check_samples(samples, H) if H else 1 if samples is None else check_samples(samples, H)
+        self.samples = check_samples(samples, H)
         self.max_periods = _checks.positive_int("max_periods", max_periods)
         self.tables = _aft.tables(H, self.samples)
         self.f_ext = excitation(structure, force, H)
