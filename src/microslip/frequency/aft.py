@@ -233,8 +233,8 @@ def aft(model: MicroslipModel, t, n, *, samples: int | None = None,
     nb = t.size
     T, N = np.empty(nb), np.empty(nb)
     dT_dt, dT_dn, dN_dn = np.empty((nb, nb)), np.empty((nb, nb)), np.empty((nb, nb))
-    periods = _aft.aft_contact(model.kt, model.kn, model.gaps, model.mu, t, n, *_aft.tables(H, Ns), max_periods,
-                               T, N, dT_dt, dT_dn, dN_dn)
+    periods = _aft._aft_contact(model.kt, model.kn, model.gaps, model.mu, t, n, *_aft.tables(H, Ns), max_periods,
+                                T, N, dT_dt, dT_dn, dN_dn)
     check_periodic(periods, max_periods)
     return AFTResult(T, N, dT_dt, dT_dn, dN_dn, int(periods), Ns)
 
