@@ -167,7 +167,7 @@ def test_tuned_sphere_contact_with_many_elements():
 
 
 def test_default_samples():
-    assert [default_samples(h) for h in (0, 1, 2, 7, 8, 9, 20)] == [32, 32, 32, 128, 128, 256, 512]
+    assert [default_samples(h) for h in (0, 1, 2, 7, 8, 9, 20)] == [1, 32, 32, 128, 128, 256, 512]
 
 
 @pytest.mark.parametrize("call, message", [

@@ -27,9 +27,6 @@ def add_parser(sub) -> None:
 
 
 def _plots(result, cfg):
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
@@ -58,7 +55,6 @@ def run(args) -> int:
     import sys
     import warnings
 
-    from .._io import save_figure
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, frequency_response
     from ..frequency.response import incomplete_message
     from ..frequency.config import load_config
@@ -96,7 +92,6 @@ def run(args) -> int:
                     f"largest energy dissipated per cycle {result.contact_dissipation[:, c].max():.6g} J.")
         print(_static_text(result, c))
     for name, fig, caption in _plots(result, cfg):
-        save_figure(fig, out / f"{name}.png", dpi=150, bbox_inches="tight")
         report.figure(fig, name, caption, out)
     report.write(out)
     print(f"wrote {csv}, {out / 'frf.png'} and {out / 'report.html'} ({result.points} points, "

@@ -47,9 +47,8 @@ from functools import lru_cache
 import numba as nb
 import numpy as np
 
-OPEN = 0
-STICK = 1
-SLIP = 2
+from .._kernels import OPEN, SLIP, STICK
+
 SLIP_NEG = 3  # slip with a negative force (SLIP: positive)
 NEVER = -1  # "last slip" of an element that never slipped
 
@@ -378,9 +377,6 @@ def aft_batch(kt, kn, gaps, offsets, mu, XT, XN, E, P, cos2, sin2, cum, max_peri
                                   cum, max_periods, FT[c], FN[c], JTt[c], JTn[c], JNn[c])
 
 
-aft_contact = _aft_contact
-
-
 def aft_reference(kt, kn, gaps, mu, xt, xn, Ns, max_periods=1000):
     """Slow, obviously correct pure-Python twin of :func:`_aft_contact` (tests only).
 
@@ -459,12 +455,3 @@ def aft_reference(kt, kn, gaps, mu, xt, xn, Ns, max_periods=1000):
     P = E.T * w[:, None]
     return P @ T, P @ N, P @ dT_dt, P @ dT_dn, P @ dN_dn, worst
 
-
-def warm_up() -> None:
-    """Compile (or load from cache) the kernels on a tiny input."""
-    one = np.ones(1)
-    x = np.zeros((1, 3))
-    F = np.empty((1, 3))
-    Jm = np.empty((1, 3, 3))
-    aft_batch(one, one, np.zeros(1), np.array([0, 1]), np.array([0.5]), x, x + 1.0,
-              *tables(1, 8), 10, F, F.copy(), Jm, Jm.copy(), Jm.copy(), np.empty(1, dtype=np.int64))

@@ -21,7 +21,7 @@ harmonics to be distinguishable. The contact force has kinks (stick--slip
 transitions), so its harmonics decay like ``1/j^2``, and harmonic ``Ns - h``
 folds onto ``h``; each kink is also located only to within one sample. Both
 errors fall like ``1/Ns^2``. :func:`default_samples` takes ``16 H`` rounded
-up to a power of two (and at least 32): the aliased part of the highest kept
+up to a power of two (and at least 32; one sample for a constant, H = 0): the aliased part of the highest kept
 harmonic is then about ``(1/15)^2`` of its neighbour beyond ``Ns``, and the
 first harmonic of a Jenkins element is within about 1e-3 of its closed form
 (the test suite checks the ``1/Ns^2`` convergence).
@@ -49,11 +49,13 @@ class NotPeriodicError(RuntimeError):
 def default_samples(harmonics: int) -> int:
     """Default number of time samples per period for ``harmonics`` harmonics.
 
-    ``16 H`` rounded up to a power of two, at least 32 (128 for ``H = 7``).
-    See the module docstring for why.
+    ``16 H`` rounded up to a power of two, at least 32 (128 for ``H = 7``);
+    1 for ``H = 0`` (a constant needs one sample). See the module docstring for why.
     """
     H = _checks.positive_int("harmonics", harmonics, minimum=0)
-    return max(32, 1 << (max(16 * H, 1) - 1).bit_length())  # bit_length: ceil(log2) in integers
+    if H == 0:
+        return 1
+    return max(32, 1 << (16 * H - 1).bit_length())  # bit_length: ceil(log2) in integers
 
 
 def check_samples(samples, harmonics: int) -> int:
@@ -231,8 +233,8 @@ def aft(model: MicroslipModel, t, n, *, samples: int | None = None,
     nb = t.size
     T, N = np.empty(nb), np.empty(nb)
     dT_dt, dT_dn, dN_dn = np.empty((nb, nb)), np.empty((nb, nb)), np.empty((nb, nb))
-    periods = _aft.aft_contact(model.kt, model.kn, model.gaps, model.mu, t, n, *_aft.tables(H, Ns), max_periods,
-                               T, N, dT_dt, dT_dn, dN_dn)
+    periods = _aft._aft_contact(model.kt, model.kn, model.gaps, model.mu, t, n, *_aft.tables(H, Ns), max_periods,
+                                T, N, dT_dt, dT_dn, dN_dn)
     check_periodic(periods, max_periods)
     return AFTResult(T, N, dT_dt, dT_dn, dN_dn, int(periods), Ns)
 

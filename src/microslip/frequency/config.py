@@ -43,7 +43,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
@@ -63,8 +63,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     except ModuleNotFoundError:
         _toml = None
 
-_CONTROL_KEYS = {"ds_initial", "ds_min", "ds_max", "max_angle", "target_iterations", "max_iterations",
-                 "max_points", "tolerance"}
+_CONTROL_KEYS = {f.name for f in fields(StepControl)}
 
 
 class ConfigError(ValueError):

@@ -100,17 +100,20 @@ def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, toleranc
         if not np.all(np.isfinite(dx)):
             raise ConvergenceError(f"Newton's method met a singular Jacobian at omega = {omega:g} rad/s")
         lam = 1.0
-        while True:
-            x_new = x + lam * dx
-            R_new = problem._evaluate(x_new, omega, jacobian=False)
-            norm_new = np.linalg.norm(R_new) / r_scale
-            if norm_new < norm or lam < 1e-4:
-                break
+        x_new = x + dx  # the full step with its Jacobian, kept when accepted
+        R_new, J_new, _ = problem._evaluate(x_new, omega)
+        norm_new = np.linalg.norm(R_new) / r_scale
+        while not (norm_new < norm or lam < 1e-4):  # backtrack on the residual alone
             lam *= 0.5
+            x_new = x + lam * dx
+            R_new, J_new = problem._evaluate(x_new, omega, jacobian=False), None
+            norm_new = np.linalg.norm(R_new) / r_scale
         x = x_new
         step = lam * np.max(np.abs(dx)) / x_scale
-        R, Jx, _ = problem._evaluate(x, omega)
-        norm = np.linalg.norm(R) / r_scale
+        if J_new is None:
+            R_new, J_new, _ = problem._evaluate(x, omega)
+            norm_new = np.linalg.norm(R_new) / r_scale
+        R, Jx, norm = R_new, J_new, norm_new
         if norm < tolerance and step < max(tolerance, 1e-3) or norm < 1e-3 * tolerance:
             return x, it
     raise ConvergenceError(f"Newton's method did not converge at omega = {omega:g} rad/s "

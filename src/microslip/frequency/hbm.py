@@ -18,6 +18,7 @@ from the AFT kernel.
 
 from __future__ import annotations
 
+from functools import cached_property
 from typing import Mapping
 
 import numpy as np
@@ -101,7 +102,7 @@ class HarmonicBalance:
         self.nb = nb = 2 * H + 1
         self.ndof = ndof = structure.ndof
         self.n = nb * ndof
-        self.samples = check_samples(samples, H) if H else 1 if samples is None else check_samples(samples, H)
+        self.samples = check_samples(samples, H)
         self.max_periods = _checks.positive_int("max_periods", max_periods)
         self.tables = _aft.tables(H, self.samples)
         self.f_ext = excitation(structure, force, H)
@@ -230,6 +231,16 @@ class HarmonicBalance:
         R_omega = self.Cx @ x - 2.0 * omega * (self.Mx @ x)
         return R, Jx, R_omega
 
+    @cached_property
+    def _outer(self) -> list:
+        """Each contact's constant outer products ``bt bt^T``, ``bt bn^T``, ``bn bn^T`` (sparse path)."""
+        out = []
+        for c in range(self.nc):
+            bt = sp.csr_matrix(self.Bt[:, c:c + 1])
+            bn = sp.csr_matrix(self.Bn[:, c:c + 1])
+            out.append((bt @ bt.T, bt @ bn.T, bn @ bn.T))
+        return out
+
     def _contact_jacobian(self):
         Bt, Bn = self.Bt, self.Bn
         if self.dense:
@@ -238,11 +249,9 @@ class HarmonicBalance:
                  + np.einsum("cpq,ic,jc->piqj", self.JNn, Bn, Bn))
             return J.reshape(self.n, self.n)
         J = None
-        for c in range(self.nc):
-            bt = sp.csr_matrix(Bt[:, c:c + 1])
-            bn = sp.csr_matrix(Bn[:, c:c + 1])
-            part = (sp.kron(sp.csr_matrix(self.JTt[c]), bt @ bt.T) + sp.kron(sp.csr_matrix(self.JTn[c]), bt @ bn.T)
-                    + sp.kron(sp.csr_matrix(self.JNn[c]), bn @ bn.T))
+        for c, (tt, tn, nn) in enumerate(self._outer):
+            part = (sp.kron(sp.csr_matrix(self.JTt[c]), tt) + sp.kron(sp.csr_matrix(self.JTn[c]), tn)
+                    + sp.kron(sp.csr_matrix(self.JNn[c]), nn))
             J = part if J is None else J + part
         return J.tocsc()
 

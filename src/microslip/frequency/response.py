@@ -19,6 +19,7 @@ import scipy.sparse.linalg as spla
 from .. import _checks
 from .._io import write_csv
 from .._progress import Progress
+from ..units import unit_factor
 from .aft import MAX_PERIODS, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance
@@ -181,8 +182,9 @@ class FrequencyResponse:
             Where to draw (a new figure if omitted).
         label : str, optional
             Legend label.
-        unit : {"µm", "mm", "m"}
-            Displacement unit of the plot.
+        unit : str, default "µm"
+            Displacement unit of the plot: a length unit of :mod:`microslip.units`
+            ("µm", "mm", "m", "nm", "in", ...).
         **kwargs
             Passed to ``Axes.plot``.
 
@@ -192,9 +194,10 @@ class FrequencyResponse:
         """
         import matplotlib.pyplot as plt
 
-        factor = {"µm": 1e6, "um": 1e6, "mm": 1e3, "m": 1.0}.get(unit)
-        if factor is None:
-            raise ValueError(f"unit must be one of 'µm', 'mm', 'm', got {unit!r}")
+        try:
+            factor = 1.0 / unit_factor(unit, "length")
+        except ValueError as exc:
+            raise ValueError(f"unit must be one of the length units, got {unit!r} ({exc})") from None
         if ax is None:
             _, ax = plt.subplots(figsize=(6, 4))
         ax.plot(self.omega, self.amplitude(dof, harmonic) * factor, label=label, **kwargs)
@@ -412,11 +415,11 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
 
 def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> float:
     """Largest dynamic response of the structure with its contacts stuck, over the range (m)."""
+    # x_static has no harmonics, so the residual R does not depend on omega: evaluated once
     R, Jx, _ = hb._evaluate(x_static, lo)
     Jc = Jx - hb.dynamic_stiffness(lo)
     best = 0.0
     for w in np.linspace(lo, hi, grid):
-        R = hb._evaluate(x_static, w, jacobian=False)
         dx = hb.solve(hb.dynamic_stiffness(w) + Jc, -R)
         if np.all(np.isfinite(dx)):
             best = max(best, float(np.max(np.abs(dx[hb.ndof:]))))

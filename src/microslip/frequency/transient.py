@@ -20,7 +20,7 @@ import scipy.sparse as sp
 from .. import _checks
 from .._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from .._progress import Progress
-from . import _transient
+from . import _aft, _transient
 from .hbm import excitation
 from .response import static_solution
 from .structure import Structure, direction
@@ -70,14 +70,8 @@ class SteadyState:
 
 def _fourier(q: np.ndarray, H: int) -> np.ndarray:
     """Coefficients ``(2H+1, ndof)`` of samples ``q`` ``(steps, ndof)`` at ``tau_k = 2 pi (k+1) / steps``."""
-    steps = q.shape[0]
-    tau = 2 * np.pi * (np.arange(steps) + 1) / steps
-    out = np.empty((2 * H + 1, q.shape[1]))
-    out[0] = q.mean(axis=0)
-    for h in range(1, H + 1):
-        out[2 * h - 1] = 2.0 / steps * np.cos(h * tau) @ q
-        out[2 * h] = 2.0 / steps * np.sin(h * tau) @ q
-    return out
+    # the cached projection takes samples at tau_k = 2 pi k / steps: the last sample (tau = 2 pi) comes first
+    return _aft.tables(H, q.shape[0])[1] @ np.roll(q, 1, axis=0)
 
 
 def steady_state(structure: Structure, force, omega: float, *, steps_per_period: int = 4096,
@@ -134,10 +128,9 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     B0 = M / dt**2 - C / (2 * dt)
     coef = excitation(structure, force, max(force) if isinstance(force, Mapping) and force else 1)
     coef[0] += structure.preload_force()
-    tau = 2 * np.pi * (np.arange(steps)) / steps
-    f = np.tile(coef[0], (steps, 1))
-    for h in range(1, (coef.shape[0] - 1) // 2 + 1):
-        f += np.outer(np.cos(h * tau), coef[2 * h - 1]) + np.outer(np.sin(h * tau), coef[2 * h])
+    # forcing (steps, ndof) at tau_k = 2 pi k / steps: aft.synthesise's cached table, without its
+    # samples >= 2H+1 check (steps_per_period is raised for stability only, never refused here)
+    f = _aft.tables((coef.shape[0] - 1) // 2, steps)[0] @ coef
     # initial state: static equilibrium, contacts loaded statically from the virgin state
     q = static_solution(structure, force)
     q_prev = q.copy()
