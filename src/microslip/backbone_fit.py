@@ -35,6 +35,7 @@ from scipy import optimize
 
 from . import _checks
 from ._binning import binned_means
+from ._numeric import invert_increasing
 from .tuning import TuningError
 
 _BINS = 160
@@ -116,14 +117,7 @@ class FittedBackbone:
 
     def inverse(self, T):
         """Displacement (m) at force ``T`` (N), ``0 <= T <= plateau`` (bisection, to round-off)."""
-        T = np.asarray(T, dtype=float)
-        lo = np.zeros(T.shape)
-        hi = np.full(T.shape, self.gross_slip_displacement)
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            below = self(mid) < T
-            lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
-        return 0.5 * (lo + hi)
+        return invert_increasing(self, T, 0.0, self.gross_slip_displacement)
 
     def plot(self, ax=None):
         """Plot the binned points and the fitted curve (force in N against µm); returns the Axes."""

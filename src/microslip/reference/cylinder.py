@@ -28,6 +28,7 @@ import numpy as np
 from scipy import interpolate, special
 
 from .. import _checks
+from .._numeric import invert_increasing
 
 LAWS = ("palmgren", "lundberg")
 _PALMGREN = 3.84e-5  # mm N^-0.9 mm^0.8 (Harris)
@@ -207,9 +208,5 @@ class _Table:
         N = np.asarray(N, dtype=float)
         self._check("N", N, self.rows[-1, 1], "N")
         k = np.clip(np.searchsorted(self.rows[:, 1], N, side="right") - 1, 0, len(self.rows) - 2)
-        lo, hi = self.rows[k, 0], self.rows[k + 1, 0]
-        for _ in range(64):  # bisection on the monotone interpolant, to round-off
-            mid = 0.5 * (lo + hi)
-            below = self._f(mid) < N
-            lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
-        return np.where(N <= 0, 0.0, 0.5 * (lo + hi))
+        x = invert_increasing(self._f, N, self.rows[k, 0], self.rows[k + 1, 0])  # the monotone interpolant
+        return np.where(N <= 0, 0.0, x)
