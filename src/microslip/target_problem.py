@@ -188,8 +188,11 @@ class TargetProblem:
 
     def score(self, model) -> float:
         """``max(|energy error| / energy_target, force difference / force_target)``; <= 1 meets the target."""
-        e, f = self.worst(model)
-        return max(e / self.energy_target, f / self.force_target)
+        return self.normalised(*self.worst(model))
+
+    def normalised(self, energy_error: float, force_difference: float) -> float:
+        """The larger of ``energy_error / energy_target`` and ``force_difference / force_target`` (-)."""
+        return max(energy_error / self.energy_target, force_difference / self.force_target)
 
     def result(self, model, points, spacing, evaluations=1) -> TargetTuning:
         """``model`` measured on the problem's family, with its points.

@@ -259,7 +259,7 @@ def smallest_elements(reference, load_range, *, energy_target=0.02, force_target
         if res.meets:
             bar.done(f"J = {J} meets the target")
             return res
-        key = max(res.energy_error / problem.energy_target, res.force_difference / problem.force_target)
+        key = problem.normalised(res.energy_error, res.force_difference)
         if best is None or key < best[0]:
             best = (key, res)
     res = best[1]
