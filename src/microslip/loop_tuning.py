@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _checks, loop_plots
+from . import _checks, loop_plots, paths
 from ._loop_checks import loops_list
 from .loops import Loops
 from .loop_validation import LoadValidation, Validation, validate
@@ -98,15 +98,10 @@ class LoopTuning:
         dN = max(loads) - N if dN is None else _checks.positive_scalar("dN", dN)
         ref, mu = self.reference, self.reference.mu
         T_A = _checks.in_range("at", at, 0.0, 1.0) * mu * N
-        t_A = float(ref.backbone_displacement(T_A, N))
-        t_end = 1.2 * float(ref.gross_slip_displacement(N + dN))
-        n1, n2 = float(ref.approach(N)), float(ref.approach(N + dN))
-        k = points // 3
-        t = np.concatenate([np.linspace(0.0, t_A, k), np.full(k, t_A), np.linspace(t_A, t_end, points - 2 * k)])
-        n = np.concatenate([np.full(k, n1), np.linspace(n1, n2, k), np.full(points - 2 * k, n2)])
-        r = self.model.simulate(t, n)
+        path = paths.paper_fig4(ref, N, dN, at, beyond=1.2, steps=max(points // 3, 2))
+        r = path.simulate(self.model)
         T_ref = np.linspace(0.0, mu * (N + dN), points)
-        return {"t_model": t, "T_model": r.T, "t_reference": raised_load_path(ref, T_ref, N, dN, T_A),
+        return {"t_model": path.t, "T_model": r.T, "t_reference": raised_load_path(ref, T_ref, N, dN, T_A),
                 "T_reference": T_ref, "N": N, "dN": dN, "T_A": T_A}
 
     def validation_at(self, normal_load=None) -> LoadValidation:
