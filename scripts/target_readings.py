@@ -35,7 +35,7 @@ import numpy as np
 from microslip import Sphere, mdr, tune
 from microslip.accuracy import accuracy, reference_run
 from microslip.paths import AMPLITUDES, LEVELS, PHASES_DEG, RATIOS, variable_load_cycles
-from microslip.tuning_target import load_optimal_points
+from microslip.tuning.target import load_optimal_points
 
 SPHERE = Sphere.paper()
 N_TOT = 37.5

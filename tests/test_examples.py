@@ -1,11 +1,12 @@
 """The examples run as users run them (examples that are tests)."""
 
 import sys
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+from _paths import EXAMPLES
+
+sys.path.insert(0, str(EXAMPLES))
 
 import variable_normal_load  # noqa: E402
 

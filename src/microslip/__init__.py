@@ -4,54 +4,69 @@ The contact model of Gastaldi & Gola ("An Improved Microslip Model for
 Variable Normal Loads"): a parallel array of macroslip elements, each with a
 tangential stiffness, a normal stiffness and a normal gap, so the normal load
 shifts between elements as the normal approach changes. SI units throughout.
+
+One package per job: :mod:`microslip.reference` (exact continuous contacts),
+:mod:`microslip.tuning` (the paper's equations, tuning to a target),
+:mod:`microslip.measured` (from measured loops to a validated model),
+:mod:`microslip.accuracy` (load paths, accuracy against a reference),
+:mod:`microslip.frequency` (harmonic balance, time integration),
+:mod:`microslip.figures` (the paper's figures), :mod:`microslip.cli` (the
+command line); the model itself is :mod:`microslip.model`.
 """
 
-from . import loops
-from .frequency import FrequencyResponse, Structure, frequency_response
-from .loop_tuning import LoopTuning, Validation, tune_on_loops, validate
-from .measured import FittedBackbone, MeasuredContact, fit_backbone
-from .model import MicroslipModel, Response, State, Step
-from .reference import Cylinder, Sphere
-from .tuning import ContactReference, TuningError, TuningPoints, tune, tuning_points
-from . import paths
-from .accuracy import AccuracyReport, accuracy
-from .reference.mdr import LoadLimitError, MDRModel, mdr
-from .tuning_target import TargetNotMet, TargetProblem, TargetTuning, smallest_elements, tune_to_target
+import sys as _sys
 
-__version__ = "0.1.0"
+from .model import MicroslipModel, Response, State, Step
+from .reference import Cylinder, LoadLimitError, MDRModel, Sphere, mdr
+from .tuning import (ContactReference, TargetNotMet, TargetProblem, TargetTuning, TuningError, TuningPoints,
+                     smallest_elements, tune, tune_to_target, tuning_points)
+from .accuracy import AccuracyReport, accuracy, paths
+from .measured import (FittedBackbone, LoopTuning, MeasuredContact, Validation, fit_backbone, loops, tune_on_loops,
+                       validate)
+from .frequency import FrequencyResponse, Structure, frequency_response
+
+from .common._version import __version__
+
+# ``microslip.loops`` and ``microslip.paths`` keep the import paths users have always used.
+for _alias, _module in (("loops", loops), ("paths", paths)):
+    _sys.modules[f"{__name__}.{_alias}"] = _module
+for _name, _module in list(_sys.modules.items()):
+    if _name.startswith(f"{loops.__name__}."):
+        _sys.modules[f"{__name__}.loops.{_name.rsplit('.', 1)[1]}"] = _module
+del _alias, _module, _name, _sys
 
 __all__ = [
     "AccuracyReport",
-    "LoadLimitError",
-    "MDRModel",
-    "TargetNotMet",
-    "TargetProblem",
-    "TargetTuning",
-    "accuracy",
-    "mdr",
-    "paths",
-    "smallest_elements",
-    "tune_to_target",
     "ContactReference",
     "Cylinder",
     "FittedBackbone",
     "FrequencyResponse",
+    "LoadLimitError",
     "LoopTuning",
+    "MDRModel",
     "MeasuredContact",
-    "Validation",
-    "fit_backbone",
-    "loops",
-    "tune_on_loops",
-    "validate",
     "MicroslipModel",
     "Response",
     "Sphere",
     "State",
     "Step",
     "Structure",
+    "TargetNotMet",
+    "TargetProblem",
+    "TargetTuning",
     "TuningError",
     "TuningPoints",
+    "Validation",
+    "accuracy",
+    "fit_backbone",
     "frequency_response",
+    "loops",
+    "mdr",
+    "paths",
+    "smallest_elements",
     "tune",
+    "tune_on_loops",
+    "tune_to_target",
     "tuning_points",
+    "validate",
 ]

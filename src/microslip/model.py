@@ -22,8 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _checks, _kernels
-from ._io import atomic_write
+from .common import _checks
+from . import _kernels
+from .common._io import atomic_write
 
 OPEN, STICK, SLIP = _kernels.OPEN, _kernels.STICK, _kernels.SLIP
 

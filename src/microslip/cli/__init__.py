@@ -18,7 +18,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="microslip",
         description="Microslip friction contacts with variable normal load (Gastaldi & Gola). "
                     "SI units unless a value carries its own unit (e.g. 10mm, 2.5um, 30N, 200GPa).")
-    from .. import __version__
+    from ..common._version import __version__
 
     parser.add_argument("--version", action="version", version=f"microslip {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)

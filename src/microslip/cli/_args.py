@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..units import parse_quantity
+from ..common.units import parse_quantity
 
 
 def quantity(kind: str, default_unit: str | None = None):

@@ -46,12 +46,12 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     import matplotlib.pyplot as plt
 
-    from .._checks import positive_int, positive_scalar
-    from .._io import atomic_write, save_figure
-    from .._progress import Progress
-    from ..accuracy import accuracy, restriction_mask
+    from ..common._checks import positive_int, positive_scalar
+    from ..common._io import atomic_write, save_figure
+    from ..common._progress import Progress
+    from ..accuracy.compare import accuracy, restriction_mask
     from ..model import MicroslipModel
-    from ..paths import default_family
+    from ..accuracy.paths import default_family
     from ..reference.mdr import mdr
     from ..reference.profiles import RoundedPunch
 

@@ -58,7 +58,7 @@ def run(args) -> int:
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, frequency_response
     from ..frequency.response import incomplete_message
     from ..frequency.config import load_config
-    from ..report import Report
+    from ..common.report import Report
 
     cfg = load_config(args.config)
     out = Path(args.out)

@@ -33,8 +33,8 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from .._io import save_figure, write_csv
-    from .._table import column_si, header_unit, read_table
+    from ..common._io import save_figure, write_csv
+    from ..common._table import column_si, header_unit, read_table
     from ..model import MicroslipModel
 
     model = MicroslipModel.load(args.model)

@@ -82,8 +82,8 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from .._progress import Progress
-    from ..tuning_target import TargetNotMet, TargetProblem, optimal_points, smallest_elements
+    from ..common._progress import Progress
+    from ..tuning.target import TargetNotMet, TargetProblem, optimal_points, smallest_elements
 
     _check_options(args)
     reference = sphere_from(args)
@@ -143,8 +143,8 @@ def _summary(res, path, meets):
 def _sweep(args, problem) -> int:
     import matplotlib.pyplot as plt
 
-    from .._io import atomic_write, save_figure, write_csv
-    from ..tuning_target import element_sweep, load_optimal_points, points_record, stored_mismatch
+    from ..common._io import atomic_write, save_figure, write_csv
+    from ..tuning.target import element_sweep, load_optimal_points, points_record, stored_mismatch
 
     stored = load_optimal_points()["fractions"] if args.reuse_points or args.start_from_stored else None
     if args.reuse_points:

@@ -111,7 +111,7 @@ def normal_law(args):
 
 
 def _split_load(item: str):
-    from ..units import parse_quantity
+    from ..common.units import parse_quantity
 
     path, sep, load = item.rpartition("@")
     if not sep or not path:
@@ -120,9 +120,9 @@ def _split_load(item: str):
 
 
 def _run_loops(args) -> int:
-    from .. import loops
-    from .._progress import Progress
-    from ..loop_tuning import tune_on_loops
+    from ..measured import loops
+    from ..common._progress import Progress
+    from ..measured.loop_tuning import tune_on_loops
 
     bar = Progress(len(args.loops) + 2, enabled=not args.quiet)
     columns = {k: v for k, v in (("t", args.t_column), ("T", args.T_column), ("N", args.N_column)) if v}

@@ -26,7 +26,6 @@ Optional:
 from . import accuracy, accuracy_amplitude, accuracy_sweep, fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6
 from .case import PaperCase
 from .reproduce import reproduce
-
-SECTIONS = [fig2a, fig2b, fig3a, fig3b, fig4a, fig4b, fig6, accuracy, accuracy_sweep, accuracy_amplitude]
+from .sections import SECTIONS
 
 __all__ = ["PaperCase", "SECTIONS", "reproduce"]

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._style import element_colors
+from ..common._style import element_colors
 
 
 def plot(data, *, reference: str, xlabel: str, ylabel: str, title: str, legend: str, x_mark=None):

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..accuracy import accuracy
+from ..accuracy.compare import accuracy
 from .accuracy_common import LOW_LOAD, family_run
 
 NAME = "accuracy"

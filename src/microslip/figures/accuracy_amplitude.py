@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..tuning_target import TargetProblem
+from ..tuning.target import TargetProblem
 from .accuracy_common import problem, stored_points, sweep
 
 NAME = "accuracy_amplitude"

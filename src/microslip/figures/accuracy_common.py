@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from ..accuracy import reference_run
-from ..paths import default_family
+from ..accuracy.compare import reference_run
+from ..accuracy.paths import default_family
 from ..reference.mdr import mdr
-from ..tuning_target import TargetProblem, element_sweep, stored_fractions
+from ..tuning.target import TargetProblem, element_sweep, stored_fractions
 
 #: lowest load of the target family, as a fraction of the tuning load (the issue's N >= 0.2 N_tot)
 LOW_LOAD = 0.2

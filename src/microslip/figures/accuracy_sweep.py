@@ -1,7 +1,7 @@
 """Beyond the paper: worst errors against the number of elements for three choices of the tuning points.
 
 (a) points evenly spaced in force (the paper's), (b) evenly spaced in
-displacement, (c) optimised (:mod:`microslip.tuning_target`). Errors are the
+displacement, (c) optimised (:mod:`microslip.tuning.target`). Errors are the
 worst over the default family restricted to ``N >= 0.2 N_tot`` and
 ``t_a >= 0.5 t_gs(N_min)``, against the exact contact. The optimised points
 were found once by ``microslip target --sweep 2-16,20,24,28,32 --save-points``

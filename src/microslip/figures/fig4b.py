@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .._style import element_colors
+from ..common._style import element_colors
 from .fig4a import compute  # noqa: F401  (the same computation as Fig. 4a)
 
 NAME = "fig4b"

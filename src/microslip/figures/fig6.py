@@ -30,9 +30,9 @@ GEOMETRY = dict(length=10e-3, radius=5e-3, E=200e9, nu=0.3)
 
 def compute(case=None) -> dict:
     """Read the shipped data set, tune, validate. ``case`` (the sphere benchmark) is not used."""
-    from .. import loops
-    from ..loop_tuning import tune_on_loops
-    from ..loops.synthetic import dataset_files, normal_curve_file
+    from ..measured import loops
+    from ..measured.loop_tuning import tune_on_loops
+    from ..measured.loops.synthetic import dataset_files, normal_curve_file
     from ..reference import Cylinder
 
     records = [loops.analyse(loops.read(path)) for path in dataset_files()]

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .._io import write_csv
-from .._progress import Progress
-from ..report import Report
+from ..common._io import write_csv
+from ..common._progress import Progress
+from ..common.report import Report
 from .case import PaperCase
 
 ERROR_HEADERS = ["quantity", "discrete", "continuous", "error (%)", "expected"]
@@ -33,7 +33,7 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
     """
     import matplotlib.pyplot as plt
 
-    from . import SECTIONS
+    from .sections import SECTIONS
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -15,8 +15,7 @@
 from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
 from .continuation import ConvergenceError, StepControl
 from .hbm import HarmonicBalance
-from .response import (FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response,
-                       static_solution)
+from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
 from .transient import SteadyState, steady_state
 

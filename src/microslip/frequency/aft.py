@@ -35,7 +35,7 @@ from typing import Sequence
 
 import numpy as np
 
-from .. import _checks
+from ..common import _checks
 from ..model import MicroslipModel
 from . import _aft
 

@@ -48,9 +48,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import _checks
+from ..common import _checks
 from ..model import MicroslipModel
-from ..units import parse_quantity
+from ..common.units import parse_quantity
 from .aft import check_samples
 from .continuation import StepControl
 from .structure import Structure

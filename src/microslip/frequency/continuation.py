@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _checks
+from ..common import _checks
 
 
 @dataclass

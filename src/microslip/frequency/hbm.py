@@ -25,7 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .. import _checks
+from ..common import _checks
 from . import _aft, _hbm
 from .aft import MAX_PERIODS, check_periodic, check_samples, cycle_work
 from .structure import Structure

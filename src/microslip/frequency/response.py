@@ -16,10 +16,10 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .. import _checks
-from .._io import write_csv
-from .._progress import Progress
-from ..units import unit_factor
+from ..common import _checks
+from ..common._io import write_csv
+from ..common._progress import Progress
+from ..common.units import unit_factor
 from .aft import MAX_PERIODS, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance
@@ -183,7 +183,7 @@ class FrequencyResponse:
         label : str, optional
             Legend label.
         unit : str, default "µm"
-            Displacement unit of the plot: a length unit of :mod:`microslip.units`
+            Displacement unit of the plot: a length unit of :mod:`microslip.common.units`
             ("µm", "mm", "m", "nm", "in", ...).
         **kwargs
             Passed to ``Axes.plot``.

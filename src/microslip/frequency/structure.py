@@ -28,7 +28,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .. import _checks
+from ..common import _checks
 from ..model import MicroslipModel
 from .aft import pack_models
 

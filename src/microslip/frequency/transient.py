@@ -17,9 +17,9 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 
-from .. import _checks
+from ..common import _checks
 from .._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
-from .._progress import Progress
+from ..common._progress import Progress
 from . import _aft, _transient
 from .hbm import excitation
 from .response import static_solution

@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import interpolate, special
 
-from .. import _checks
-from .._numeric import invert_increasing
+from ..common import _checks
+from ..common._numeric import invert_increasing
 
 LAWS = ("palmgren", "lundberg")
 _PALMGREN = 3.84e-5  # mm N^-0.9 mm^0.8 (Harris)
@@ -97,7 +97,7 @@ class Cylinder:
         and ``N`` (load) with their units, e.g. ``n [um], N [N]``; values are
         converted to SI. The other parameters are as for :class:`Cylinder`.
         """
-        from .._table import column_si, read_table
+        from ..common._table import column_si, read_table
 
         columns, units = read_table(path)
         rows = np.column_stack([column_si(columns, units, "n", "length", path=path),

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _checks
+from ..common import _checks
 
 
 def _odd(backbone, t):

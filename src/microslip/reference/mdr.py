@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize
 
-from .. import _checks
+from ..common import _checks
 from ..model import MicroslipModel, State, Step
 from .profiles import SphereProfile, as_profile
 

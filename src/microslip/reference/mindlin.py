@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _checks
+from ..common import _checks
 
 
 def raised_load_path(reference, T, N, dN, T_A):

@@ -29,7 +29,7 @@ from typing import Callable
 import numpy as np
 from scipy import integrate
 
-from .. import _checks
+from ..common import _checks
 
 
 @dataclass(frozen=True)

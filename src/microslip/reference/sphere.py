@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _checks
+from ..common import _checks
 from . import masing, mindlin
 
 

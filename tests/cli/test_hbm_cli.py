@@ -1,0 +1,147 @@
+"""``microslip frf``: a TOML configuration to a curve, plots and a report; configuration errors."""
+
+import shutil
+
+import numpy as np
+import pytest
+
+from microslip.common._table import read_table
+from microslip.cli import main
+from microslip.frequency.config import ConfigError, load_config
+from _paths import EXAMPLES
+
+
+
+@pytest.fixture
+def config_dir(tmp_path):
+    shutil.copy(EXAMPLES / "inclined_block.toml", tmp_path / "block.toml")
+    shutil.copy(EXAMPLES / "sphere_4_elements.json", tmp_path / "sphere_4_elements.json")
+    return tmp_path
+
+
+def _edit(path, old, new):
+    text = path.read_text()
+    assert old in text
+    path.write_text(text.replace(old, new))
+
+
+def test_frf_writes_curve_plots_and_report(config_dir, capsys):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, "omega = [12000, 18000]", "omega = [13000, 16000]")
+    out = config_dir / "out"
+    assert main(["frf", str(cfg), "-o", str(out)]) == 0
+    for name in ("frf.csv", "frf.png", "contacts.png", "report.html", "report.md"):
+        assert (out / name).stat().st_size > 0
+    printed = capsys.readouterr()
+    assert "[10/10] omega =" in printed.err  # progress along the curve
+    columns, units = read_table(out / "frf.csv")
+    assert units["omega"] == "rad/s" and units["q0 max"] == "m"
+    assert columns["omega"][0] == 13000 and columns["omega"][-1] == 16000
+    report = (out / "report.md").read_text()
+    assert "| x |" in report and "mean normal load" in report
+    # the static state: the 37.5 N preload is shared with the springs (see the configuration's comment)
+    static = "static state: normal force N0 = 21.36"
+    assert static in printed.out and static in report and "3 of 4 elements closed" in report
+
+
+def test_frf_exits_non_zero_on_a_curve_cut_short_by_max_points(config_dir, capsys):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, "harmonics = 7", "harmonics = 3\n[continuation]\nmax_points = 5")
+    out = config_dir / "out"
+    assert main(["frf", str(cfg), "-o", str(out), "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert "microslip frf: error: incomplete curve: the continuation stopped at max_points = 5 points at " \
+           "omega = 1" in err and "before the end of the range (18000 rad/s)" in err
+    columns, _ = read_table(out / "frf.csv")  # what was computed is written, and the report says so
+    assert len(columns["omega"]) == 5 and columns["omega"][-1] < 18000
+    assert "**Incomplete curve**" in (out / "report.md").read_text()
+
+
+@pytest.mark.parametrize("sweep, expected", [
+    ('omega = ["60Hz", "160Hz"]', (2 * np.pi * 60, 2 * np.pi * 160)),  # used to run 60-160 rad/s
+    ('omega = [12000, "2.5kHz"]', (12000.0, 2 * np.pi * 2500)),
+    ('omega = ["12000rad/s", "16000 rad/s"]', (12000.0, 16000.0)),
+    ("frequency = [1900, 2600]", (2 * np.pi * 1900, 2 * np.pi * 2600)),
+    ('frequency = ["12000rad/s", "2.6kHz"]', (12000.0, 2 * np.pi * 2600)),
+])
+def test_sweep_frequencies_in_hz_are_converted_to_rad_per_s(config_dir, sweep, expected):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, "omega = [12000, 18000]", sweep)
+    assert load_config(cfg).omega == pytest.approx(expected, rel=1e-15)
+
+
+def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
+    cfg = config_dir / "block.toml"
+    np.savez(config_dir / "m.npz", M=0.1 * np.eye(2), K=1e7 * np.eye(2))
+    _edit(cfg, "M = [[0.1, 0.0], [0.0, 0.1]]          # kg", 'matrices = "m.npz"\nrayleigh = [173.2, 0.0]')
+    _edit(cfg, "K = [[1e7, 0.0], [0.0, 1e7]]          # N/m\n", "")
+    _edit(cfg, "C = [[17.32, 0.0], [0.0, 17.32]]      # N s/m\n", "")
+    _edit(cfg, "omega = [12000, 18000]                # rad/s", 'frequency = ["2kHz", "2.5kHz"]')
+    c = load_config(cfg)
+    assert np.allclose(c.structure.C, 17.32 * np.eye(2))
+    assert np.allclose(c.omega, (2 * np.pi * 2000, 2 * np.pi * 2500))
+    assert c.dof_names == ["x", "y"] and c.harmonics == 7 and c.harmonic == 1
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("[sweep]", "[swep]", "unknown top-level key\\(s\\) \\['swep'\\]"),
+    ('h1 = ["0.6N", "0N"]', 'h1 = ["0.6m", "0N"]', "unknown force unit 'm'"),
+    ('h1 = ["0.6N", "0N"]', 'first = [0.6, 0.0]', "key 'first' is neither 'static' nor 'h<harmonic>'"),
+    ('model = "sphere_4_elements.json"', 'model = "nope.json"', "model file .*nope.json.* does not exist"),
+    ('preload = "37.5N"', 'preload = "37.5N"\napproach = "1um"\nbogus = 1', None),
+    ("omega = [12000, 18000]", "omega = [12000]", "the range must have 2 values"),
+    ("tangential = [0.8660254, 0.5]", "tangential = [1.0]", "tangential must have one coefficient per DOF"),
+    ('dofs = ["x", "y"]', 'dofs = ["x"]', "dofs names 1 DOFs, the matrices have 2"),
+    ("plot = [0, 1]", "plot = [4]", "plot names DOF 4; the structure has 2"),
+    ("harmonics = 7", "harmonics = 7\n[continuation]\nstep = 1", "\\[continuation\\] unknown key"),
+    ("M = [[0.1, 0.0], [0.0, 0.1]]", 'M = "heavy"', "\\[structure\\] M must be a matrix|M must be"),
+    ("M = [[0.1, 0.0], [0.0, 0.1]]", "M = [[0.1, 0.0], [0.0, -0.1]]",
+     "\\[structure\\] M must be positive definite: its diagonal entry 1 is -0.1"),
+    ("omega = [12000, 18000]", 'omega = [12000, "18kN"]',
+     "\\[sweep\\] omega\\[1\\] must be a frequency: a number \\(rad/s\\) or a string with a unit of angular "
+     "frequency \\(rad/s\\) or frequency \\(Hz, kHz; converted with 2 pi\\), got '18kN'"),
+    ("omega = [12000, 18000]", 'frequency = ["2kHz", "x"]', "\\[sweep\\] frequency\\[1\\] must be a frequency: a "
+     "number \\(Hz\\)"),
+    ("omega = [12000, 18000]", 'omega = "12000"', "\\[sweep\\] omega must be a list \\[start, end\\], got '12000'"),
+    ("C = [[17.32, 0.0], [0.0, 17.32]]      # N s/m", "rayleigh = [1.0, 2.0, 3.0]",
+     "\\[structure\\] rayleigh must be a list \\[alpha, beta\\] \\(1/s, s\\) giving C = alpha M \\+ beta K, "
+     "got \\[1.0, 2.0, 3.0\\]"),
+    ("C = [[17.32, 0.0], [0.0, 17.32]]      # N s/m", "rayleigh = 5", "\\[structure\\] rayleigh must be a list"),
+    ("C = [[17.32, 0.0], [0.0, 17.32]]      # N s/m", 'rayleigh = [1.0, "x"]',
+     "\\[structure\\] rayleigh\\[1\\]: cannot read 'x' as a number"),
+    ("harmonic = 1", "harmonic = 9", "\\[output\\] harmonic must be at most \\[sweep\\] harmonics = 7 \\(or "
+     "omitted for max \\|q - q0\\|\\), got 9"),
+    ("harmonic = 1", 'harmonic = "one"', "\\[output\\] harmonic must be an integer, got 'one'"),
+    ("harmonic = 1", "harmonic = -1", "\\[output\\] harmonic must be an integer >= 0, got -1"),
+    ("harmonics = 7", "harmonics = 0", "\\[sweep\\] harmonics must be an integer >= 1, got 0"),
+    ("harmonics = 7", "harmonics = 7\nsamples = 8", "\\[sweep\\] samples must be at least 2 \\* harmonics \\+ 1 "
+     "= 15"),
+    ("harmonics = 7", 'harmonics = 7\n[continuation]\nmax_angle = "big"',
+     "\\[continuation\\] max_angle must be a real number, got 'big'"),
+    ("harmonics = 7", "harmonics = 7\n[continuation]\nds_initial = -0.1",
+     "\\[continuation\\] ds_initial must be positive, got -0.1"),
+])
+def test_config_errors_name_the_key(config_dir, old, new, message):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, old, new)
+    if message is None:  # extra keys in a contact table are tolerated; a preload and an approach together too
+        load_config(cfg)
+        return
+    with pytest.raises((ConfigError, FileNotFoundError, ValueError), match=message):
+        load_config(cfg)
+
+
+def test_frf_reports_errors_without_traceback(config_dir, capsys):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, "[sweep]", "[sweeep]")
+    assert main(["frf", str(cfg)]) == 2
+    assert "microslip frf: error:" in capsys.readouterr().err
+    assert main(["frf", str(config_dir / "missing.toml")]) == 2
+
+
+def test_frf_help_documents_every_option(capsys):
+    with pytest.raises(SystemExit):
+        main(["frf", "--help"])
+    text = capsys.readouterr().out
+    for option in ("config", "--output", "--quiet", "microslip.frequency.config"):
+        assert option in text
