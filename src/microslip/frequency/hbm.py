@@ -94,22 +94,9 @@ class HarmonicBalance:
 
     def __init__(self, structure: Structure, force, harmonics: int, *, samples: int | None = None,
                  max_periods: int = MAX_PERIODS):
-        if not isinstance(structure, Structure):
-            raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
-        H = _checks.positive_int("harmonics", harmonics, minimum=0)
-        self.structure = structure
-        self.H = H
-        self.nb = nb = 2 * H + 1
-        self.ndof = ndof = structure.ndof
-        self.n = nb * ndof
-        self.samples = check_samples(samples, H)
-        self.max_periods = _checks.positive_int("max_periods", max_periods)
-        self.tables = _aft.tables(H, self.samples)
-        self.f_ext = excitation(structure, force, H)
-        self.nc = nc = len(structure.contacts)
-        self.f_ext[0] += structure.preload_force()
-        self.f = self.f_ext.ravel()
-        D, W = harmonic_operators(H)
+        self._setup(structure, force, harmonics, samples, max_periods, getattr(structure, "ndof", 0))
+        nb = self.nb
+        D, W = harmonic_operators(self.H)
         self.dense = self.n <= DENSE_LIMIT
         if self.dense:
             dense = [A.toarray() if sp.issparse(A) else np.asarray(A) for A in
@@ -123,6 +110,24 @@ class HarmonicBalance:
             self.Mx = sp.kron(sp.csr_matrix(W), sp.csr_matrix(structure.M), format="csc")
         # contact directions, (ndof, nc), and offsets of the normal approach
         self.Bt, self.Bn, self.n0 = structure.contact_directions()
+
+    def _setup(self, structure, force, harmonics, samples, max_periods, unknown_dofs: int) -> None:
+        """What every form of the equations shares: sizes, AFT tables, excitation, the contacts' laws."""
+        if not isinstance(structure, Structure):
+            raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+        H = _checks.positive_int("harmonics", harmonics, minimum=0)
+        self.structure = structure
+        self.H = H
+        self.nb = nb = 2 * H + 1
+        self.ndof = unknown_dofs
+        self.n = nb * unknown_dofs
+        self.samples = check_samples(samples, H)
+        self.max_periods = _checks.positive_int("max_periods", max_periods)
+        self.tables = _aft.tables(H, self.samples)
+        self.f_ext = excitation(structure, force, H)
+        self.nc = nc = len(structure.contacts)
+        self.f_ext[0] += structure.preload_force()
+        self.f = self.f_ext.ravel()
         self.packed = structure.packed_models()
         # work arrays of the AFT
         self.FT = np.zeros((nc, nb))
@@ -133,6 +138,11 @@ class HarmonicBalance:
         self.periods = np.zeros(nc, dtype=np.int64)
         self._J_dummy = np.empty((0, 0))
         self._Rw_dummy = np.empty(self.n)
+
+    @property
+    def compiled(self) -> bool:
+        """True when the residual and Jacobian come from the compiled dense kernel."""
+        return self.dense and isinstance(self.Kx, np.ndarray)
 
     # -- pieces ---------------------------------------------------------------
     def local(self, x) -> tuple[np.ndarray, np.ndarray]:
@@ -200,7 +210,7 @@ class HarmonicBalance:
 
     def _evaluate(self, x, omega: float, *, jacobian: bool = True):
         """:meth:`evaluate` without the input checks (for the solvers, which build ``x`` themselves)."""
-        if not self.dense:
+        if not self.compiled:
             return self._evaluate_reference(x, omega, jacobian=jacobian)
         n = self.n
         R = np.empty(n)
@@ -228,8 +238,11 @@ class HarmonicBalance:
         if not jacobian:
             return R
         Jx = Z + self._contact_jacobian() if self.nc else Z
-        R_omega = self.Cx @ x - 2.0 * omega * (self.Mx @ x)
-        return R, Jx, R_omega
+        return R, Jx, self.omega_derivative(x, omega)
+
+    def omega_derivative(self, x, omega: float) -> np.ndarray:
+        """``dR/domega`` (N s), shape ``(n,)``: the linear part's, the contact forces not depending on omega."""
+        return self.Cx @ x - 2.0 * omega * (self.Mx @ x)
 
     @cached_property
     def _outer(self) -> list:
@@ -244,9 +257,12 @@ class HarmonicBalance:
     def _contact_jacobian(self):
         Bt, Bn = self.Bt, self.Bn
         if self.dense:
-            J = (np.einsum("cpq,ic,jc->piqj", self.JTt, Bt, Bt)
-                 + np.einsum("cpq,ic,jc->piqj", self.JTn, Bt, Bn)
-                 + np.einsum("cpq,ic,jc->piqj", self.JNn, Bn, Bn))
+            # one pass: the harmonic blocks of all contacts times their outer products, as one product
+            nc, nb, m = self.nc, self.nb, self.ndof
+            blocks = np.concatenate([self.JTt, self.JTn, self.JNn]).reshape(3 * nc, nb * nb)
+            outer = np.concatenate([np.einsum("ic,jc->cij", Bt, Bt), np.einsum("ic,jc->cij", Bt, Bn),
+                                    np.einsum("ic,jc->cij", Bn, Bn)]).reshape(3 * nc, m * m)
+            J = (blocks.T @ outer).reshape(nb, nb, m, m).transpose(0, 2, 1, 3)
             return J.reshape(self.n, self.n)
         J = None
         for c, (tt, tn, nn) in enumerate(self._outer):
@@ -307,7 +323,16 @@ class HarmonicBalance:
         return A
 
     # -- quantities along a curve ------------------------------------------------------
-    def curve_quantities(self, xs, omegas) -> dict:
+    def stuck_stiffness(self):
+        """Stiffness of the unknowns with every contact element closed and stuck (N/m): see
+        :meth:`Structure.stuck_stiffness <microslip.frequency.structure.Structure.stuck_stiffness>`."""
+        return self.structure.stuck_stiffness()
+
+    def full(self, x, omega: float) -> np.ndarray:
+        """Coefficients of every DOF ``(2H+1, ndof)`` (m): here the unknowns themselves."""
+        return np.reshape(x, (self.nb, self.ndof))
+
+    def curve_quantities(self, xs, omegas, *, viscous: bool = True) -> dict:
         """Contact displacements and forces and the work per cycle at solutions ``xs`` ``(points, n)``.
 
         Returns a dict of arrays: ``t, n, T, N`` (m, N), shape ``(points, nc, 2H+1)``;
@@ -320,11 +345,14 @@ class HarmonicBalance:
         P = xs.shape[0]
         X = xs.reshape(P, self.nb, self.ndof)
         excitation = cycle_work(self.f_ext.T, X.transpose(0, 2, 1)).sum(axis=-1)
-        # viscous: int q'^T C q' dtime = pi omega sum_h h^2 (a^T C a + b^T C b)
-        V = X[:, 1:, :].reshape(-1, self.ndof)
-        quad = np.einsum("ki,ki->k", V, np.asarray((self.structure.C @ V.T).T)).reshape(P, 2 * self.H)
-        h2 = np.repeat(np.arange(1, self.H + 1) ** 2, 2)
-        viscous = np.pi * np.asarray(omegas) * (quad @ h2)
+        if viscous:
+            # int q'^T C q' dtime = pi omega sum_h h^2 (a^T C a + b^T C b)
+            V = X[:, 1:, :].reshape(-1, self.ndof)
+            quad = np.einsum("ki,ki->k", V, np.asarray((self.structure.C @ V.T).T)).reshape(P, 2 * self.H)
+            h2 = np.repeat(np.arange(1, self.H + 1) ** 2, 2)
+            viscous = np.pi * np.asarray(omegas) * (quad @ h2)
+        else:
+            viscous = None
         out = {"t": np.zeros((P, self.nc, self.nb)), "n": np.zeros((P, self.nc, self.nb)),
                "T": np.zeros((P, self.nc, self.nb)), "N": np.zeros((P, self.nc, self.nb))}
         for k in range(P):

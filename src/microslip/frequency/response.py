@@ -22,7 +22,8 @@ from ..common._progress import Progress
 from ..common.units import unit_factor
 from .aft import MAX_PERIODS, synthesise
 from .continuation import StepControl, continuation, newton
-from .hbm import HarmonicBalance
+from .hbm import HarmonicBalance, excitation
+from .reduced import (ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs)
 from .structure import Structure, direction
 
 _CURVE_SAMPLES = 256  # samples per period when reporting the maximum of a time signal
@@ -47,8 +48,10 @@ class FrequencyResponse:
     omega : ndarray, shape (points,)
         Excitation frequency of each point (rad/s), in the order of the
         curve (not monotonic past a fold).
-    coefficients : ndarray, shape (points, nb, ndof)
-        Fourier coefficients of every DOF (m).
+    coefficients : ndarray, shape (points, nb, len(dofs))
+        Fourier coefficients (m) of the DOFs in :attr:`dofs`; any other DOF
+        is recovered on demand by :meth:`amplitude`, :meth:`time_history` and
+        :meth:`dof_coefficients`.
     contact_t, contact_n : ndarray, shape (points, nc, nb)
         Coefficients of each contact's tangential displacement and normal approach (m).
     contact_T, contact_N : ndarray, shape (points, nc, nb)
@@ -79,6 +82,17 @@ class FrequencyResponse:
         Display names used by :meth:`plot`: key ``"dof"``, the quantity on
         the vertical axis (default ``"response"``). Empty by default; set with
         ``dataclasses.replace(result, labels={"dof": "blade tip"})``.
+    dofs : ndarray of int, shape (m,)
+        The DOFs whose coefficients are stored: every DOF without reduction,
+        the retained DOFs (contacts, excitation, preloads) with one.
+    reduction : str
+        How the linear structure was condensed: ``"none"``, ``"exact"`` or ``"modal"``.
+    modes : int or None
+        Normal modes kept by a modal reduction.
+    reduction_error : float or None
+        With ``"modal"``: an estimate of its error, the relative difference
+        (Frobenius norm) between the modal and the exact condensed dynamic
+        stiffness of the first harmonic at the peak frequency.
     """
 
     structure: Structure
@@ -100,16 +114,37 @@ class FrequencyResponse:
     complete: bool = True
     elapsed: float = 0.0
     labels: dict = field(default_factory=dict)
+    dofs: np.ndarray | None = None
+    reduction: str = "none"
+    modes: int | None = None
+    reduction_error: float | None = None
+    recovery: object = field(default=None, repr=False)
+
+    def __post_init__(self):
+        if self.dofs is None:
+            object.__setattr__(self, "dofs", np.arange(self.structure.ndof))
 
     @property
     def points(self) -> int:
         """Number of points on the curve."""
         return self.omega.size
 
-    def _dof_coefficients(self, dof) -> np.ndarray:
-        """Coefficients ``(points, nb)`` of one DOF or of a linear combination of DOFs."""
+    def dof_coefficients(self, dof) -> np.ndarray:
+        """Fourier coefficients (m), shape ``(points, 2H+1)``, of one DOF or a combination of DOFs.
+
+        ``dof`` as in :meth:`amplitude`. A DOF the reduction did not keep is
+        recovered from the contact solution at every point (a solve per point
+        and harmonic with ``"exact"``, a modal sum with ``"modal"``).
+        """
         b = direction("dof", dof, self.structure.ndof)
-        return self.coefficients @ b
+        held = b[self.dofs]
+        if np.count_nonzero(held) == np.count_nonzero(b):
+            return self.coefficients @ held
+        if self.recovery is None:
+            raise ValueError("dof: this result keeps only its retained DOFs and cannot recover others")
+        return np.array([self.recovery(k) @ b for k in range(self.points)])
+
+    _dof_coefficients = dof_coefficients
 
     def amplitude(self, dof=0, harmonic: int | None = None) -> np.ndarray:
         """Vibration amplitude of a DOF (or a combination of DOFs) at every point (m).
@@ -212,16 +247,17 @@ class FrequencyResponse:
     def columns(self, dofs=None) -> dict:
         """The curve as named columns with units (for CSV): frequency, amplitudes, contact loads, energies."""
         ndof = self.structure.ndof
-        dofs = range(ndof) if dofs is None else [_checks.positive_int("dofs[i]", d, minimum=0) for d in dofs]
+        dofs = self.dofs if dofs is None else [_checks.positive_int("dofs[i]", d, minimum=0) for d in dofs]
         cols = {"omega [rad/s]": self.omega}
         for d in dofs:
             if d >= ndof:
                 raise ValueError(f"dofs: DOF {d} is out of range for a structure with {ndof} DOFs")
-            cols[f"q{d} max [m]"] = self.amplitude(d)
-            cols[f"q{d} static [m]"] = self.amplitude(d, 0)
+            c = self.dof_coefficients(int(d))
+            cols[f"q{d} max [m]"] = self.amplitude(int(d))
+            cols[f"q{d} static [m]"] = c[:, 0]
             for h in range(1, self.harmonics + 1):
-                cols[f"q{d} a{h} [m]"] = self.coefficients[:, 2 * h - 1, d]
-                cols[f"q{d} b{h} [m]"] = self.coefficients[:, 2 * h, d]
+                cols[f"q{d} a{h} [m]"] = c[:, 2 * h - 1]
+                cols[f"q{d} b{h} [m]"] = c[:, 2 * h]
         for c, contact in enumerate(self.structure.contacts):
             cols[f"{contact.name} N static [N]"] = self.contact_N[:, c, 0]
             cols[f"{contact.name} T h1 [N]"] = np.hypot(self.contact_T[:, c, 1], self.contact_T[:, c, 2])
@@ -250,7 +286,8 @@ def _static_force(force) -> dict:
     return {}
 
 
-def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-10) -> np.ndarray:
+def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-10, reduction: str = "auto",
+                    modes: int | None = None) -> np.ndarray:
     """Static equilibrium ``q0`` (m), shape ``(ndof,)``, under the static force and the preloads.
 
     Parameters
@@ -260,20 +297,48 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
         Only its static part (key ``0`` of a mapping) is used.
     tolerance : float
         Relative residual of Newton's method.
+    reduction, modes
+        As in :func:`frequency_response` (the static problem is solved on the
+        retained DOFs, then every DOF is recovered).
     """
-    return _static_state(structure, force, tolerance=tolerance)[0]
+    static, _, _ = _equations(structure, _static_force(force) if force is not None else {}, 0, None,
+                              MAX_PERIODS, reduction, modes)
+    x = _static_state(static, tolerance=tolerance)[0]
+    return static.full(x, 1.0)[0]
 
 
-def _static_state(structure: Structure, force=None, *, tolerance: float = 1e-10):
-    """``(q0, N0, T0, closed)``: :func:`static_solution` and each contact's static forces (N), closed elements."""
-    hb = HarmonicBalance(structure, _static_force(force) if force is not None else {}, 0)
+def _equations(structure, force, harmonics, samples, max_periods, reduction, modes):
+    """``(static, dynamic, (reduction, modes))``: the static problem and the harmonic balance equations.
+
+    Both share one condensation of the linear structure when it is reduced.
+    """
+    if not isinstance(structure, Structure):
+        raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+    H = _checks.positive_int("harmonics", harmonics, minimum=0)
+    reduction, modes = choose_reduction(structure, H, reduction, modes)
+    static_force = _static_force(force) if force is not None else {}
+    if reduction == "none":
+        return (HarmonicBalance(structure, static_force, 0), HarmonicBalance(structure, force, H, samples=samples,
+                                                                              max_periods=max_periods),
+                (reduction, modes))
+    loads = excitation(structure, force, H)
+    loads[0] += structure.preload_force()
+    linear = linear_part(structure, retained_dofs(structure, loads), reduction, modes)
+    return (ReducedHarmonicBalance(structure, static_force, 0, linear),
+            ReducedHarmonicBalance(structure, force, H, linear, samples=samples, max_periods=max_periods),
+            (reduction, modes))
+
+
+def _static_state(hb, *, tolerance: float = 1e-10):
+    """``(x0, N0, T0, closed)``: the static unknowns of ``hb`` (H = 0), each contact's static forces (N), closed elements."""
+    structure = hb.structure
     r_scale = max(float(np.max(np.abs(hb.f))), 1e-30)
     # start from the structure with every contact element closed and stuck
     rhs = hb.f.copy()
-    for c in structure.contacts:
+    for i, c in enumerate(structure.contacts):
         m = c.model
-        rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * c.normal
-    K = structure.stuck_stiffness()
+        rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * hb.Bn[:, i]
+    K = hb.stuck_stiffness()
     if sp.issparse(K):
         x = spla.lsqr(K.tocsc(), rhs, atol=1e-14, btol=1e-14)[0]
     else:
@@ -289,7 +354,8 @@ def _static_state(structure: Structure, force=None, *, tolerance: float = 1e-10)
 
 def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5, samples: int | None = None,
                        control: StepControl | None = None, progress: bool = False,
-                       max_periods: int = MAX_PERIODS) -> FrequencyResponse:
+                       max_periods: int = MAX_PERIODS, reduction: str = "auto",
+                       modes: int | None = None) -> FrequencyResponse:
     """Forced response of a structure with microslip contacts over a frequency range.
 
     Harmonic balance with ``harmonics`` harmonics plus the static term (the
@@ -319,6 +385,18 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         Report progress along the curve on standard error.
     max_periods : int
         Periods allowed for each contact's state to become periodic.
+    reduction : {"auto", "exact", "modal", "none"}, default "auto"
+        Solve the harmonic balance on the DOFs the contacts, the excitation
+        and the preloads use, the rest of the linear structure condensed
+        exactly per harmonic (``"exact"``: identical to the full solve to
+        solver tolerance) or from normal modes plus the residual flexibility
+        of the omitted ones (``"modal"``); ``"none"``: every DOF is an
+        unknown. ``"auto"`` chooses by size (``"none"`` for small dense
+        problems, ``"exact"`` up to 5000 DOFs, ``"modal"`` above) and the
+        result says which (:attr:`FrequencyResponse.reduction`).
+    modes : int, optional
+        Normal modes of a modal reduction (default 60); implies ``"modal"``
+        with ``reduction="auto"``.
 
     Returns
     -------
@@ -341,7 +419,8 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     lo, hi = _omega_range(omega)
     if control is not None and not isinstance(control, StepControl):
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
-    hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi)
+    hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
+                                                   reduction, modes)
     report = Progress(10, enabled=progress)
     reached = [0]
 
@@ -372,22 +451,23 @@ def incomplete_message(result: FrequencyResponse, omega_end: float, control: Ste
             f"raise StepControl.max_points (or ds_max) to follow the whole curve")
 
 
-def _first_point(structure, force, harmonics, samples, max_periods, lo, hi):
+def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, reduction="auto", modes=None):
     """The equations, the solution at ``lo`` (from the static state) and the scales of x and R."""
     H = _checks.positive_int("harmonics", harmonics, minimum=1)
-    hb = HarmonicBalance(structure, force, H, samples=samples, max_periods=max_periods)
+    static_hb, hb, _ = _equations(structure, force, H, samples, max_periods, reduction, modes)
     if not np.any(hb.f_ext[1:]):
         raise ValueError("force must have a non-zero dynamic part (harmonic >= 1)")
     r_scale = float(np.max(np.abs(hb.f)))
     x = np.zeros(hb.n)
-    x[:hb.ndof], *static = _static_state(structure, force)
+    x[:hb.ndof], *static = _static_state(static_hb)
     x_scale = _response_scale(hb, x, lo, hi, grid=1 if lo == hi else 24)
     x, _ = newton(hb, x, lo, r_scale=r_scale, x_scale=x_scale)
     return hb, x, max(x_scale, float(np.max(np.abs(x[hb.ndof:])))), r_scale, static
 
 
 def frequency_point(structure: Structure, force, omega: float, *, harmonics: int = 5, samples: int | None = None,
-                    max_periods: int = MAX_PERIODS) -> FrequencyResponse:
+                    max_periods: int = MAX_PERIODS, reduction: str = "auto",
+                    modes: int | None = None) -> FrequencyResponse:
     """The harmonic balance solution at one frequency, reached from the static state by Newton's method.
 
     Where the response has several solutions at ``omega`` (past a fold) this is
@@ -396,7 +476,7 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
 
     Parameters
     ----------
-    structure, force, harmonics, samples, max_periods
+    structure, force, harmonics, samples, max_periods, reduction, modes
         As in :func:`frequency_response`.
     omega : float
         Excitation frequency (rad/s).
@@ -408,7 +488,8 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
     """
     start = time.perf_counter()
     omega = _checks.positive_scalar("omega", omega)
-    hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega)
+    hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega, reduction,
+                                       modes)
     result = _collect(hb, x[None, :], np.array([omega]), np.array([0]), static, True)
     return replace(result, elapsed=time.perf_counter() - start)
 
@@ -429,6 +510,16 @@ def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> fl
 def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> FrequencyResponse:
     """The result object from the solutions ``xs`` and the static state ``(N0, T0, closed)``."""
     q = hb.curve_quantities(xs, omegas)
+    reduced = isinstance(hb, ReducedHarmonicBalance)
+    extra = {}
+    if reduced:
+        linear = hb.linear
+        extra = dict(dofs=hb.retained, reduction="modal" if hasattr(linear, "modes") else "exact",
+                     modes=getattr(linear, "modes", None),
+                     recovery=lambda k: hb.full(xs[k], float(omegas[k])))
+        if extra["reduction"] == "modal":
+            peak = int(np.argmax(np.abs(xs[:, hb.ndof:]).max(axis=1)))
+            extra["reduction_error"] = modal_error(hb.structure, linear, float(omegas[peak]))
     return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(omegas.size, hb.nb, hb.ndof),
                              q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters,
-                             *static, complete=complete)
+                             *static, complete=complete, **extra)

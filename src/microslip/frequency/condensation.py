@@ -1,0 +1,219 @@
+"""Exact dynamic condensation of a linear structure onto a set of retained DOFs, harmonic by harmonic.
+
+For harmonic ``h`` at the excitation frequency ``omega`` the structure's complex
+dynamic stiffness is ``Z = K - (h omega)^2 M + i h omega C``. Partitioned into
+retained DOFs ``r`` and the others ``i`` (no external force on ``i``), the
+interior is eliminated exactly:
+
+``S = Z_rr - Z_ri Z_ii^-1 Z_ir``  (the Schur complement),
+``q_i = -Z_ii^-1 Z_ir q_r``      (recovery of the interior).
+
+Its derivative with respect to ``omega`` (for continuation) is exact too:
+``S' = Z'_rr - Z'_ri W - V^T Z'_ir + V^T Z'_ii W`` with ``W = Z_ii^-1 Z_ir``,
+``V^T = Z_ri Z_ii^-1`` and ``Z' = -2 h^2 omega M + i h C``.
+
+A complex amplitude ``z = a - i b`` of ``a cos + b sin`` acted on by ``S = S_r + i S_i``
+gives the real harmonic-balance block ``[[S_r, S_i], [-S_i, S_r]]`` on ``(a, b)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+#: interior DOFs up to which the interior block is factorised densely
+DENSE_INTERIOR = 400
+
+
+class SingularInteriorError(ValueError):
+    """The structure with its retained DOFs held fixed is singular at some frequency."""
+
+
+def _split(A, r, i):
+    """Blocks ``(A_rr, A_ri, A_ir, A_ii)``: the first three dense, ``A_ii`` sparse CSC or dense."""
+    if sp.issparse(A):
+        A = sp.csr_matrix(A)
+        rows_r, rows_i = A[r], A[i]
+        Aii = rows_i[:, i].tocsc()
+        return (rows_r[:, r].toarray(), rows_r[:, i].toarray(), rows_i[:, r].toarray(),
+                Aii if i.size > DENSE_INTERIOR else Aii.toarray())
+    A = np.asarray(A, dtype=float)
+    return A[np.ix_(r, r)], A[np.ix_(r, i)], A[np.ix_(i, r)], A[np.ix_(i, i)]
+
+
+class Condensation:
+    """The dynamic stiffness of a linear structure condensed onto retained DOFs.
+
+    Parameters
+    ----------
+    M, C, K : ndarray or scipy.sparse matrix, shape (ndof, ndof)
+        Mass (kg), damping (N s/m) and stiffness (N/m) matrices.
+    retained : array_like of int, shape (m,)
+        The DOFs kept (sorted, unique); external forces act on these only.
+
+    Notes
+    -----
+    One evaluation at a new ``omega`` factorises the interior block once per
+    harmonic (sparse LU above :data:`DENSE_INTERIOR` interior DOFs) and solves
+    for the ``m`` retained columns; the last frequency's blocks are cached.
+    """
+
+    def __init__(self, M, C, K, retained):
+        ndof = M.shape[0]
+        r = np.asarray(retained, dtype=np.int64)
+        mask = np.ones(ndof, dtype=bool)
+        mask[r] = False
+        self.retained, self.interior = r, np.flatnonzero(mask)
+        self.m = r.size
+        self.blocks_M = _split(M, r, self.interior)
+        self.blocks_C = _split(C, r, self.interior)
+        self.blocks_K = _split(K, r, self.interior)
+        self.sparse = sp.issparse(self.blocks_K[3])
+        self._cache = (None, None, None)
+
+    # -- one harmonic --------------------------------------------------------------
+    def _z(self, blocks_h, k):
+        """Block ``k`` (0: rr, 1: ri, 2: ir, 3: ii) of ``Z`` for ``(Omega^2, Omega)`` in ``blocks_h``."""
+        w2, w = blocks_h
+        Z = self.blocks_K[k] - w2 * self.blocks_M[k]
+        return Z + (1j * w) * self.blocks_C[k] if w else Z
+
+    def _factor(self, Zii):
+        """``solve(b, trans)`` with a factorisation of ``Zii`` (real or complex ``b``), None when singular."""
+        if self.sparse:
+            try:
+                lu = spla.splu(sp.csc_matrix(Zii))
+            except RuntimeError:  # exactly singular
+                return None
+            one = lu.solve
+        else:
+            try:
+                lu = sla.lu_factor(Zii, check_finite=False)
+            except (np.linalg.LinAlgError, ValueError):
+                return None
+            if np.any(np.abs(np.diag(lu[0])) <= 1e-14 * max(np.max(np.abs(np.diag(lu[0]))), 1e-300)):
+                return None
+
+            def one(b, trans="N"):
+                return sla.lu_solve(lu, b, trans=1 if trans == "T" else 0, check_finite=False)
+        if np.iscomplexobj(Zii):
+            return one
+
+        def real_factor(b, trans="N"):  # a real factorisation: real and imaginary parts apart
+            b = np.asarray(b)
+            if not np.iscomplexobj(b):
+                return one(b, trans)
+            return one(np.ascontiguousarray(b.real), trans) + 1j * one(np.ascontiguousarray(b.imag), trans)
+
+        return real_factor
+
+    def harmonic(self, h: int, omega: float, *, derivative: bool = True):
+        """``(S, S')``: the condensed complex dynamic stiffness of harmonic ``h`` and its ``omega``-derivative.
+
+        Parameters
+        ----------
+        h : int
+            Harmonic (0: static).
+        omega : float
+            Excitation frequency (rad/s).
+        derivative : bool
+            Also compute ``dS/domega``.
+
+        Returns
+        -------
+        S, dS : ndarray, shape (m, m), complex
+            N/m and N s/m (``dS`` is None without ``derivative``).
+
+        Raises
+        ------
+        SingularInteriorError
+            When the structure with the retained DOFs held is singular (a
+            natural frequency of the held structure equals ``h omega`` with no
+            damping, or a part moves freely when they are held).
+        """
+        W_omega = h * omega
+        key = (W_omega * W_omega, W_omega)
+        Zrr, Zri, Zir, Zii = (self._z(key, k) for k in range(4))
+        if self.interior.size == 0:
+            S = np.array(Zrr, dtype=complex)
+            W = V = None
+        else:
+            solve = self._factor(Zii)
+            if solve is None:
+                raise SingularInteriorError(
+                    f"the structure with its contact and excitation DOFs held fixed is singular at harmonic {h} "
+                    f"(frequency {W_omega:.6g} rad/s): a part of it moves freely, or an undamped natural "
+                    f"frequency of the held structure equals the harmonic's frequency; add damping or keep "
+                    f"more DOFs")
+            Zir_c = np.asarray(Zir, dtype=complex)
+            W = solve(Zir_c)
+            V = solve(np.asarray(Zri, dtype=complex).T.copy(), "T")
+            S = Zrr - Zri @ W
+        if not derivative:
+            return S, None
+        dZ = [-2.0 * h * h * omega * self.blocks_M[k] + (1j * h) * self.blocks_C[k] for k in range(4)]
+        dS = np.array(dZ[0], dtype=complex)
+        if W is not None:
+            dS = dS - dZ[1] @ W - V.T @ dZ[2] + V.T @ (dZ[3] @ W)
+        return S, dS
+
+    def interior_response(self, h: int, omega: float, q_r) -> np.ndarray:
+        """Complex amplitudes of the interior DOFs ``(ni, k)`` from those of the retained ones ``(m, k)`` (m)."""
+        if self.interior.size == 0:
+            return np.zeros((0,) + np.shape(q_r)[1:], dtype=complex)
+        W_omega = h * omega
+        key = (W_omega * W_omega, W_omega)
+        solve = self._factor(self._z(key, 3))
+        if solve is None:
+            raise SingularInteriorError(f"the held structure is singular at harmonic {h} ({W_omega:.6g} rad/s)")
+        return -solve(np.asarray(self._z(key, 2) @ q_r, dtype=complex))
+
+    # -- the real harmonic-balance operator --------------------------------------------
+    def operator(self, omega: float, H: int, *, derivative: bool = True):
+        """Real block-diagonal ``Z(omega)`` and ``dZ/domega``, shape ``((2H+1) m, (2H+1) m)`` (N/m, N s/m).
+
+        Harmonic-major layout ``[c0 (m), a1 (m), b1 (m), ..., bH (m)]``, the
+        layout of :class:`~microslip.frequency.hbm.HarmonicBalance`. Cached for
+        the last ``(omega, H)``.
+        """
+        if self._cache[0] == (omega, H, derivative) or (derivative is False and self._cache[0] == (omega, H, True)):
+            return self._cache[1], self._cache[2]
+        m = self.m
+        n = (2 * H + 1) * m
+        Z = np.zeros((n, n))
+        dZ = np.zeros((n, n)) if derivative else None
+        for h in range(H + 1):
+            S, dS = self.harmonic(h, omega, derivative=derivative)
+            if h == 0:
+                Z[:m, :m] = S.real
+                if derivative:
+                    dZ[:m, :m] = dS.real
+                continue
+            a = slice((2 * h - 1) * m, 2 * h * m)
+            b = slice(2 * h * m, (2 * h + 1) * m)
+            for target, M in ((Z, S), (dZ, dS)):
+                if target is None:
+                    continue
+                target[a, a] = target[b, b] = M.real
+                target[a, b] = M.imag
+                target[b, a] = -M.imag
+        self._cache = ((omega, H, derivative), Z, dZ)
+        return Z, dZ
+
+    def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
+        """Every DOF's real coefficients ``(2H+1, ndof)`` (m) from the retained ones ``(2H+1, m)``."""
+        coefficients = np.asarray(coefficients, dtype=float)
+        ndof = self.m + self.interior.size
+        out = np.zeros((2 * H + 1, ndof))
+        out[:, self.retained] = coefficients
+        if self.interior.size == 0:
+            return out
+        out[0, self.interior] = self.interior_response(0, omega, coefficients[0]).real
+        for h in range(1, H + 1):
+            z = coefficients[2 * h - 1] - 1j * coefficients[2 * h]
+            zi = self.interior_response(h, omega, z)
+            out[2 * h - 1, self.interior] = zi.real
+            out[2 * h, self.interior] = -zi.imag
+        return out

@@ -1,0 +1,147 @@
+"""Modal condensation onto retained DOFs: normal modes plus the residual flexibility of the omitted ones.
+
+The receptance of the retained DOFs ``r`` at the frequency ``Omega = h omega`` is
+
+``G(Omega) = Phi_r (Lambda - Omega^2 I + i Omega Phi^T C Phi)^-1 Phi_r^T + R``,
+
+with ``Phi`` the ``modes`` lowest mass-normalised normal modes (sparse
+shift-invert eigensolver), ``Lambda`` their squared natural frequencies and
+``R = [(K - s M)^-1]_rr - Phi_r (Lambda - s I)^-1 Phi_r^T`` the residual
+(static) flexibility of the omitted modes. The shift ``s < 0`` (tiny against the
+omitted modes) keeps ``K - s M`` invertible for structures with rigid-body modes
+(a free body held only by its contacts); their modes are among the kept ones. The
+condensed dynamic stiffness is ``S = G^-1``; the static term (``h = 0``) is the
+exact static condensation of ``K``, so the static contact state is exact.
+The omitted modes enter quasi-statically: the error grows like
+``(Omega / omega_(modes+1))^2`` (:attr:`ModalCondensation.cutoff`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .condensation import Condensation, SingularInteriorError
+
+#: DOFs up to which the eigenproblem is solved densely
+DENSE_EIGEN = 600
+#: the shift s = -SHIFT * (median of diag K / median of diag M)
+SHIFT = 1e-6
+
+
+class ModalCondensation:
+    """Condensed dynamic stiffness of the retained DOFs from ``modes`` normal modes plus residual flexibility.
+
+    Parameters
+    ----------
+    M, C, K : ndarray or scipy.sparse matrix, shape (ndof, ndof)
+        Mass (kg), damping (N s/m) and stiffness (N/m) matrices (symmetric).
+    retained : array_like of int, shape (m,)
+        DOFs kept (sorted, unique); external forces act on these only.
+    modes : int
+        Normal modes kept, ``1 <= modes < ndof``.
+
+    Attributes
+    ----------
+    frequencies : ndarray, shape (modes,)
+        Natural frequencies of the kept modes (rad/s; rigid-body modes 0).
+    cutoff : float
+        Natural frequency of the first omitted mode (rad/s).
+    """
+
+    def __init__(self, M, C, K, retained, modes: int):
+        ndof = M.shape[0]
+        self.retained = np.asarray(retained, dtype=np.int64)
+        self.m = self.retained.size
+        self.modes = modes
+        diag_k = np.abs(K.diagonal()) if sp.issparse(K) else np.abs(np.diag(K))
+        diag_m = np.abs(M.diagonal()) if sp.issparse(M) else np.abs(np.diag(M))
+        s = -SHIFT * float(np.median(diag_k[diag_k > 0]) if np.any(diag_k > 0) else 1.0) / float(np.median(diag_m))
+        self.shift = s
+        shifted = (sp.csc_matrix(K) - s * sp.csc_matrix(M)) if sp.issparse(K) or sp.issparse(M) else \
+            np.asarray(K, dtype=float) - s * np.asarray(M, dtype=float)
+        k = min(modes + 1, ndof - 1)
+        if ndof <= DENSE_EIGEN:
+            Kd = shifted.toarray() if sp.issparse(shifted) else shifted
+            Md = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+            lam, phi = sla.eigh(Kd, Md, subset_by_index=[0, k - 1])
+            lam = lam + s
+            flex = sla.cho_solve(sla.cho_factor(Kd), np.eye(ndof)[:, self.retained])
+        else:
+            lu = spla.splu(sp.csc_matrix(shifted))
+            op = spla.LinearOperator(shifted.shape, matvec=lu.solve, dtype=float)
+            lam, phi = spla.eigsh(sp.csr_matrix(K), k=k, M=sp.csr_matrix(M), sigma=s, which="LM", OPinv=op)
+            order = np.argsort(lam)
+            lam, phi = lam[order], phi[:, order]
+            E = np.zeros((ndof, self.m))
+            E[self.retained, np.arange(self.m)] = 1.0
+            flex = lu.solve(E)
+        lam = np.maximum(lam, 0.0)
+        self.cutoff = float(np.sqrt(lam[modes])) if lam.size > modes else np.inf
+        lam, phi = lam[:modes], phi[:, :modes]
+        self.frequencies = np.sqrt(lam)
+        self.eigenvalues = lam
+        self.phi = phi
+        self.phi_r = phi[self.retained]
+        Cm = phi.T @ (C @ phi)
+        self.modal_damping = 0.5 * (Cm + Cm.T)
+        self.residual = flex[self.retained] - (self.phi_r / (lam - s)) @ self.phi_r.T
+        self.flex_full = flex  # (ndof, m): the shifted static flexibility, for recovery
+        self.static = Condensation(M, C, K, self.retained)  # exact for h = 0
+        self._cache = (None, None, None)
+
+    def _dynamic(self, Omega: float, h: int, omega: float, derivative: bool):
+        """Modal part: ``D^-1`` and, with ``derivative``, ``D' `` (modes x modes, complex)."""
+        D = np.diag(self.eigenvalues - Omega * Omega).astype(complex) + (1j * Omega) * self.modal_damping
+        dD = None
+        if derivative:
+            dD = np.diag(np.full(self.modes, -2.0 * h * h * omega)).astype(complex) + (1j * h) * self.modal_damping
+        return D, dD
+
+    def harmonic(self, h: int, omega: float, *, derivative: bool = True):
+        """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`."""
+        if h == 0:
+            S, _ = self.static.harmonic(0, omega, derivative=False)
+            return S, (np.zeros_like(S) if derivative else None)
+        Omega = h * omega
+        D, dD = self._dynamic(Omega, h, omega, derivative)
+        try:
+            Y = np.linalg.solve(D, self.phi_r.T.astype(complex))  # D^-1 Phi_r^T, (modes, m)
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
+                                        f"({Omega:.6g} rad/s); add damping") from None
+        G = self.phi_r @ Y + self.residual
+        try:
+            S = np.linalg.inv(G)
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at harmonic {h} "
+                                        f"({Omega:.6g} rad/s); keep more modes") from None
+        if not derivative:
+            return S, None
+        # G' = -Phi_r D^-1 D' D^-1 Phi_r^T ;  S' = -S G' S
+        Yt = np.linalg.solve(D.T, self.phi_r.T.astype(complex))
+        dG = -(Yt.T @ dD @ Y)
+        return S, -S @ dG @ S
+
+    operator = Condensation.operator
+
+    def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
+        """Every DOF's real coefficients ``(2H+1, ndof)`` (m) from the retained ones ``(2H+1, m)``.
+
+        The force on the retained DOFs is ``S q_r``; the response to it is the
+        modal sum plus the residual flexibility (static part: exact condensation).
+        """
+        coefficients = np.asarray(coefficients, dtype=float)
+        out = np.empty((2 * H + 1, self.phi.shape[0]))
+        out[0] = self.static.recover(coefficients[:1], omega, 0)[0]
+        for h in range(1, H + 1):
+            z = coefficients[2 * h - 1] - 1j * coefficients[2 * h]
+            S, _ = self.harmonic(h, omega, derivative=False)
+            f = S @ z
+            D, _ = self._dynamic(h * omega, h, omega, False)
+            eta = np.linalg.solve(D, self.phi_r.T @ f)
+            q = self.phi @ eta + self.flex_full @ f - self.phi @ ((self.phi_r.T @ f) / (self.eigenvalues - self.shift))
+            out[2 * h - 1], out[2 * h] = q.real, -q.imag
+        return out
