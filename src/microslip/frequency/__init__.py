@@ -8,12 +8,19 @@
   continuation, returning a :class:`FrequencyResponse`;
 * :func:`frequency_point` -- the solution at one frequency;
 * :func:`static_solution` -- the static equilibrium under preloads;
+* ``reduction="exact" | "modal" | "none"`` of those three -- harmonic balance on
+  the contact DOFs, the rest of the structure condensed exactly or modally
+  (:mod:`.reduced`);
+* :func:`craig_bampton` -- a smaller :class:`Structure` on kept DOFs plus
+  fixed-interface modes, with its recovery matrix;
 * :func:`steady_state` -- direct time integration
   to the periodic steady state (an independent check).
 """
 
 from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
 from .continuation import ConvergenceError, StepControl
+from .craig_bampton import CraigBampton, craig_bampton
+from .condensation import SingularInteriorError
 from .hbm import HarmonicBalance
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
@@ -23,15 +30,18 @@ __all__ = [
     "AFTResult",
     "Contact",
     "ConvergenceError",
+    "CraigBampton",
     "FrequencyResponse",
     "HarmonicBalance",
     "IncompleteCurveWarning",
     "NotPeriodicError",
+    "SingularInteriorError",
     "StepControl",
     "SteadyState",
     "Structure",
     "aft",
     "aft_batch",
+    "craig_bampton",
     "cycle_work",
     "default_samples",
     "frequency_point",
