@@ -72,6 +72,7 @@ class Condensation:
         self.blocks_K = _split(K, r, self.interior)
         self.sparse = sp.issparse(self.blocks_K[3])
         self._cache = (None, None, None)
+        self._static = None
 
     # -- one harmonic --------------------------------------------------------------
     def _z(self, blocks_h, k):
@@ -171,35 +172,33 @@ class Condensation:
         return -solve(np.asarray(self._z(key, 2) @ q_r, dtype=complex))
 
     # -- the real harmonic-balance operator --------------------------------------------
-    def operator(self, omega: float, H: int, *, derivative: bool = True):
+    def operator(self, omega: float, H: int):
         """Real block-diagonal ``Z(omega)`` and ``dZ/domega``, shape ``((2H+1) m, (2H+1) m)`` (N/m, N s/m).
 
         Harmonic-major layout ``[c0 (m), a1 (m), b1 (m), ..., bH (m)]``, the
-        layout of :class:`~microslip.frequency.hbm.HarmonicBalance`. Cached for
-        the last ``(omega, H)``.
+        layout of :class:`~microslip.frequency.hbm.HarmonicBalance`. Both are
+        computed together and cached for the last ``(omega, H)`` (a Newton
+        step asks for the one, then the other); the static block, which does
+        not depend on ``omega``, is computed once.
         """
-        if self._cache[0] == (omega, H, derivative) or (derivative is False and self._cache[0] == (omega, H, True)):
+        if self._cache[0] == (omega, H):
             return self._cache[1], self._cache[2]
         m = self.m
         n = (2 * H + 1) * m
         Z = np.zeros((n, n))
-        dZ = np.zeros((n, n)) if derivative else None
-        for h in range(H + 1):
-            S, dS = self.harmonic(h, omega, derivative=derivative)
-            if h == 0:
-                Z[:m, :m] = S.real
-                if derivative:
-                    dZ[:m, :m] = dS.real
-                continue
+        dZ = np.zeros((n, n))
+        if self._static is None:
+            self._static = self.harmonic(0, 0.0, derivative=False)[0].real
+        Z[:m, :m] = self._static
+        for h in range(1, H + 1):
+            S, dS = self.harmonic(h, omega)
             a = slice((2 * h - 1) * m, 2 * h * m)
             b = slice(2 * h * m, (2 * h + 1) * m)
             for target, M in ((Z, S), (dZ, dS)):
-                if target is None:
-                    continue
                 target[a, a] = target[b, b] = M.real
                 target[a, b] = M.imag
                 target[b, a] = -M.imag
-        self._cache = ((omega, H, derivative), Z, dZ)
+        self._cache = ((omega, H), Z, dZ)
         return Z, dZ
 
     def recover(self, coefficients, omega: float, H: int) -> np.ndarray:

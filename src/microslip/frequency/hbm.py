@@ -245,14 +245,31 @@ class HarmonicBalance:
         return self.Cx @ x - 2.0 * omega * (self.Mx @ x)
 
     @cached_property
-    def _outer(self) -> list:
-        """Each contact's constant outer products ``bt bt^T``, ``bt bn^T``, ``bn bn^T`` (sparse path)."""
-        out = []
+    def _pattern(self) -> tuple:
+        """Where the contact Jacobian's entries go (sparse path), computed once.
+
+        Every non-zero of every contact's outer products ``bt bt^T``, ``bt bn^T``,
+        ``bn bn^T`` for every pair of harmonics ``(p, q)``: ``(rows, cols, which,
+        contact, value, p, q)`` so that one vectorised product and one COO sum
+        assemble the whole Jacobian, whatever the number of contacts.
+        """
+        rows, cols, which, contact, value = [], [], [], [], []
         for c in range(self.nc):
-            bt = sp.csr_matrix(self.Bt[:, c:c + 1])
-            bn = sp.csr_matrix(self.Bn[:, c:c + 1])
-            out.append((bt @ bt.T, bt @ bn.T, bn @ bn.T))
-        return out
+            bt, bn = self.Bt[:, c], self.Bn[:, c]
+            for k, (u, v) in enumerate(((bt, bt), (bt, bn), (bn, bn))):
+                iu, iv = np.flatnonzero(u), np.flatnonzero(v)
+                I, Jj = np.meshgrid(iu, iv, indexing="ij")
+                rows.append(I.ravel())
+                cols.append(Jj.ravel())
+                value.append(np.outer(u[iu], v[iv]).ravel())
+                which.append(np.full(I.size, k))
+                contact.append(np.full(I.size, c))
+        rows, cols, which, contact, value = (np.concatenate(a) for a in (rows, cols, which, contact, value))
+        p, q = np.meshgrid(np.arange(self.nb), np.arange(self.nb), indexing="ij")
+        p, q = p.ravel(), q.ravel()
+        R = (p[:, None] * self.ndof + rows[None, :]).ravel()
+        C = (q[:, None] * self.ndof + cols[None, :]).ravel()
+        return R, C, which, contact, value, p, q
 
     def _contact_jacobian(self):
         Bt, Bn = self.Bt, self.Bn
@@ -264,12 +281,10 @@ class HarmonicBalance:
                                     np.einsum("ic,jc->cij", Bn, Bn)]).reshape(3 * nc, m * m)
             J = (blocks.T @ outer).reshape(nb, nb, m, m).transpose(0, 2, 1, 3)
             return J.reshape(self.n, self.n)
-        J = None
-        for c, (tt, tn, nn) in enumerate(self._outer):
-            part = (sp.kron(sp.csr_matrix(self.JTt[c]), tt) + sp.kron(sp.csr_matrix(self.JTn[c]), tn)
-                    + sp.kron(sp.csr_matrix(self.JNn[c]), nn))
-            J = part if J is None else J + part
-        return J.tocsc()
+        R, C, which, contact, value, p, q = self._pattern
+        blocks = np.stack([self.JTt, self.JTn, self.JNn])  # (3, nc, nb, nb)
+        data = (blocks[which[None, :], contact[None, :], p[:, None], q[:, None]] * value[None, :]).ravel()
+        return sp.csc_matrix((data, (R, C)), shape=(self.n, self.n))
 
     # -- linear algebra ---------------------------------------------------------
     def solve(self, A, b) -> np.ndarray:

@@ -91,6 +91,7 @@ class ModalCondensation:
         self.flex_full = flex  # (ndof, m): the shifted static flexibility, for recovery
         self.static = Condensation(M, C, K, self.retained)  # exact for h = 0
         self._cache = (None, None, None)
+        self._static = None
 
     def _dynamic(self, Omega: float, h: int, omega: float, derivative: bool):
         """Modal part: ``D^-1`` and, with ``derivative``, ``D' `` (modes x modes, complex)."""

@@ -124,7 +124,7 @@ class ReducedHarmonicBalance(HarmonicBalance):
 
     def dynamic_stiffness(self, omega: float):
         """The condensed ``Z(omega)``, dense ``(n, n)`` (N/m)."""
-        return self.linear.operator(omega, self.H, derivative=False)[0]
+        return self.linear.operator(omega, self.H)[0]
 
     def omega_derivative(self, x, omega: float) -> np.ndarray:
         """``dR/domega = Z'(omega) x`` (N s), shape ``(n,)``."""
@@ -132,7 +132,7 @@ class ReducedHarmonicBalance(HarmonicBalance):
 
     def stuck_stiffness(self) -> np.ndarray:
         """Static condensed stiffness plus every contact element closed and stuck (N/m), ``(m, m)``."""
-        K = self.linear.operator(1.0, 0, derivative=False)[0].copy()
+        K = self.linear.operator(1.0, 0)[0].copy()
         for c, contact in enumerate(self.structure.contacts):
             for b, k in ((self.Bt[:, c], contact.model.kt.sum()), (self.Bn[:, c], contact.model.kn.sum())):
                 K += k * np.outer(b, b)
