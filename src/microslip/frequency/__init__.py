@@ -11,6 +11,8 @@
 * ``reduction="exact" | "modal" | "none"`` of those three -- harmonic balance on
   the contact DOFs, the rest of the structure condensed exactly or modally
   (:mod:`.reduced`);
+* :class:`CyclicStructure` -- one sector of a bladed disk, solved for an
+  engine-order excitation (``engine_order=`` of the solvers);
 * :func:`craig_bampton` -- a smaller :class:`Structure` on kept DOFs plus
   fixed-interface modes, with its recovery matrix;
 * :func:`steady_state` -- direct time integration
@@ -20,6 +22,7 @@
 from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
 from .continuation import ConvergenceError, StepControl
 from .craig_bampton import CraigBampton, craig_bampton
+from .cyclic import CyclicStructure
 from .condensation import SingularInteriorError
 from .hbm import HarmonicBalance
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
@@ -31,6 +34,7 @@ __all__ = [
     "Contact",
     "ConvergenceError",
     "CraigBampton",
+    "CyclicStructure",
     "FrequencyResponse",
     "HarmonicBalance",
     "IncompleteCurveWarning",

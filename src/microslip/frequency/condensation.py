@@ -39,7 +39,7 @@ def _split(A, r, i):
         Aii = rows_i[:, i].tocsc()
         return (rows_r[:, r].toarray(), rows_r[:, i].toarray(), rows_i[:, r].toarray(),
                 Aii if i.size > DENSE_INTERIOR else Aii.toarray())
-    A = np.asarray(A, dtype=float)
+    A = np.asarray(A)
     return A[np.ix_(r, r)], A[np.ix_(r, i)], A[np.ix_(i, r)], A[np.ix_(i, i)]
 
 
@@ -52,6 +52,10 @@ class Condensation:
         Mass (kg), damping (N s/m) and stiffness (N/m) matrices.
     retained : array_like of int, shape (m,)
         The DOFs kept (sorted, unique); external forces act on these only.
+    harmonic_matrices : callable, optional
+        ``h -> (M_h, C_h, K_h)``: matrices that differ from harmonic to
+        harmonic (complex Hermitian, e.g. a cyclic sector's matrices in the
+        nodal diameter of harmonic ``h``); then ``M, C, K`` give only the size.
 
     Notes
     -----
@@ -60,26 +64,34 @@ class Condensation:
     for the ``m`` retained columns; the last frequency's blocks are cached.
     """
 
-    def __init__(self, M, C, K, retained):
+    def __init__(self, M, C, K, retained, *, harmonic_matrices=None):
         ndof = M.shape[0]
         r = np.asarray(retained, dtype=np.int64)
         mask = np.ones(ndof, dtype=bool)
         mask[r] = False
         self.retained, self.interior = r, np.flatnonzero(mask)
         self.m = r.size
-        self.blocks_M = _split(M, r, self.interior)
-        self.blocks_C = _split(C, r, self.interior)
-        self.blocks_K = _split(K, r, self.interior)
-        self.sparse = sp.issparse(self.blocks_K[3])
+        self._matrices = harmonic_matrices or (lambda h: (M, C, K))
+        self._per_harmonic = harmonic_matrices is not None
+        self._split_blocks = {}
+        self.sparse = sp.issparse(self._blocks(0)[2][3])
         self._cache = (None, None, None)
         self._static = None
 
+    def _blocks(self, h: int):
+        """``(M, C, K)`` of harmonic ``h``, each split into ``(rr, ri, ir, ii)`` blocks (computed once)."""
+        key = h if self._per_harmonic else 0
+        if key not in self._split_blocks:
+            self._split_blocks[key] = tuple(_split(A, self.retained, self.interior) for A in self._matrices(h))
+        return self._split_blocks[key]
+
     # -- one harmonic --------------------------------------------------------------
-    def _z(self, blocks_h, k):
-        """Block ``k`` (0: rr, 1: ri, 2: ir, 3: ii) of ``Z`` for ``(Omega^2, Omega)`` in ``blocks_h``."""
-        w2, w = blocks_h
-        Z = self.blocks_K[k] - w2 * self.blocks_M[k]
-        return Z + (1j * w) * self.blocks_C[k] if w else Z
+    @staticmethod
+    def _z(blocks, key, k):
+        """Block ``k`` (0: rr, 1: ri, 2: ir, 3: ii) of ``Z`` for ``key = (Omega^2, Omega)``."""
+        (w2, w), (bM, bC, bK) = key, blocks
+        Z = bK[k] - w2 * bM[k]
+        return Z + (1j * w) * bC[k] if w else Z
 
     def _factor(self, Zii):
         """``solve(b, trans)`` with a factorisation of ``Zii`` (real or complex ``b``), None when singular."""
@@ -136,7 +148,8 @@ class Condensation:
         """
         W_omega = h * omega
         key = (W_omega * W_omega, W_omega)
-        Zrr, Zri, Zir, Zii = (self._z(key, k) for k in range(4))
+        blocks = self._blocks(h)
+        Zrr, Zri, Zir, Zii = (self._z(blocks, key, k) for k in range(4))
         if self.interior.size == 0:
             S = np.array(Zrr, dtype=complex)
             W = V = None
@@ -154,7 +167,8 @@ class Condensation:
             S = Zrr - Zri @ W
         if not derivative:
             return S, None
-        dZ = [-2.0 * h * h * omega * self.blocks_M[k] + (1j * h) * self.blocks_C[k] for k in range(4)]
+        bM, bC, _ = blocks
+        dZ = [-2.0 * h * h * omega * bM[k] + (1j * h) * bC[k] for k in range(4)]
         dS = np.array(dZ[0], dtype=complex)
         if W is not None:
             dS = dS - dZ[1] @ W - V.T @ dZ[2] + V.T @ (dZ[3] @ W)
@@ -166,10 +180,11 @@ class Condensation:
             return np.zeros((0,) + np.shape(q_r)[1:], dtype=complex)
         W_omega = h * omega
         key = (W_omega * W_omega, W_omega)
-        solve = self._factor(self._z(key, 3))
+        blocks = self._blocks(h)
+        solve = self._factor(self._z(blocks, key, 3))
         if solve is None:
             raise SingularInteriorError(f"the held structure is singular at harmonic {h} ({W_omega:.6g} rad/s)")
-        return -solve(np.asarray(self._z(key, 2) @ q_r, dtype=complex))
+        return -solve(np.asarray(self._z(blocks, key, 2) @ q_r, dtype=complex))
 
     # -- the real harmonic-balance operator --------------------------------------------
     def operator(self, omega: float, H: int):

@@ -234,7 +234,7 @@ class HarmonicBalance:
         R = Z @ x - self.f
         if self.nc:
             self._aft(x)
-            R += (self.FT.T @ self.Bt.T + self.FN.T @ self.Bn.T).ravel()
+            R += self._contact_residual()
         if not jacobian:
             return R
         Jx = Z + self._contact_jacobian() if self.nc else Z
@@ -338,6 +338,14 @@ class HarmonicBalance:
         return A
 
     # -- quantities along a curve ------------------------------------------------------
+    def _contact_residual(self) -> np.ndarray:
+        """The contact forces' share of the residual (N), shape ``(n,)``, from the last AFT."""
+        return (self.FT.T @ self.Bt.T + self.FN.T @ self.Bn.T).ravel()
+
+    def static_directions(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each contact's directions in the static problem ``(Bt, Bn)``, shape ``(ndof, nc)`` each."""
+        return self.Bt, self.Bn
+
     def stuck_stiffness(self):
         """Stiffness of the unknowns with every contact element closed and stuck (N/m): see
         :meth:`Structure.stuck_stiffness <microslip.frequency.structure.Structure.stuck_stiffness>`."""

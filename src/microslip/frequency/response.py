@@ -23,6 +23,8 @@ from ..common.units import unit_factor
 from .aft import MAX_PERIODS, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance, excitation
+from .cyclic import CyclicStructure
+from .cyclic_balance import check_engine_order, cyclic_equations, phase_operator
 from .reduced import (ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs)
 from .structure import Structure, direction
 
@@ -93,6 +95,9 @@ class FrequencyResponse:
         With ``"modal"``: an estimate of its error, the relative difference
         (Frobenius norm) between the modal and the exact condensed dynamic
         stiffness of the first harmonic at the peak frequency.
+    engine_order : int or None
+        For a cyclic structure: the engine order solved; the DOFs are this
+        sector's (:meth:`sector_coefficients` gives any other sector).
     """
 
     structure: Structure
@@ -118,6 +123,7 @@ class FrequencyResponse:
     reduction: str = "none"
     modes: int | None = None
     reduction_error: float | None = None
+    engine_order: int | None = None
     recovery: object = field(default=None, repr=False)
 
     def __post_init__(self):
@@ -145,6 +151,20 @@ class FrequencyResponse:
         return np.array([self.recovery(k) @ b for k in range(self.points)])
 
     _dof_coefficients = dof_coefficients
+
+    def sector_coefficients(self, dof, sector: int) -> np.ndarray:
+        """Coefficients (m), ``(points, 2H+1)``, of a DOF of sector ``sector`` of a cyclic structure.
+
+        Sector ``k`` lags this one (sector 0) by ``k`` times the phase of each
+        harmonic's nodal diameter, ``z_k = z_0 exp(-i k phi_h)``.
+        """
+        if self.engine_order is None:
+            raise ValueError("sector_coefficients is for the response of a CyclicStructure (engine_order given)")
+        k = _checks.positive_int("sector", sector, minimum=0)
+        if k >= self.structure.sectors:
+            raise ValueError(f"sector must be below the number of sectors {self.structure.sectors}, got {k}")
+        P = np.linalg.matrix_power(phase_operator(self.structure, self.harmonics, self.engine_order), k)
+        return self.dof_coefficients(dof) @ P.T
 
     def amplitude(self, dof=0, harmonic: int | None = None) -> np.ndarray:
         """Vibration amplitude of a DOF (or a combination of DOFs) at every point (m).
@@ -307,7 +327,7 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
     return static.full(x, 1.0)[0]
 
 
-def _equations(structure, force, harmonics, samples, max_periods, reduction, modes):
+def _equations(structure, force, harmonics, samples, max_periods, reduction, modes, engine_order=None):
     """``(static, dynamic, (reduction, modes))``: the static problem and the harmonic balance equations.
 
     Both share one condensation of the linear structure when it is reduced.
@@ -315,8 +335,16 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
     H = _checks.positive_int("harmonics", harmonics, minimum=0)
-    reduction, modes = choose_reduction(structure, H, reduction, modes)
+    engine_order = check_engine_order(structure, engine_order)
     static_force = _static_force(force) if force is not None else {}
+    if isinstance(structure, CyclicStructure):
+        if reduction not in ("auto", "exact") or modes is not None:
+            raise ValueError(f"a CyclicStructure is solved with reduction='exact' (the sector condensed in each "
+                             f"harmonic's nodal diameter); got reduction={reduction!r}"
+                             + (f", modes={modes!r}" if modes is not None else ""))
+        return (*cyclic_equations(structure, force, static_force, H, engine_order, samples, max_periods),
+                ("exact", None))
+    reduction, modes = choose_reduction(structure, H, reduction, modes)
     if reduction == "none":
         return (HarmonicBalance(structure, static_force, 0), HarmonicBalance(structure, force, H, samples=samples,
                                                                               max_periods=max_periods),
@@ -332,12 +360,13 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
 def _static_state(hb, *, tolerance: float = 1e-10):
     """``(x0, N0, T0, closed)``: the static unknowns of ``hb`` (H = 0), each contact's static forces (N), closed elements."""
     structure = hb.structure
-    r_scale = max(float(np.max(np.abs(hb.f))), 1e-30)
     # start from the structure with every contact element closed and stuck
     rhs = hb.f.copy()
     for i, c in enumerate(structure.contacts):
         m = c.model
-        rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * hb.Bn[:, i]
+        rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * hb.static_directions()[1][:, i]
+    # the residual's scale: the loads, or the contacts' interference forces when nothing else loads it
+    r_scale = max(float(np.max(np.abs(rhs))), float(np.max(np.abs(hb.f))), 1e-30)
     K = hb.stuck_stiffness()
     if sp.issparse(K):
         x = spla.lsqr(K.tocsc(), rhs, atol=1e-14, btol=1e-14)[0]
@@ -355,7 +384,7 @@ def _static_state(hb, *, tolerance: float = 1e-10):
 def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5, samples: int | None = None,
                        control: StepControl | None = None, progress: bool = False,
                        max_periods: int = MAX_PERIODS, reduction: str = "auto",
-                       modes: int | None = None) -> FrequencyResponse:
+                       modes: int | None = None, engine_order: int | None = None) -> FrequencyResponse:
     """Forced response of a structure with microslip contacts over a frequency range.
 
     Harmonic balance with ``harmonics`` harmonics plus the static term (the
@@ -397,6 +426,11 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     modes : int, optional
         Normal modes of a modal reduction (default 60); implies ``"modal"``
         with ``reduction="auto"``.
+    engine_order : int, optional
+        For a :class:`~microslip.frequency.CyclicStructure` (required there):
+        the engine order ``EO`` of the travelling-wave excitation; ``force``
+        then acts on every sector, sector ``s + 1`` a fraction ``EO / N`` of a
+        period after sector ``s``, and the result is this sector's response.
 
     Returns
     -------
@@ -420,7 +454,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     if control is not None and not isinstance(control, StepControl):
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
     hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
-                                                   reduction, modes)
+                                                   reduction, modes, engine_order)
     report = Progress(10, enabled=progress)
     reached = [0]
 
@@ -451,10 +485,11 @@ def incomplete_message(result: FrequencyResponse, omega_end: float, control: Ste
             f"raise StepControl.max_points (or ds_max) to follow the whole curve")
 
 
-def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, reduction="auto", modes=None):
+def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, reduction="auto", modes=None,
+                 engine_order=None):
     """The equations, the solution at ``lo`` (from the static state) and the scales of x and R."""
     H = _checks.positive_int("harmonics", harmonics, minimum=1)
-    static_hb, hb, _ = _equations(structure, force, H, samples, max_periods, reduction, modes)
+    static_hb, hb, _ = _equations(structure, force, H, samples, max_periods, reduction, modes, engine_order)
     if not np.any(hb.f_ext[1:]):
         raise ValueError("force must have a non-zero dynamic part (harmonic >= 1)")
     r_scale = float(np.max(np.abs(hb.f)))
@@ -467,7 +502,7 @@ def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, redu
 
 def frequency_point(structure: Structure, force, omega: float, *, harmonics: int = 5, samples: int | None = None,
                     max_periods: int = MAX_PERIODS, reduction: str = "auto",
-                    modes: int | None = None) -> FrequencyResponse:
+                    modes: int | None = None, engine_order: int | None = None) -> FrequencyResponse:
     """The harmonic balance solution at one frequency, reached from the static state by Newton's method.
 
     Where the response has several solutions at ``omega`` (past a fold) this is
@@ -476,7 +511,7 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
 
     Parameters
     ----------
-    structure, force, harmonics, samples, max_periods, reduction, modes
+    structure, force, harmonics, samples, max_periods, reduction, modes, engine_order
         As in :func:`frequency_response`.
     omega : float
         Excitation frequency (rad/s).
@@ -489,7 +524,7 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
     start = time.perf_counter()
     omega = _checks.positive_scalar("omega", omega)
     hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega, reduction,
-                                       modes)
+                                       modes, engine_order)
     result = _collect(hb, x[None, :], np.array([omega]), np.array([0]), static, True)
     return replace(result, elapsed=time.perf_counter() - start)
 
@@ -515,6 +550,7 @@ def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> 
     if reduced:
         linear = hb.linear
         extra = dict(dofs=hb.retained, reduction="modal" if hasattr(linear, "modes") else "exact",
+                     engine_order=getattr(hb, "engine_order", None),
                      modes=getattr(linear, "modes", None),
                      recovery=lambda k: hb.full(xs[k], float(omegas[k])))
         if extra["reduction"] == "modal":

@@ -1,0 +1,203 @@
+"""Cyclic symmetry: one sector of a bladed disk solved for a travelling-wave (engine-order) excitation.
+
+A disk of ``N`` identical sectors, each with the matrices of one sector including
+its left and right boundary DOFs; the right boundary of sector ``s`` is the left
+boundary of sector ``s + 1``. Under an engine-order ``EO`` excitation every sector
+sees the same forcing, sector ``s + 1`` a fraction ``EO / N`` of a period later:
+
+``q_{s+1}(time) = q_s(time - 2 pi EO / (N omega))``,
+
+so harmonic ``h`` of the response lives in nodal diameter ``h EO mod N``: its
+complex amplitude (``z = a - i b`` of ``a cos + b sin``) on sector ``s + 1`` is
+``z_s exp(-i phi_h)`` with ``phi_h = 2 pi h EO / N``. The static term is the
+zero-diameter one (centrifugal preloads). For each harmonic the right boundary
+is eliminated, ``q_R = exp(-i phi_h) q_L``, and the sector's matrices become the
+complex Hermitian ``T_h^H A T_h`` on the sector's independent DOFs (all but the
+right boundary). Contacts may join a sector to the next one
+(:meth:`CyclicStructure.next`): their displacement takes the next sector's DOFs
+through the same phase, and their force acts back on this sector's DOFs through
+the previous sector's contact (the transpose of that map).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..common import _checks
+from ..model import MicroslipModel
+from .structure import Contact, Structure, direction
+
+
+@dataclass(frozen=True)
+class NextDof:
+    """DOF ``dof`` of the next sector, a key of a contact's direction (from :meth:`CyclicStructure.next`)."""
+
+    dof: int
+
+
+def _dof_list(name: str, values, ndof: int) -> np.ndarray:
+    arr = np.atleast_1d(np.asarray(values))
+    if arr.ndim != 1 or not (np.issubdtype(arr.dtype, np.integer) or arr.size == 0):
+        raise TypeError(f"{name} must be a list of DOF indices, got {values!r}")
+    if arr.size and (arr.min() < 0 or arr.max() >= ndof):
+        raise ValueError(f"{name}: DOF indices must lie in 0..{ndof - 1}, got {arr.min()}..{arr.max()}")
+    if np.unique(arr).size != arr.size:
+        raise ValueError(f"{name} must not repeat a DOF")
+    return arr.astype(np.int64)
+
+
+class CyclicStructure(Structure):
+    """One sector of a cyclically symmetric structure (a bladed disk) with its contacts.
+
+    Parameters
+    ----------
+    M, C, K : array_like or scipy.sparse matrix, shape (ndof, ndof)
+        Mass (kg), damping (N s/m) and stiffness (N/m) of one sector,
+        including its left and right boundary DOFs; ``C`` may be None.
+    sectors : int
+        Number of sectors ``N`` of the whole disk (at least 3).
+    left, right : array_like of int, shape (k,)
+        The boundary DOFs: ``right[j]`` of sector ``s`` is ``left[j]`` of
+        sector ``s + 1`` (same direction in the sector's own frame).
+
+    Notes
+    -----
+    The sector's matrices must not couple its left and right boundary
+    directly to each other beyond what one sector's elements do (the
+    usual FE sector). Solve with :func:`~microslip.frequency.frequency_response`
+    and ``engine_order=EO``; the result reports this sector's DOFs, numbered
+    as in ``M``, ``C``, ``K`` (:meth:`FrequencyResponse.sector` expands to
+    any other sector).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from microslip import MicroslipModel
+    >>> from microslip.frequency import CyclicStructure
+    >>> K = np.array([[2e6, -1e6, 0], [-1e6, 2e6, -1e6], [0, -1e6, 1e6]])
+    >>> disk = CyclicStructure(np.eye(3) * 0.1, None, K, sectors=8, left=[0], right=[2])
+    >>> c = disk.add_contact(MicroslipModel([1e4], [1e6], [0.0], 0.5), tangential={1: 1.0, disk.next(1): -1.0},
+    ...                      approach=1e-6)
+    >>> disk.independent.size
+    2
+    """
+
+    def __init__(self, M, C, K, *, sectors: int, left, right):
+        super().__init__(M, C, K)
+        self.sectors = _checks.positive_int("sectors", sectors, minimum=3)
+        self.left = _dof_list("left", left, self.ndof)
+        self.right = _dof_list("right", right, self.ndof)
+        if self.left.size != self.right.size:
+            raise ValueError(f"left and right must pair the boundary DOFs one to one, got {self.left.size} and "
+                             f"{self.right.size} DOFs")
+        both = np.intersect1d(self.left, self.right)
+        if both.size:
+            raise ValueError(f"a DOF cannot be on both boundaries: DOF {int(both[0])} is in left and right")
+        mask = np.ones(self.ndof, dtype=bool)
+        mask[self.right] = False
+        self.independent = np.flatnonzero(mask)
+        #: each contact's direction on the next sector's DOFs, ``(tangential, normal)``, shape (ndof,) each
+        self.next_directions: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def __repr__(self) -> str:
+        return (f"CyclicStructure(ndof={self.ndof}, sectors={self.sectors}, boundary={self.left.size}, "
+                f"contacts={len(self.contacts)})")
+
+    def next(self, dof) -> NextDof:
+        """DOF ``dof`` of the next sector, for a contact's ``tangential`` or ``normal`` mapping."""
+        i = _checks.positive_int("dof", dof, minimum=0)
+        if i >= self.ndof:
+            raise ValueError(f"dof: DOF {i} is out of range for a sector with {self.ndof} DOFs")
+        return NextDof(i)
+
+    def _split(self, name: str, spec):
+        """``(own, next)`` direction vectors of a contact direction that may name next-sector DOFs."""
+        own, nxt = {}, {}
+        if isinstance(spec, Mapping):
+            for key, coef in spec.items():
+                (nxt if isinstance(key, NextDof) else own)[key.dof if isinstance(key, NextDof) else key] = coef
+            b_own = direction(name, own, self.ndof, allow_none=True)
+            b_next = direction(name, nxt, self.ndof, allow_none=True)
+        else:
+            b_own = direction(name, spec, self.ndof, allow_none=True)
+            b_next = np.zeros(self.ndof)
+        for b, where in ((b_own, ""), (b_next, " of the next sector")):
+            on_right = np.intersect1d(np.flatnonzero(b), self.right)
+            if on_right.size:
+                j = int(np.flatnonzero(self.right == on_right[0])[0])
+                raise ValueError(f"{name}: DOF {int(on_right[0])}{where} is on the right boundary, which is the next "
+                                 f"sector's left boundary: name it as left DOF {int(self.left[j])} of the sector after")
+        return b_own, b_next
+
+    def add_contact(self, model: MicroslipModel, *, tangential, normal=None, preload: float | None = None,
+                    approach: float | None = None, name: str | None = None) -> Contact:
+        """Attach a contact; its directions may mix this sector's DOFs and the next sector's (``disk.next(j)``).
+
+        Parameters are those of :meth:`Structure.add_contact
+        <microslip.frequency.Structure.add_contact>`; a key ``disk.next(j)`` in
+        ``tangential`` or ``normal`` names DOF ``j`` of the next sector.
+        ``preload`` acts along the whole normal direction (on this sector's
+        DOFs and, through the previous sector's contact, on the next's).
+        """
+        if not isinstance(model, MicroslipModel):
+            raise TypeError(f"model must be a microslip MicroslipModel, got {type(model).__name__}")
+        bt, bt_next = self._split("tangential", tangential)
+        if not (bt.any() or bt_next.any()):
+            raise ValueError("tangential must not be all zeros")
+        bn, bn_next = self._split("normal", normal) if normal is not None else (np.zeros(self.ndof),) * 2
+        # the checks of a plain contact, on the own part (the next part is checked above)
+        proxy = super().add_contact(model, tangential=bt if bt.any() else bt_next, normal=normal if normal is None
+                                    else (bn if bn.any() else bn_next), preload=preload, approach=approach, name=name)
+        contact = Contact(model, bt, bn, proxy.preload, proxy.approach, proxy.name)
+        self.contacts[-1] = contact
+        self.next_directions.append((bt_next, bn_next))
+        return contact
+
+    def preload_force(self) -> np.ndarray:
+        """Static force of the preloads on the sector (N), ``(ndof,)``: along own and next-sector normals."""
+        f = np.zeros(self.ndof)
+        for c, (_, bn_next) in zip(self.contacts, self.next_directions):
+            f += c.preload * (c.normal + bn_next)
+        return f
+
+    def contact_directions_next(self) -> tuple[np.ndarray, np.ndarray]:
+        """The contacts' next-sector directions ``(Bt_next, Bn_next)``, shape ``(ndof, nc)`` each."""
+        nc = len(self.contacts)
+        Bt = np.array([t for t, _ in self.next_directions]).T.reshape(self.ndof, nc)
+        Bn = np.array([n for _, n in self.next_directions]).T.reshape(self.ndof, nc)
+        return Bt, Bn
+
+    def stuck_stiffness(self):
+        """Not defined for a sector alone: it depends on the nodal diameter (see :meth:`matrices`)."""
+        raise ValueError("a cyclic sector's stiffness depends on the nodal diameter: use "
+                         "CyclicStructure.matrices(phase) for the sector's matrices in one diameter")
+
+    # -- the sector's matrices in a nodal diameter ------------------------------------------
+    def phase(self, harmonic: int, engine_order: int) -> float:
+        """``phi_h = 2 pi h EO / N`` (rad): the phase lag of harmonic ``h`` from one sector to the next."""
+        return 2.0 * np.pi * ((harmonic * engine_order) % self.sectors) / self.sectors
+
+    def constraint(self, phi: float):
+        """``T`` (sparse, ``(ndof, len(independent))``): every DOF from the independent ones, ``q_R = e^{-i phi} q_L``."""
+        col = {int(d): k for k, d in enumerate(self.independent)}
+        rows = list(self.independent) + list(self.right)
+        cols = [col[int(d)] for d in self.independent] + [col[int(d)] for d in self.left]
+        shift = np.exp(-1j * phi) if phi else 1.0
+        vals = [1.0] * self.independent.size + [shift] * self.right.size
+        return sp.csr_matrix((np.array(vals, dtype=complex if phi else float), (rows, cols)),
+                             shape=(self.ndof, self.independent.size))
+
+    def matrices(self, phi: float):
+        """``(M, C, K)`` on the independent DOFs for the phase ``phi`` (complex Hermitian; real for 0)."""
+        T = self.constraint(phi)
+        out = []
+        for A in (self.M, self.C, self.K):
+            A = sp.csr_matrix(A)
+            out.append((T.conj().T @ A @ T).tocsr())
+        if not phi:
+            out = [A.real.tocsr() if np.iscomplexobj(A.data) else A for A in out]
+        return tuple(out)

@@ -1,0 +1,107 @@
+"""Cyclic symmetry: one sector under an engine-order excitation against the whole assembled disk."""
+
+import numpy as np
+import pytest
+
+from microslip import Sphere, tune
+from microslip.frequency import CyclicStructure, Structure, frequency_point
+
+SPHERE = Sphere.paper()
+MODEL = tune(SPHERE, 37.5, elements=4)
+SECTORS = 7
+# sector DOFs: 0 ring node (left boundary), 1 ring node (right boundary), 2 platform, 3 blade tip
+M_SECTOR = np.diag([0.05, 0.05, 0.08, 0.03])  # the ring nodes' mass is split between the two sectors sharing them
+SPRINGS = [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (2, 3, 2e6), (0, None, 1e6), (1, None, 1e6)]
+F_TIP = 12.0  # N on the tip, first harmonic
+# samples per period, a multiple of the sectors: sector k's signals are sector 0's shifted by k EO / N of a
+# period, a whole number of samples, so the disk's AFT samples every sector at the same phases (with another
+# number the sectors' sampling (aliasing) errors differ, about 1e-3 here at 64 samples)
+SAMPLES = 16 * SECTORS
+
+
+def sector_matrices():
+    K = np.zeros((4, 4))
+    for i, j, k in SPRINGS:
+        K[i, i] += k
+        if j is not None:
+            K[j, j] += k
+            K[i, j] -= k
+            K[j, i] -= k
+    return M_SECTOR.copy(), 1e-6 * K + 2.0 * M_SECTOR, K
+
+
+def add_contacts(s, own, nxt):
+    """The two contacts of a sector: platforms rubbing (normal load held), tips joined through the platforms."""
+    s.add_contact(MODEL, tangential={own(2): 1.0, nxt(2): -1.0}, approach=SPHERE.approach(20.0), name=None)
+    s.add_contact(MODEL, tangential={own(3): 1.0, nxt(3): -1.0}, normal={own(2): 0.5, nxt(2): 0.5},
+                  approach=SPHERE.approach(15.0))
+
+
+def disk():
+    M, C, K = sector_matrices()
+    d = CyclicStructure(M, C, K, sectors=SECTORS, left=[0], right=[1])
+    add_contacts(d, lambda i: i, d.next)
+    return d
+
+
+def whole_disk(engine_order):
+    """The assembled disk: ring nodes 0..N-1, platforms N..2N-1, tips 2N..3N-1; travelling-wave force."""
+    N = SECTORS
+    g = lambda s, i: (s % N, (s + 1) % N, N + s % N, 2 * N + s % N)[i]  # noqa: E731
+    M, C, K = (np.zeros((3 * N, 3 * N)) for _ in range(3))
+    Ms, Cs, Ks = sector_matrices()
+    for s in range(N):
+        idx = [g(s, i) for i in range(4)]
+        for A, a in ((M, Ms), (C, Cs), (K, Ks)):
+            A[np.ix_(idx, idx)] += a
+    full = Structure(M, C, K)
+    for s in range(N):
+        add_contacts(full, lambda i, s=s: g(s, i), lambda i, s=s: g(s + 1, i))
+    f = np.zeros(3 * N, dtype=complex)
+    phi = 2 * np.pi * engine_order / N
+    for s in range(N):
+        f[g(s, 3)] = F_TIP * np.exp(-1j * s * phi)  # sector s + 1 lags sector s by phi
+    return full, f, g
+
+
+@pytest.mark.parametrize("engine_order", [1, 5])  # EO = 5 of 7 sectors: h EO folds past N/2 (5, 3, 1 for h = 1..3)
+@pytest.mark.parametrize("omega", [9000.0, 12000.0])
+def test_a_sector_equals_the_whole_disk(engine_order, omega):
+    d = disk()
+    f = np.zeros(4)
+    f[3] = F_TIP
+    sector = frequency_point(d, f, omega, harmonics=3, engine_order=engine_order, samples=SAMPLES)
+    full_s, full_f, g = whole_disk(engine_order)
+    full = frequency_point(full_s, full_f, omega, harmonics=3, reduction="none", samples=SAMPLES)
+    scale = np.max(np.abs(full.coefficients))
+    assert sector.engine_order == engine_order and sector.reduction == "exact"
+    for dof in range(4):  # every DOF of sector 0, the right boundary (next ring node) included
+        np.testing.assert_allclose(sector.dof_coefficients(dof), full.dof_coefficients(g(0, dof)), rtol=0,
+                                   atol=1e-8 * scale)
+    for k in (1, 3, SECTORS - 1):  # expanded to other sectors
+        np.testing.assert_allclose(sector.sector_coefficients(3, k), full.dof_coefficients(g(k, 3)), rtol=0,
+                                   atol=1e-8 * scale)
+    # per sector: the contacts' energy is one N-th of the disk's
+    np.testing.assert_allclose(sector.contact_dissipation.sum(), full.contact_dissipation.sum() / SECTORS, rtol=1e-7)
+
+
+def test_next_dofs_and_boundaries_are_checked():
+    d = disk()
+    with pytest.raises(ValueError, match="tangential: DOF 1 is on the right boundary"):
+        d.add_contact(MODEL, tangential={1: 1.0}, approach=1e-6)
+    with pytest.raises(ValueError, match="dof: DOF 9 is out of range for a sector with 4 DOFs"):
+        d.next(9)
+    with pytest.raises(ValueError, match="left and right must pair the boundary DOFs one to one"):
+        CyclicStructure(*sector_matrices(), sectors=6, left=[0], right=[1, 2])
+    with pytest.raises(ValueError, match="a DOF cannot be on both boundaries"):
+        CyclicStructure(*sector_matrices(), sectors=6, left=[0], right=[0])
+    with pytest.raises(ValueError, match="sectors must be"):
+        CyclicStructure(*sector_matrices(), sectors=2, left=[0], right=[1])
+    with pytest.raises(ValueError, match="engine_order must be given for a CyclicStructure"):
+        frequency_point(d, [0, 0, 0, 1.0], 9000.0, harmonics=3)
+    with pytest.raises(ValueError, match="engine_order is only for a CyclicStructure"):
+        frequency_point(whole_disk(1)[0], np.ones(3 * SECTORS), 9000.0, harmonics=3, engine_order=1)
+    with pytest.raises(ValueError, match="force: DOF 1 is on the right boundary"):
+        frequency_point(d, [0, 1.0, 0, 0], 9000.0, harmonics=3, engine_order=1)
+    with pytest.raises(ValueError, match="a CyclicStructure is solved with reduction='exact'"):
+        frequency_point(d, [0, 0, 0, 1.0], 9000.0, harmonics=3, engine_order=1, reduction="none")
