@@ -12,9 +12,6 @@ from microslip import MicroslipModel, Sphere, loops, tune
 from microslip.loops import _kernels
 from _paths import DAMPER
 
-needs_damper = pytest.mark.skipif(not DAMPER.is_dir(), reason=f"real damper data not found at {DAMPER} "
-                                  "(expected ../shared/data/arts-friction-damper beside the repository)")
-
 K, F, A = 2e7, 10.0, 2e-6  # a Jenkins element: stiffness (N/m), slip force (N); amplitude (m)
 
 
@@ -170,7 +167,6 @@ def test_window_ends_kernel_matches_twin(values, data):
 
 # -- the real damper data -----------------------------------------------------------------------
 
-@needs_damper
 @pytest.mark.parametrize("name", ["1Hz20lbtension.json", "1Hz80lbtension.json"])
 def test_real_damper_loops(name):
     r = loops.read(DAMPER / name)
@@ -180,13 +176,13 @@ def test_real_damper_loops(name):
     # its sign convention is ours (T acts along t: positive loop energy and stick stiffness), so the
     # sign check lets it through
     assert np.all(L.energy > 0) and L.summary()["gross_slip"] and L.summary()["stick_stiffness"] > 0
-    # independent check: SOURCE.txt gives the mean loop area over the 10 s record
-    # (|loop area| per cycle in in*kip, 10 cycles); the whole record's work ∮T dt must match it
+    # independent check: tests/data/arts-friction-damper/README.md gives the mean loop area over the
+    # 10 s record (|loop area| per cycle in in*kip, 10 cycles); the whole record's work ∮T dt must match it
     area = {"1Hz20lbtension.json": 1.823, "1Hz80lbtension.json": 4.715}[name] * 0.0254 * 4448.2216152605
     work = float(np.sum(0.5 * (r.T[1:] + r.T[:-1]) * np.diff(r.t)))
     assert work == pytest.approx(10 * area, rel=0.05)
     assert L.energy.sum() < work  # the cycles leave out the start and end
-    # slip forces: SOURCE.txt's median force while sliding (|v| > 0.5 max) vs ours (mean over the
+    # slip forces: that README's median force while sliding (|v| > 0.5 max) vs ours (mean over the
     # last 10 % of the stroke of steady branches): two definitions, agree within 12 %
     med = {"1Hz20lbtension.json": (0.945, -0.888), "1Hz80lbtension.json": (2.556, -2.693)}[name]
     s = L.summary()

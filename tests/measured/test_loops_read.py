@@ -9,7 +9,6 @@ from microslip import loops
 from _paths import DAMPER
 
 
-
 def _write(tmp_path, text, name="loops.csv"):
     path = tmp_path / name
     path.write_text(text, encoding="utf-8")
@@ -136,17 +135,13 @@ def test_damper_json_small_file_converts_inches_and_kips(tmp_path):
     assert r.normal_load == pytest.approx(150 * 4.4482216152605)  # both band actuators
 
 
-needs_damper = pytest.mark.skipif(not DAMPER.is_dir(), reason=f"real damper data not found at {DAMPER} "
-                                  "(expected ../shared/data/arts-friction-damper beside the repository)")
-
-
-@needs_damper
 def test_real_damper_record_reads_in_si():
     r = loops.read(DAMPER / "1Hz20lbtension.json")
     raw = np.asarray(json.loads((DAMPER / "1Hz20lbtension.json").read_text())["data"])
     assert r.samples == raw.shape[0] == 10241
     np.testing.assert_allclose(r.t, raw[:, 1] * 0.0254)
     np.testing.assert_allclose(r.T, raw[:, 2] * 4448.2216152605)
-    # SOURCE.txt: displacement -1.016..+1.074 in, force -2.005..+2.314 kip (independent summary)
+    # independent summary in tests/data/arts-friction-damper/README.md: displacement -1.016..+1.074 in,
+    # force -2.005..+2.314 kip
     assert r.t.min() / 0.0254 == pytest.approx(-1.016, abs=1e-3)
     assert r.T.max() / 4448.2216152605 == pytest.approx(2.314, abs=1e-3)

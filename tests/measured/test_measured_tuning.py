@@ -226,7 +226,6 @@ def test_cli_help_explains_the_loop_options(capsys):
         assert option in text
 
 
-@pytest.mark.skipif(not DAMPER.is_dir(), reason=f"real damper data not found at {DAMPER}")
 def test_cli_refuses_the_damper_data_with_numbers(tmp_path, capsys):
     rc = main(["tune", str(DAMPER / "1Hz80lbtension.json"), "-o", str(tmp_path / "d.json"), "--quiet"])
     err = capsys.readouterr().err
