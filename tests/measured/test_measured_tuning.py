@@ -35,9 +35,13 @@ def test_model_tuned_at_the_highest_load_reproduces_the_lower_ones(result):
     assert [round(v.normal_load, 1) for v in result.validation.loads] == [36.6, 31.6, 26.5, 21.5, 16.4]
     worst = result.validation.worst()
     # the specimen obeys the superposition rule and its normal curve is given: the 6-element array
-    # misses only by its discreteness and the noise. Energy and slip force within 2 %; the stick
-    # stiffness within 10 % (the array is straight until its first element slips, the data curve)
-    assert worst["energy"] < 0.02 and worst["slip_force"] < 0.02 and worst["stiffness"] < 0.10
+    # misses only by its discreteness and the noise (the stiffness most: the array is straight until
+    # its first element slips, the data curve). The README states what this measures: 0.552 % in
+    # energy, 0.723 % in slip force, 4.62 % in stick stiffness. The data, the fit and the tuning are
+    # deterministic; each bound is that value rounded up to the next 0.1 %, a margin of 0.05-0.08
+    # points, more than 15 times what a relative perturbation of 1e-6 of every displacement sample
+    # moves them (<= 0.003 points; round-off differences between platforms are far smaller)
+    assert worst["energy"] < 0.006 and worst["slip_force"] < 0.008 and worst["stiffness"] < 0.047
     assert len(result.validation.rows()) == 5 and len(result.validation.rows()[0]) == len(result.validation.HEADERS)
 
 
@@ -45,7 +49,12 @@ def test_wrong_normal_law_shows_in_the_validation(records, result):
     palmgren = tune_on_loops(records, Cylinder(**GEOM, law="palmgren"), elements=6)
     # same branch, same tangential stiffnesses; only the normal law differs
     np.testing.assert_allclose(palmgren.model.kt, result.model.kt, rtol=1e-12)
-    assert palmgren.validation.worst()["energy"] > 2 * result.validation.worst()["energy"]
+    # the README: 5.54 % in energy, 0.69 % in slip force, 14.0 % in stiffness with Palmgren's law;
+    # above, each rounded up to the next 0.1 % (as in the test above); below, the wrong law must show
+    # (energy and stiffness errors at least 9/10 of what the README states)
+    worst = palmgren.validation.worst()
+    assert 0.05 < worst["energy"] < 0.056 and worst["slip_force"] < 0.007 and 0.126 < worst["stiffness"] < 0.141
+    assert worst["energy"] > 2 * result.validation.worst()["energy"]
 
 
 def test_model_gives_mu_n_at_every_load(result):
