@@ -100,11 +100,13 @@ def test_single_column_with_unit(tmp_path):
     np.testing.assert_allclose(column_si(columns, units, "t", "length"), [1e-3, 2e-3], rtol=1e-15)
 
 
-def test_header_only_gives_empty_columns(tmp_path):
+def test_header_only_is_refused_naming_the_file(tmp_path):
+    # before: empty columns, and the caller failed later with "t must have at least 1 value(s)"
     path = tmp_path / "t.csv"
     path.write_text("t [um], n [um]\n")
-    columns, _ = read_table(path)
-    assert columns["t"].shape == (0,)
+    with pytest.raises(ValueError, match=re.escape(f"{path}: no data rows: the header (line 1) names the columns "
+                                                   f"['t', 'n'], but no line of numbers follows it")):
+        read_table(path)
 
 
 @pytest.mark.parametrize("text, message", [
@@ -139,3 +141,15 @@ def test_column_si_errors(tmp_path):
         column_si(columns, units, "n", "length", path=path)
     # an explicit unit overrides the header's
     np.testing.assert_array_equal(column_si(columns, units, "t", "length", path=path, unit="mm"), [1e-3])
+
+
+def test_column_si_refuses_non_finite_values_naming_the_line(tmp_path):
+    path = tmp_path / "t.csv"
+    path.write_text("# c\nt [mm], n [N]\n1, 2\nnan, 3\n")
+    columns, units = read_table(path)
+    with pytest.raises(ValueError, match=re.escape(f"{path}: line 4, column 't': nan is not a finite number")):
+        column_si(columns, units, "t", "length", path=path)
+    np.testing.assert_array_equal(column_si(columns, units, "n", "force", path=path), [2.0, 3.0])
+    # a plain dict (no file lines): the data row
+    with pytest.raises(ValueError, match=re.escape("x.json: data row 2, column 't': inf is not a finite number")):
+        column_si({"t": np.array([1.0, np.inf])}, {"t": "mm"}, "t", "length", path="x.json")
