@@ -235,6 +235,54 @@ def test_cli_help_explains_the_loop_options(capsys):
         assert option in text
 
 
+def test_cli_loop_options_have_distinct_metavars(capsys):
+    with pytest.raises(SystemExit):
+        main(["tune", "--help"])
+    text = capsys.readouterr().out
+    # before: --t-column and --T-column both showed T_COLUMN, --t-unit and --T-unit both T_UNIT
+    shown = {option: re.search(rf"{option} ([A-Z_]+)", text).group(1)
+             for option in ("--t-column", "--T-column", "--N-column", "--t-unit", "--T-unit")}
+    assert shown == {"--t-column": "DISP_COLUMN", "--T-column": "FORCE_COLUMN", "--N-column": "LOAD_COLUMN",
+                     "--t-unit": "DISP_UNIT", "--T-unit": "FORCE_UNIT"}
+
+
+def _loops_file(tmp_path, header, name="run.csv"):
+    k = np.arange(64)
+    rows = [f"{i * 1e-3:g},{np.sin(i / 8):.6f},{10 * np.cos(i / 8):.6f}" for i in k]
+    path = tmp_path / name
+    path.write_text(header + "\n" + "\n".join(rows) + "\n")
+    return str(path)
+
+
+@pytest.mark.parametrize("header, options, message", [
+    # before: "name it with columns={'T': ...}", Python advice on the command line
+    ("time [s],t [um],Fx [N]", [], "no column for 'T' (force): looked for ['T', 'F', 'force', 'friction force', "
+                                   "'tangential force'], the columns are ['time', 't', 'Fx']; name it with "
+                                   "--T-column NAME"),
+    ("time [s],t [um],T [N]", ["--t-column", "disp"], "no column 'disp' (given by --t-column); the columns are"),
+    ("time [s],t [um],T [N]", ["--N-column", "load"], "no column 'load' (given by --N-column); the columns are"),
+    ("time [s],t,T [N]", [], "column 't' (length) has no unit in the header; write it as 't [unit]' or give "
+                             "--t-unit UNIT"),
+    # before: "units['t'] (--t-unit) gives 'mm'"
+    ("time [s],t [um],T [N]", ["--t-unit", "mm"], "column 't' is in 'um' by its header, but --t-unit gives 'mm'; "
+                                                  "--t-unit only applies"),
+    ("time [s],t [um],T [N]", ["--T-unit", "kN"], "column 'T' is in 'N' by its header, but --T-unit gives 'kN'"),
+])
+def test_cli_loop_file_messages_name_the_options(tmp_path, capsys, header, options, message):
+    path = _loops_file(tmp_path, header)
+    rc = main(["tune", path, *options, "-o", str(tmp_path / "m.json"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and f"{path}: {message}" in err
+    assert "columns=" not in err and "units[" not in err and "units=" not in err
+
+
+def test_cli_refuses_a_load_that_is_not_positive(tmp_path, capsys):
+    path = _loops_file(tmp_path, "time [s],t [um],T [N]")
+    rc = main(["tune", f"{path}@-5N", "-o", str(tmp_path / "m.json"), "--quiet"])
+    # before: "normal_load must be positive", a name the command line does not have
+    assert rc == 2 and f"the load of {path} ('{path}@-5N') must be positive, got '-5N'" in capsys.readouterr().err
+
+
 def test_cli_refuses_the_damper_data_with_numbers(tmp_path, capsys):
     rc = main(["tune", str(DAMPER / "1Hz80lbtension.json"), "-o", str(tmp_path / "d.json"), "--quiet"])
     err = capsys.readouterr().err
