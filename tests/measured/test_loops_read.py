@@ -86,9 +86,6 @@ def test_column_without_unit_is_refused(tmp_path):
     with pytest.raises(ValueError, match=re.escape("column 't' (length) has no unit in the header; write it as "
                                                    "'t [unit]' or give units={'t': ...}")):
         loops.read(_write(tmp_path, _sine_table(header="time [s],t,T [N]")))
-    with pytest.raises(ValueError, match=re.escape("column 't' is in 'um' by its header, but units['t'] gives "
-                                                   "'mm'; units['t'] only applies")):
-        loops.read(_write(tmp_path, _sine_table()), units={"t": "mm"})
 
 
 def test_non_numeric_cell_names_row_and_column(tmp_path):
