@@ -115,6 +115,40 @@ def test_analysis_errors_name_the_parameter():
         L.cycle_bounds(5)
 
 
+def test_branch_number_is_checked():
+    L = loops.analyse(_jenkins_record())
+    # 5 periods from rest: 9 reversals, 8 branches; the last one ends at the last reversal
+    assert L.branches == 8 and L.branch(7)[0][-1] == L.record.t[L.reversal_index[-1]]
+    # before: 2.5 raised IndexError from numpy, 8 an IndexError, -1 silently gave the last branch
+    with pytest.raises(TypeError, match=r"number must be an integer, got 2\.5"):
+        L.branch(2.5)
+    with pytest.raises(ValueError, match=r"number must be < 8 \(the number of branches, between the 9 reversals\), "
+                                         r"got 8"):
+        L.branch(8)
+    with pytest.raises(ValueError, match=r"number must be an integer >= 0, got -1"):
+        L.branch(-1)
+
+
+def test_steady_mean_and_backbone_points_check_their_arguments():
+    L = loops.analyse(_jenkins_record())
+    assert L.steady_mean("slip_force") == pytest.approx(F, rel=1e-3)
+    # before: AttributeError from getattr
+    with pytest.raises(ValueError, match=r"name must be a per-cycle attribute, one of \['energy', .*got 'enrgy'"):
+        L.steady_mean("enrgy")
+    assert L.backbone_points([0, 1])[0].size == L.backbone_points(slice(0, 2))[0].size
+    # before: "'int' object is not iterable", "need at least one array to concatenate"
+    with pytest.raises(TypeError, match=r"cycles must be a slice or a sequence of cycle numbers, got 2"):
+        L.backbone_points(2)
+    with pytest.raises(ValueError, match=r"cycles must select at least one of the 4 cycles, got \[\]"):
+        L.backbone_points([])
+    with pytest.raises(TypeError, match=r"cycles: each cycle must be an integer, got 1\.5"):
+        L.backbone_points([1.5])
+    with pytest.raises(ValueError, match=r"cycles: cycle 4 does not exist \(0\.\.3\)"):
+        L.backbone_points([4])
+    with pytest.raises(TypeError, match=r"source must be a str \(a file name, for messages\), got 3"):
+        loops.Record(t=np.zeros(20), T=np.zeros(20), source=3)
+
+
 def test_reversed_force_sign_is_refused():
     rec = _jenkins_record()
     flipped = loops.Record(t=rec.t, T=-rec.T, source="flipped.csv")

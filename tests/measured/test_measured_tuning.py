@@ -71,6 +71,11 @@ def test_model_gives_mu_n_at_every_load(result):
 
 def test_transition_joins_the_curve_at_the_higher_load(result):
     d = result.transition()
+    # before: points=2.5 failed inside numpy, points=0 gave an empty reference curve
+    with pytest.raises(TypeError, match=r"points must be an integer, got 2\.5"):
+        result.transition(points=2.5)
+    with pytest.raises(ValueError, match=r"points must be an integer >= 3, got 0"):
+        result.transition(points=0)
     assert d["N"] == pytest.approx(16.4) and d["N"] + d["dN"] == pytest.approx(36.6)
     mu = result.reference.mu
     # the model ends in gross slip at the higher load, like the reference

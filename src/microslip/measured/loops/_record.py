@@ -76,6 +76,8 @@ class Record:
     source: str = "record"
 
     def __post_init__(self):
+        if not isinstance(self.source, str):
+            raise TypeError(f"source must be a str (a file name, for messages), got {self.source!r}")
         t = _checks.real_array("t", self.t, ndim=1)
         T = _checks.real_array("T", self.T, ndim=1)
         if T.shape != t.shape:
