@@ -111,6 +111,23 @@ def test_non_finite_cell_names_the_file_line_and_column(tmp_path, cell, shown):
         loops.read(path)
 
 
+@pytest.mark.parametrize("newline", ["\n", "\r\n", "\r"])
+def test_lines_are_counted_as_an_editor_counts_them(tmp_path, newline):
+    text = _sine_table().splitlines()
+    # a blank line, a line of spaces and a comment among the data: lines 4, 6 and 8 of the file
+    text[3:3] = [""]
+    text[5:5] = ["   "]
+    text[7:7] = ["# the rig paused"]
+    text[10] = "0.007,0.2,nan"  # line 11
+    path = tmp_path / "edited.csv"
+    path.write_bytes((newline.join(text) + newline + newline).encode())
+    with pytest.raises(ValueError, match=re.escape(f"{path}: line 11, column 'T': nan is not a finite number")):
+        loops.read(path)
+    text[10] = "0.007,0.2,1.0"
+    path.write_bytes((newline.join(text) + newline).encode())
+    assert loops.read(path).samples == 64
+
+
 def test_non_finite_value_in_an_unused_column_is_left_alone(tmp_path):
     k = np.arange(64)
     rows = [f"{np.sin(i / 8):.6g},{10 * np.cos(i / 8):.6g},{'nan' if i == 3 else 1.0}" for i in k]

@@ -126,6 +126,39 @@ class Columns(dict):
         self.comments = comments
 
 
+_SKIPPED = re.compile(r"^[^\S\n]*(?:#|$)", re.MULTILINE)  # a blank or comment line
+
+
+def _lines(text: str):
+    """``(header, body, numbers, comments)`` of a table's text.
+
+    ``header`` is ``(line number, text)`` of the first line that is neither
+    blank nor a comment (None if there is none); ``body`` the data lines
+    after it and ``numbers`` their line numbers (from 1, as an editor counts
+    them), shape (rows,); ``comments`` the comment lines above the header.
+    """
+    if "\r" in text:
+        text = text.replace("\r\n", "\n").replace("\r", "\n")
+    lines = text.split("\n")
+    comments, h = [], 0
+    while h < len(lines) and (not lines[h].strip() or lines[h].lstrip().startswith("#")):
+        if lines[h].lstrip().startswith("#"):
+            comments.append(lines[h].strip())
+        h += 1
+    if h == len(lines):
+        return None, [], np.empty(0, dtype=np.int64), comments
+    body = lines[h + 1:]
+    while body and not body[-1].strip():
+        body.pop()
+    start = sum(len(line) + 1 for line in lines[:h + 1])  # offset of the first body line in the text
+    end = start + sum(map(len, body)) + len(body) - 1
+    if body and _SKIPPED.search(text, start, max(end, start)) is None:  # the usual file: every line is data
+        return (h + 1, lines[h]), body, np.arange(h + 2, h + 2 + len(body)), comments
+    kept = [(n, line) for n, line in enumerate(body, start=h + 2) if line.strip() and not line.lstrip().startswith("#")]
+    return ((h + 1, lines[h]), [line for _, line in kept], np.array([n for n, _ in kept], dtype=np.int64),
+            comments)
+
+
 def read_table(path) -> tuple[Columns, dict[str, str]]:
     """Read a table into ``{name: values}`` (raw, not converted) and ``{name: unit}``.
 
@@ -144,35 +177,27 @@ def read_table(path) -> tuple[Columns, dict[str, str]]:
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"table file {str(path)!r} does not exist")
-    text = read_text(path)
-    lines, comments = [], []
-    for number, ln in enumerate(text.replace("\r\n", "\n").replace("\r", "\n").split("\n"), start=1):
-        if ln.lstrip().startswith("#"):
-            if not lines:
-                comments.append(ln.strip())
-        elif ln.strip():
-            lines.append((number, ln))
-    if not lines:
+    header, body, numbers, comments = _lines(read_text(path))
+    if header is None:
         raise ValueError(f"{path}: the file holds no header and no data")
     names, units = [], {}
-    for cell in _split(lines[0][1], header=True):
+    for cell in _split(header[1], header=True):
         m = _HEADER_CELL.match(cell)
         if not m:
             raise ValueError(f"{path}: cannot read the header cell {cell!r}; expected 'name [unit]'")
         if m.group(1) in units:
-            raise ValueError(f"{path}: the header (line {lines[0][0]}) names the column {m.group(1)!r} twice, as "
+            raise ValueError(f"{path}: the header (line {header[0]}) names the column {m.group(1)!r} twice, as "
                              f"columns {names.index(m.group(1)) + 1} and {len(names) + 1}; rename one of them")
         names.append(m.group(1))
         units[m.group(1)] = (m.group(2) or "").strip()
-    if len(lines) == 1:
-        raise ValueError(f"{path}: no data rows: the header (line {lines[0][0]}) names the columns {names}, "
+    if not body:
+        raise ValueError(f"{path}: no data rows: the header (line {header[0]}) names the columns {names}, "
                          f"but no line of numbers follows it")
-    numbers = np.array([number for number, _ in lines[1:]], dtype=np.int64)
-    data = _fast_rows([line for _, line in lines[1:]], len(names))
+    data = _fast_rows(body, len(names))
     if data is not None:
         return Columns({name: data[:, i] for i, name in enumerate(names)}, numbers, comments), units
     rows = []
-    for number, line in lines[1:]:  # numbers of the lines in the file
+    for number, line in zip(numbers.tolist(), body):  # numbers of the lines in the file
         cells = _split(line)
         if len(cells) != len(names):
             raise ValueError(f"{path}: line {number} has {len(cells)} cells, the header names {len(names)}")
