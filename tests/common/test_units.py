@@ -131,25 +131,19 @@ def test_read_table_missing_file(tmp_path):
 
 def test_column_si_errors(tmp_path):
     path = tmp_path / "t.csv"
-    path.write_text("t [parsec], n [N]\n1, 2\n")
+    path.write_text("# c\nt [parsec], n [N], u [mm]\n1, 2, 5\n3, 4, nan\n")
     columns, units = read_table(path)
-    with pytest.raises(ValueError, match=re.escape(f"{path}: no column 'x'; the columns are ['t', 'n']")):
+    with pytest.raises(ValueError, match=re.escape(f"{path}: no column 'x'; the columns are ['t', 'n', 'u']")):
         column_si(columns, units, "x", "length", path=path)
     with pytest.raises(ValueError, match=re.escape(f"{path}: column 't': unknown length unit 'parsec'")):
         column_si(columns, units, "t", "length", path=path)
     with pytest.raises(ValueError, match=re.escape("column 'n': unknown length unit 'N'")):
         column_si(columns, units, "n", "length", path=path)
     # an explicit unit overrides the header's
-    np.testing.assert_array_equal(column_si(columns, units, "t", "length", path=path, unit="mm"), [1e-3])
-
-
-def test_column_si_refuses_non_finite_values_naming_the_line(tmp_path):
-    path = tmp_path / "t.csv"
-    path.write_text("# c\nt [mm], n [N]\n1, 2\nnan, 3\n")
-    columns, units = read_table(path)
-    with pytest.raises(ValueError, match=re.escape(f"{path}: line 4, column 't': nan is not a finite number")):
-        column_si(columns, units, "t", "length", path=path)
-    np.testing.assert_array_equal(column_si(columns, units, "n", "force", path=path), [2.0, 3.0])
+    np.testing.assert_array_equal(column_si(columns, units, "t", "length", path=path, unit="mm"), [1e-3, 3e-3])
+    # a value that is not finite: the file and its line (before: accepted, the caller failed without either)
+    with pytest.raises(ValueError, match=re.escape(f"{path}: line 4, column 'u': nan is not a finite number")):
+        column_si(columns, units, "u", "length", path=path)
     # a plain dict (no file lines): the data row
     with pytest.raises(ValueError, match=re.escape("x.json: data row 2, column 't': inf is not a finite number")):
         column_si({"t": np.array([1.0, np.inf])}, {"t": "mm"}, "t", "length", path="x.json")
