@@ -4,4 +4,5 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "examples"
-DAMPER = REPO.parent / "shared" / "data" / "arts-friction-damper"
+#: two records of the ARTS-Lab band friction damper data set (CC BY-SA 4.0, see its README.md)
+DAMPER = REPO / "tests" / "data" / "arts-friction-damper"

@@ -100,11 +100,13 @@ def test_single_column_with_unit(tmp_path):
     np.testing.assert_allclose(column_si(columns, units, "t", "length"), [1e-3, 2e-3], rtol=1e-15)
 
 
-def test_header_only_gives_empty_columns(tmp_path):
+def test_header_only_is_refused_naming_the_file(tmp_path):
+    # before: empty columns, and the caller failed later with "t must have at least 1 value(s)"
     path = tmp_path / "t.csv"
     path.write_text("t [um], n [um]\n")
-    columns, _ = read_table(path)
-    assert columns["t"].shape == (0,)
+    with pytest.raises(ValueError, match=re.escape(f"{path}: no data rows: the header (line 1) names the columns "
+                                                   f"['t', 'n'], but no line of numbers follows it")):
+        read_table(path)
 
 
 @pytest.mark.parametrize("text, message", [
@@ -129,13 +131,19 @@ def test_read_table_missing_file(tmp_path):
 
 def test_column_si_errors(tmp_path):
     path = tmp_path / "t.csv"
-    path.write_text("t [parsec], n [N]\n1, 2\n")
+    path.write_text("# c\nt [parsec], n [N], u [mm]\n1, 2, 5\n3, 4, nan\n")
     columns, units = read_table(path)
-    with pytest.raises(ValueError, match=re.escape(f"{path}: no column 'x'; the columns are ['t', 'n']")):
+    with pytest.raises(ValueError, match=re.escape(f"{path}: no column 'x'; the columns are ['t', 'n', 'u']")):
         column_si(columns, units, "x", "length", path=path)
     with pytest.raises(ValueError, match=re.escape(f"{path}: column 't': unknown length unit 'parsec'")):
         column_si(columns, units, "t", "length", path=path)
     with pytest.raises(ValueError, match=re.escape("column 'n': unknown length unit 'N'")):
         column_si(columns, units, "n", "length", path=path)
     # an explicit unit overrides the header's
-    np.testing.assert_array_equal(column_si(columns, units, "t", "length", path=path, unit="mm"), [1e-3])
+    np.testing.assert_array_equal(column_si(columns, units, "t", "length", path=path, unit="mm"), [1e-3, 3e-3])
+    # a value that is not finite: the file and its line (before: accepted, the caller failed without either)
+    with pytest.raises(ValueError, match=re.escape(f"{path}: line 4, column 'u': nan is not a finite number")):
+        column_si(columns, units, "u", "length", path=path)
+    # a plain dict (no file lines): the data row
+    with pytest.raises(ValueError, match=re.escape("x.json: data row 2, column 't': inf is not a finite number")):
+        column_si({"t": np.array([1.0, np.inf])}, {"t": "mm"}, "t", "length", path="x.json")

@@ -12,9 +12,6 @@ from microslip import MicroslipModel, Sphere, loops, tune
 from microslip.loops import _kernels
 from _paths import DAMPER
 
-needs_damper = pytest.mark.skipif(not DAMPER.is_dir(), reason=f"real damper data not found at {DAMPER} "
-                                  "(expected ../shared/data/arts-friction-damper beside the repository)")
-
 K, F, A = 2e7, 10.0, 2e-6  # a Jenkins element: stiffness (N/m), slip force (N); amplitude (m)
 
 
@@ -118,6 +115,40 @@ def test_analysis_errors_name_the_parameter():
         L.cycle_bounds(5)
 
 
+def test_branch_number_is_checked():
+    L = loops.analyse(_jenkins_record())
+    # 5 periods from rest: 9 reversals, 8 branches; the last one ends at the last reversal
+    assert L.branches == 8 and L.branch(7)[0][-1] == L.record.t[L.reversal_index[-1]]
+    # before: 2.5 raised IndexError from numpy, 8 an IndexError, -1 silently gave the last branch
+    with pytest.raises(TypeError, match=r"number must be an integer, got 2\.5"):
+        L.branch(2.5)
+    with pytest.raises(ValueError, match=r"number must be < 8 \(the number of branches, between the 9 reversals\), "
+                                         r"got 8"):
+        L.branch(8)
+    with pytest.raises(ValueError, match=r"number must be an integer >= 0, got -1"):
+        L.branch(-1)
+
+
+def test_steady_mean_and_backbone_points_check_their_arguments():
+    L = loops.analyse(_jenkins_record())
+    assert L.steady_mean("slip_force") == pytest.approx(F, rel=1e-3)
+    # before: AttributeError from getattr
+    with pytest.raises(ValueError, match=r"name must be a per-cycle attribute, one of \['energy', .*got 'enrgy'"):
+        L.steady_mean("enrgy")
+    assert L.backbone_points([0, 1])[0].size == L.backbone_points(slice(0, 2))[0].size
+    # before: "'int' object is not iterable", "need at least one array to concatenate"
+    with pytest.raises(TypeError, match=r"cycles must be a slice or a sequence of cycle numbers, got 2"):
+        L.backbone_points(2)
+    with pytest.raises(ValueError, match=r"cycles must select at least one of the 4 cycles, got \[\]"):
+        L.backbone_points([])
+    with pytest.raises(TypeError, match=r"cycles: each cycle must be an integer, got 1\.5"):
+        L.backbone_points([1.5])
+    with pytest.raises(ValueError, match=r"cycles: cycle 4 does not exist \(0\.\.3\)"):
+        L.backbone_points([4])
+    with pytest.raises(TypeError, match=r"source must be a str \(a file name, for messages\), got 3"):
+        loops.Record(t=np.zeros(20), T=np.zeros(20), source=3)
+
+
 def test_reversed_force_sign_is_refused():
     rec = _jenkins_record()
     flipped = loops.Record(t=rec.t, T=-rec.T, source="flipped.csv")
@@ -170,7 +201,6 @@ def test_window_ends_kernel_matches_twin(values, data):
 
 # -- the real damper data -----------------------------------------------------------------------
 
-@needs_damper
 @pytest.mark.parametrize("name", ["1Hz20lbtension.json", "1Hz80lbtension.json"])
 def test_real_damper_loops(name):
     r = loops.read(DAMPER / name)
@@ -180,13 +210,13 @@ def test_real_damper_loops(name):
     # its sign convention is ours (T acts along t: positive loop energy and stick stiffness), so the
     # sign check lets it through
     assert np.all(L.energy > 0) and L.summary()["gross_slip"] and L.summary()["stick_stiffness"] > 0
-    # independent check: SOURCE.txt gives the mean loop area over the 10 s record
-    # (|loop area| per cycle in in*kip, 10 cycles); the whole record's work ∮T dt must match it
+    # independent check: tests/data/arts-friction-damper/README.md gives the mean loop area over the
+    # 10 s record (|loop area| per cycle in in*kip, 10 cycles); the whole record's work ∮T dt must match it
     area = {"1Hz20lbtension.json": 1.823, "1Hz80lbtension.json": 4.715}[name] * 0.0254 * 4448.2216152605
     work = float(np.sum(0.5 * (r.T[1:] + r.T[:-1]) * np.diff(r.t)))
     assert work == pytest.approx(10 * area, rel=0.05)
     assert L.energy.sum() < work  # the cycles leave out the start and end
-    # slip forces: SOURCE.txt's median force while sliding (|v| > 0.5 max) vs ours (mean over the
+    # slip forces: that README's median force while sliding (|v| > 0.5 max) vs ours (mean over the
     # last 10 % of the stroke of steady branches): two definitions, agree within 12 %
     med = {"1Hz20lbtension.json": (0.945, -0.888), "1Hz80lbtension.json": (2.556, -2.693)}[name]
     s = L.summary()

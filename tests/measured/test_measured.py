@@ -1,6 +1,8 @@
 """The reference built from measured loops: the concave fit, the lower-load rule, the errors for data
 the array cannot represent, and the recovery of the synthetic specimen's known parameters."""
 
+import re
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -85,6 +87,27 @@ def test_fit_errors():
         fit_backbone(np.linspace(0, 1, 20), np.ones(19))
     with pytest.raises(TuningError, match="do not rise"):
         fit_backbone(np.linspace(0, 1, 20), -np.ones(20))
+
+
+def test_fitted_curve_refuses_what_it_is_not_defined_for(sphere_reference):
+    fit = sphere_reference.fit
+    # the inverse reaches the gross-slip displacement at the plateau, and accepts round-off above it
+    assert float(fit.inverse(fit.plateau)) == pytest.approx(fit.gross_slip_displacement, rel=1e-12)
+    assert float(fit.inverse(fit.plateau * (1 + 1e-12))) == pytest.approx(fit.gross_slip_displacement, rel=1e-12)
+    # before: inverse([nan]) returned 3e-26 m, inverse(-1) 0 and inverse(2 * plateau) x_gs, all silently
+    with pytest.raises(ValueError, match=r"T must be finite, got nan at flat index 0"):
+        fit.inverse([np.nan])
+    with pytest.raises(ValueError, match=r"T must be non-negative, got -1\.0"):
+        fit.inverse(-1.0)
+    with pytest.raises(ValueError, match=re.escape(f"T must not exceed the plateau {fit.plateau:.6g} N (the "
+                                                   f"gross-slip force), got {2 * fit.plateau:.6g} N")):
+        fit.inverse(2 * fit.plateau)
+    with pytest.raises(TypeError, match=r"T must be an array of real numbers, got 'abc'"):
+        fit.inverse("abc")
+    with pytest.raises(ValueError, match=r"x must be finite, got inf"):
+        fit([0.0, np.inf])
+    with pytest.raises(ValueError, match=r"x must be non-negative, got -1e-06"):
+        fit.slope(-1e-6)
 
 
 # -- data the array cannot represent --------------------------------------------------------------

@@ -35,9 +35,13 @@ def test_model_tuned_at_the_highest_load_reproduces_the_lower_ones(result):
     assert [round(v.normal_load, 1) for v in result.validation.loads] == [36.6, 31.6, 26.5, 21.5, 16.4]
     worst = result.validation.worst()
     # the specimen obeys the superposition rule and its normal curve is given: the 6-element array
-    # misses only by its discreteness and the noise. Energy and slip force within 2 %; the stick
-    # stiffness within 10 % (the array is straight until its first element slips, the data curve)
-    assert worst["energy"] < 0.02 and worst["slip_force"] < 0.02 and worst["stiffness"] < 0.10
+    # misses only by its discreteness and the noise (the stiffness most: the array is straight until
+    # its first element slips, the data curve). The README states what this measures: 0.552 % in
+    # energy, 0.723 % in slip force, 4.62 % in stick stiffness. The data, the fit and the tuning are
+    # deterministic; each bound is that value rounded up to the next 0.1 %, a margin of 0.05-0.08
+    # points, more than 15 times what a relative perturbation of 1e-6 of every displacement sample
+    # moves them (<= 0.003 points; round-off differences between platforms are far smaller)
+    assert worst["energy"] < 0.006 and worst["slip_force"] < 0.008 and worst["stiffness"] < 0.047
     assert len(result.validation.rows()) == 5 and len(result.validation.rows()[0]) == len(result.validation.HEADERS)
 
 
@@ -45,7 +49,12 @@ def test_wrong_normal_law_shows_in_the_validation(records, result):
     palmgren = tune_on_loops(records, Cylinder(**GEOM, law="palmgren"), elements=6)
     # same branch, same tangential stiffnesses; only the normal law differs
     np.testing.assert_allclose(palmgren.model.kt, result.model.kt, rtol=1e-12)
-    assert palmgren.validation.worst()["energy"] > 2 * result.validation.worst()["energy"]
+    # the README: 5.54 % in energy, 0.69 % in slip force, 14.0 % in stiffness with Palmgren's law;
+    # above, each rounded up to the next 0.1 % (as in the test above); below, the wrong law must show
+    # (energy and stiffness errors at least 9/10 of what the README states)
+    worst = palmgren.validation.worst()
+    assert 0.05 < worst["energy"] < 0.056 and worst["slip_force"] < 0.007 and 0.126 < worst["stiffness"] < 0.141
+    assert worst["energy"] > 2 * result.validation.worst()["energy"]
 
 
 def test_model_gives_mu_n_at_every_load(result):
@@ -62,6 +71,11 @@ def test_model_gives_mu_n_at_every_load(result):
 
 def test_transition_joins_the_curve_at_the_higher_load(result):
     d = result.transition()
+    # before: points=2.5 failed inside numpy, points=0 gave an empty reference curve
+    with pytest.raises(TypeError, match=r"points must be an integer, got 2\.5"):
+        result.transition(points=2.5)
+    with pytest.raises(ValueError, match=r"points must be an integer >= 3, got 0"):
+        result.transition(points=0)
     assert d["N"] == pytest.approx(16.4) and d["N"] + d["dN"] == pytest.approx(36.6)
     mu = result.reference.mu
     # the model ends in gross slip at the higher load, like the reference
@@ -226,7 +240,54 @@ def test_cli_help_explains_the_loop_options(capsys):
         assert option in text
 
 
-@pytest.mark.skipif(not DAMPER.is_dir(), reason=f"real damper data not found at {DAMPER}")
+def test_cli_loop_options_have_distinct_metavars(capsys):
+    with pytest.raises(SystemExit):
+        main(["tune", "--help"])
+    text = capsys.readouterr().out
+    # before: --t-column and --T-column both showed T_COLUMN, --t-unit and --T-unit both T_UNIT
+    shown = {option: re.search(rf"{option} ([A-Z_]+)", text).group(1)
+             for option in ("--t-column", "--T-column", "--N-column", "--t-unit", "--T-unit")}
+    assert shown == {"--t-column": "DISP_COLUMN", "--T-column": "FORCE_COLUMN", "--N-column": "LOAD_COLUMN",
+                     "--t-unit": "DISP_UNIT", "--T-unit": "FORCE_UNIT"}
+
+
+def _loops_file(tmp_path, header, name="run.csv"):
+    k = np.arange(64)
+    rows = [f"{i * 1e-3:g},{np.sin(i / 8):.6f},{10 * np.cos(i / 8):.6f}" for i in k]
+    path = tmp_path / name
+    path.write_text(header + "\n" + "\n".join(rows) + "\n")
+    return str(path)
+
+
+@pytest.mark.parametrize("header, options, message", [
+    # before: "name it with columns={'T': ...}", Python advice on the command line
+    ("time [s],t [um],Fx [N]", [], "no column for 'T' (force): looked for ['T', 'F', 'force', 'friction force', "
+                                   "'tangential force'], the columns are ['time', 't', 'Fx']; name it with "
+                                   "--T-column NAME"),
+    ("time [s],t [um],T [N]", ["--t-column", "disp"], "no column 'disp' (given by --t-column); the columns are"),
+    ("time [s],t [um],T [N]", ["--N-column", "load"], "no column 'load' (given by --N-column); the columns are"),
+    ("time [s],t,T [N]", [], "column 't' (length) has no unit in the header; write it as 't [unit]' or give "
+                             "--t-unit UNIT"),
+    # before: "units['t'] (--t-unit) gives 'mm'"
+    ("time [s],t [um],T [N]", ["--t-unit", "mm"], "column 't' is in 'um' by its header, but --t-unit gives 'mm'; "
+                                                  "--t-unit only applies"),
+    ("time [s],t [um],T [N]", ["--T-unit", "kN"], "column 'T' is in 'N' by its header, but --T-unit gives 'kN'"),
+])
+def test_cli_loop_file_messages_name_the_options(tmp_path, capsys, header, options, message):
+    path = _loops_file(tmp_path, header)
+    rc = main(["tune", path, *options, "-o", str(tmp_path / "m.json"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and f"{path}: {message}" in err
+    assert "columns=" not in err and "units[" not in err and "units=" not in err
+
+
+def test_cli_refuses_a_load_that_is_not_positive(tmp_path, capsys):
+    path = _loops_file(tmp_path, "time [s],t [um],T [N]")
+    rc = main(["tune", f"{path}@-5N", "-o", str(tmp_path / "m.json"), "--quiet"])
+    # before: "normal_load must be positive", a name the command line does not have
+    assert rc == 2 and f"the load of {path} ('{path}@-5N') must be positive, got '-5N'" in capsys.readouterr().err
+
+
 def test_cli_refuses_the_damper_data_with_numbers(tmp_path, capsys):
     rc = main(["tune", str(DAMPER / "1Hz80lbtension.json"), "-o", str(tmp_path / "d.json"), "--quiet"])
     err = capsys.readouterr().err

@@ -55,14 +55,16 @@ def add_parser(sub) -> None:
                         "table file with columns 'n [unit]' and 'N [unit]' (monotone) (default palmgren)")
     g.add_argument("--length", type=quantity("length"), default=10e-3,
                    help="length of the line of contact, e.g. 10mm (default 10mm)")
-    g.add_argument("--t-column", default=None, help="name of the displacement column (default: t, x, u or "
-                                                    "displacement)")
-    g.add_argument("--T-column", dest="T_column", default=None,
+    g.add_argument("--t-column", metavar="DISP_COLUMN", default=None,
+                   help="name of the tangential displacement column (default: t, x, u or displacement)")
+    g.add_argument("--T-column", dest="T_column", metavar="FORCE_COLUMN", default=None,
                    help="name of the tangential force column (default: T, F or force)")
-    g.add_argument("--N-column", dest="N_column", default=None, help="name of the normal load column (default N)")
-    g.add_argument("--t-unit", default=None, help="unit of the displacement column when the header has none, "
-                                                  "e.g. um (a unit that differs from the header's is an error)")
-    g.add_argument("--T-unit", dest="T_unit", default=None,
+    g.add_argument("--N-column", dest="N_column", metavar="LOAD_COLUMN", default=None,
+                   help="name of the normal load column (default N)")
+    g.add_argument("--t-unit", metavar="DISP_UNIT", default=None,
+                   help="unit of the displacement column when the header has none, e.g. um (a unit that differs "
+                        "from the header's is an error)")
+    g.add_argument("--T-unit", dest="T_unit", metavar="FORCE_UNIT", default=None,
                    help="unit of the force column when the header has none, e.g. N (a unit that differs from the "
                         "header's is an error)")
     g.add_argument("--report", default=None,
@@ -116,11 +118,23 @@ def _split_load(item: str):
     path, sep, load = item.rpartition("@")
     if not sep or not path:
         return item, None
-    return path, parse_quantity(load, "force", name=f"load of {path}")
+    value = parse_quantity(load, "force", name=f"load of {path}")
+    if not value > 0:
+        raise ValueError(f"the load of {path} ({item!r}) must be positive, got {load!r}")
+    return path, value
+
+
+def _loops_option(kind: str, role: str):
+    """The option giving the column (``kind="column"``) or the unit (``"unit"``) of ``role``, for messages."""
+    metavar = {"column": "NAME", "unit": "UNIT"}[kind]
+    if role in ("t", "T", "N") if kind == "column" else role in ("t", "T"):
+        return f"--{role}-{kind}", f"--{role}-{kind} {metavar}"
+    return None
 
 
 def _run_loops(args) -> int:
     from ..measured import loops
+    from ..measured.loops._record import read_with_options
     from ..common._progress import Progress
     from ..measured.loop_tuning import tune_on_loops
 
@@ -131,7 +145,8 @@ def _run_loops(args) -> int:
     for item in args.loops:
         path, load = _split_load(item)
         bar.step(f"reading and analysing {path}")
-        analysed.append(loops.analyse(loops.read(path, columns=columns, units=units, normal_load=load)))
+        record = read_with_options(path, _loops_option, columns=columns, units=units, normal_load=load)
+        analysed.append(loops.analyse(record))
     bar.step("fitting the branch, tuning, validating")
     points_given = args.forces is not None or args.displacements is not None
     result = tune_on_loops(analysed, normal_law(args),

@@ -103,21 +103,29 @@ class FittedBackbone:
 
     def __call__(self, x):
         """Force (N) at displacement ``x`` (m), odd in ``x``, flat beyond gross slip."""
-        x = np.asarray(x, dtype=float)
+        x = _checks.real_array("x", x)
         flat = np.abs(x).ravel()
         flat = np.minimum(flat, self.gross_slip_displacement)
         return (np.sign(x).ravel() * (_ramps(flat, self.knots, self.exponents) @ self.weights)).reshape(x.shape)
 
     def slope(self, x):
         """Slope (N/m) at ``x >= 0`` (m)."""
-        x = np.asarray(x, dtype=float)
+        x = _checks.positive_array("x", x, allow_zero=True)
         u = np.minimum(x.ravel()[:, None] / self.knots[None, :], 1.0)
         slope = (1.0 - u) ** (self.exponents - 1.0) @ self.weights
         return np.where(x.ravel() < self.gross_slip_displacement, slope, 0.0).reshape(x.shape)
 
     def inverse(self, T):
-        """Displacement (m) at force ``T`` (N), ``0 <= T <= plateau`` (bisection, to round-off)."""
-        return invert_increasing(self, T, 0.0, self.gross_slip_displacement)
+        """Displacement (m) at force ``T`` (N), ``0 <= T <= plateau`` (bisection, to round-off).
+
+        ``T`` may exceed the plateau by a relative 1e-9 (round-off), and is
+        then taken as the plateau.
+        """
+        T = _checks.positive_array("T", T, allow_zero=True)
+        if np.any(T > self.plateau * (1 + 1e-9)):
+            raise ValueError(f"T must not exceed the plateau {self.plateau:.6g} N (the gross-slip force), got "
+                             f"{float(np.max(T)):.6g} N")
+        return invert_increasing(self, np.minimum(T, self.plateau), 0.0, self.gross_slip_displacement)
 
     def plot(self, ax=None):
         """Plot the binned points and the fitted curve (force in N against µm); returns the Axes."""

@@ -100,6 +100,7 @@ class LoopTuning:
         dN = max(loads) - N if dN is None else _checks.positive_scalar("dN", dN)
         ref, mu = self.reference, self.reference.mu
         T_A = _checks.in_range("at", at, 0.0, 1.0) * mu * N
+        points = _checks.positive_int("points", points, minimum=3)
         path = paths.paper_fig4(ref, N, dN, at, beyond=1.2, steps=max(points // 3, 2))
         r = path.simulate(self.model)
         T_ref = np.linspace(0.0, mu * (N + dN), points)

@@ -61,6 +61,9 @@ _SIGN_ADVICE = ("T must be the tangential force acting along t, so that the loop
                 "t-T plane and the energy dissipated, the loop area (closed integral of T dt), is positive: "
                 "negate the force (change its sign in the file, or loops.Record(t=r.t, T=-r.T, ...))")
 _GROSS_SLIP_RATIO = 0.1  # end slope below this fraction of the stick stiffness: gross slip
+#: the per-cycle arrays of :class:`Loops`, shape (C,), whose steady mean :meth:`Loops.steady_mean` gives
+PER_CYCLE = ("energy", "amplitude", "force_amplitude", "slip_force_positive", "slip_force_negative",
+             "stiffness_after_min", "stiffness_after_max", "slip_force", "stick_stiffness")
 _MASING_BINS = 24
 
 
@@ -159,7 +162,9 @@ class Loops:
         return float(0.5 * (rt.max() + rt.min())), float(0.5 * (rT.max() + rT.min()))
 
     def steady_mean(self, name: str) -> float:
-        """Mean over the steady cycles of a per-cycle attribute (e.g. ``"energy"``)."""
+        """Mean over the steady cycles of a per-cycle attribute (e.g. ``"energy"``), one of :data:`PER_CYCLE`."""
+        if name not in PER_CYCLE:
+            raise ValueError(f"name must be a per-cycle attribute, one of {list(PER_CYCLE)}, got {name!r}")
         return float(np.mean(getattr(self, name)[self.steady]))
 
     @property
@@ -193,8 +198,29 @@ class Loops:
         }
 
     # -- branches -----------------------------------------------------------
+    @property
+    def branches(self) -> int:
+        """Number of branches, one fewer than the reversals (the complete cycles hold ``2 C`` of them)."""
+        return self.reversal_index.size - 1
+
     def branch(self, number: int) -> tuple[np.ndarray, np.ndarray]:
-        """Samples ``(t, T)`` of branch ``number`` (from reversal ``number`` to the next)."""
+        """Samples ``(t, T)`` of branch ``number`` (from reversal ``number`` to the next).
+
+        Parameters
+        ----------
+        number : int
+            ``0 <= number <`` :attr:`branches`; branches ``2 c`` and
+            ``2 c + 1`` make up cycle ``c``.
+
+        Returns
+        -------
+        t, T : ndarray, shape (S,)
+            Displacement (m) and force (N) from the reversal to the next, both included.
+        """
+        number = _checks.positive_int("number", number, minimum=0)
+        if number >= self.branches:
+            raise ValueError(f"number must be < {self.branches} (the number of branches, between the "
+                             f"{self.branches + 1} reversals), got {number}")
         a, b = int(self.reversal_index[number]), int(self.reversal_index[number + 1])
         return self.record.t[a:b + 1], self.record.T[a:b + 1]
 
@@ -262,9 +288,14 @@ def _branch_numbers(loops: Loops, cycles) -> list[int]:
         cycles = range(loops.steady_from, loops.steady_to)
     elif isinstance(cycles, slice):
         cycles = range(loops.cycles)[cycles]
+    elif isinstance(cycles, (str, bytes)) or not np.iterable(cycles):
+        raise TypeError(f"cycles must be a slice or a sequence of cycle numbers, got {cycles!r}")
+    cycles = list(cycles)
+    if not cycles:
+        raise ValueError(f"cycles must select at least one of the {loops.cycles} cycles, got {cycles!r}")
     out = []
     for c in cycles:
-        c = int(c)
+        c = _checks.positive_int("cycles: each cycle", c, minimum=0)
         if not 0 <= c < loops.cycles:
             raise ValueError(f"cycles: cycle {c} does not exist (0..{loops.cycles - 1})")
         out += [2 * c, 2 * c + 1]

@@ -5,7 +5,8 @@ Two layouts are read:
 * delimited text (CSV, semicolons, tabs or spaces) whose header names each
   column with its unit, ``time [s], t [um], T [N], N [N]``; lines starting
   with ``#`` are comments, and a comment ``# normal load = 36.6 N`` gives the
-  normal load of the whole file;
+  normal load of the whole file; UTF-8, UTF-16 and 8-bit (Windows-1252,
+  Latin-1) text are read, with or without a byte-order mark;
 * the JSON layout of the ARTS-Lab band friction damper data set
   (``{"data": [[time, displacement, friction force, velocity, actuator
   force 1, actuator force 2], ...], "displacement units": "in", ...}``).
@@ -23,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ...common import _checks
-from ...common._table import column_si, header_unit, read_table
+from ...common._table import column_si, header_unit, read_table, read_text
 from ...common.units import parse_quantity, unit_factor
 from ._analysis import analyse
 
@@ -75,6 +76,8 @@ class Record:
     source: str = "record"
 
     def __post_init__(self):
+        if not isinstance(self.source, str):
+            raise TypeError(f"source must be a str (a file name, for messages), got {self.source!r}")
         t = _checks.real_array("t", self.t, ndim=1)
         T = _checks.real_array("T", self.T, ndim=1)
         if T.shape != t.shape:
@@ -117,6 +120,18 @@ class Record:
         return ax
 
 
+def python_option(kind: str, role: str) -> tuple[str, str]:
+    """How a Python caller of :func:`read` gives the column (``kind="column"``) or the unit (``"unit"``) of ``role``.
+
+    Returns ``(name, example)`` for messages, e.g. ``("columns['T']",
+    "columns={'T': ...}")``. Other callers (the command line) pass their
+    own function to :func:`read_with_options`, returning None for a role
+    they cannot give.
+    """
+    key = "columns" if kind == "column" else "units"
+    return f"{key}[{role!r}]", f"{key}={{{role!r}: ...}}"
+
+
 def read(path, *, columns=None, units=None, normal_load=None) -> Record:
     """Read a measured record of hysteresis loops, converted to SI.
 
@@ -154,10 +169,21 @@ def read(path, *, columns=None, units=None, normal_load=None) -> Record:
     FileNotFoundError
         No such file.
     ValueError
-        A missing column (the message lists those present), an unknown unit
-        or one of the wrong kind, a column without a unit, a unit in
-        ``units`` that conflicts with the header's, a cell that is not
-        a number or not finite (row and column named), too few samples.
+        A missing column (the message lists those present), a column name
+        given twice in the header, an unknown unit or one of the wrong
+        kind, a column without a unit, a unit in ``units`` that conflicts
+        with the header's, a cell that is not a number or not finite (line
+        and column named), a header without data rows, too few samples,
+        text that cannot be decoded (the file named).
+    """
+    return read_with_options(path, python_option, columns=columns, units=units, normal_load=normal_load)
+
+
+def read_with_options(path, option, *, columns=None, units=None, normal_load=None) -> Record:
+    """:func:`read`, its messages naming the caller's own way to give a column or a unit.
+
+    ``option(kind, role)`` returns ``(name, example)`` or None: see
+    :func:`python_option`.
     """
     path = Path(path)
     columns = _role_map("columns", columns)
@@ -170,21 +196,21 @@ def read(path, *, columns=None, units=None, normal_load=None) -> Record:
         defaults = {"t": ("displacement",), "T": ("friction force",), "time": ("time",), "N": ("actuator force sum",)}
     else:
         table, table_units = read_table(path)
-        comment_load = _comment_load(path)
+        comment_load = _comment_load(path, table.comments)
         defaults = DEFAULT_COLUMNS
     data = {}
     for role in ("t", "T", "time", "N"):
-        name = _pick_column(path, table, role, columns.get(role), defaults[role], required=role in ("t", "T"))
+        name = _pick_column(path, table, role, columns.get(role), defaults[role], option("column", role),
+                            required=role in ("t", "T"))
         if name is None:
             continue
+        unit_option = option("unit", role)
         unit = header_unit(table_units, name, units.get(role), _KIND[role], path=path,
-                           option=f"units[{role!r}]" + (f" (--{role}-unit)" if role in ("t", "T") else ""))
+                           option=unit_option[0] if unit_option else "the unit given")
         if not unit:
             raise ValueError(f"{path}: column {name!r} ({_KIND[role]}) has no unit in the header; write it as "
-                             f"'{name} [unit]' or pass units={{{role!r}: ...}}")
-        values = column_si(table, table_units, name, _KIND[role], path=path, unit=unit)
-        _finite(path, name, values)
-        data[role] = values
+                             f"'{name} [unit]'" + (f" or give {unit_option[1]}" if unit_option else ""))
+        data[role] = column_si(table, table_units, name, _KIND[role], path=path, unit=unit)
     if normal_load is not None:
         load = parse_quantity(normal_load, "force", name="normal_load")
     elif comment_load is not None:
@@ -208,44 +234,36 @@ def _role_map(name, value) -> dict:
     return dict(value)
 
 
-def _pick_column(path, table, role, given, defaults, *, required):
+def _pick_column(path, table, role, given, defaults, option, *, required):
+    """The column of ``role``: ``given`` (by ``option``, for messages), else the first of ``defaults`` present."""
     if given is not None:
         if given not in table:
-            raise ValueError(f"{path}: no column {given!r} (asked for {role!r}); the columns are {list(table)}")
+            by = f"given by {option[0]}" if option else f"asked for {role!r}"
+            raise ValueError(f"{path}: no column {given!r} ({by}); the columns are {list(table)}")
         return given
     for name in defaults:
         if name in table:
             return name
     if required:
+        advice = f"name it with {option[1]}" if option else "rename it in the header"
         raise ValueError(f"{path}: no column for {role!r} ({_KIND[role]}): looked for {list(defaults)}, the "
-                         f"columns are {list(table)}; name it with columns={{{role!r}: ...}}")
+                         f"columns are {list(table)}; {advice}")
     return None
 
 
-def _finite(path, name, values):
-    bad = np.flatnonzero(~np.isfinite(values))
-    if bad.size:
-        raise ValueError(f"{path}: data row {int(bad[0]) + 1} (counting rows of numbers), column {name!r}: "
-                         f"{float(values[bad[0]])!r} is not a finite number")
-
-
-def _comment_load(path):
-    with open(path, encoding="utf-8") as fh:
-        for line in fh:
-            if not line.lstrip().startswith("#"):
-                if line.strip():
-                    break
-                continue
-            m = _LOAD_COMMENT.match(line.strip())
-            if m:
-                return parse_quantity(m.group(1).replace(" ", ""), "force", name=f"{path}: normal load comment")
+def _comment_load(path, comments):
+    """The load of a ``# normal load = 36.6 N`` comment above the header, else None."""
+    for line in comments:
+        m = _LOAD_COMMENT.match(line)
+        if m:
+            return parse_quantity(m.group(1).replace(" ", ""), "force", name=f"{path}: normal load comment")
     return None
 
 
 def _read_damper_json(path):
     """The ARTS-Lab damper JSON as ``({name: raw values}, {name: unit})``."""
     try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
+        doc = json.loads(read_text(path, "JSON file"))
     except json.JSONDecodeError as exc:
         raise ValueError(f"{path}: not valid JSON ({exc})") from None
     if not isinstance(doc, dict) or "data" not in doc:
