@@ -13,6 +13,8 @@
   (:mod:`.reduced`);
 * :class:`CyclicStructure` -- one sector of a bladed disk, solved for an
   engine-order excitation (``engine_order=`` of the solvers);
+* :class:`UnderPlatformDamper` -- a rigid damper body between two platforms,
+  its interfaces given by geometry, attached to a structure or a sector;
 * :func:`craig_bampton` -- a smaller :class:`Structure` on kept DOFs plus
   fixed-interface modes, with its recovery matrix;
 * :func:`steady_state` -- direct time integration
@@ -23,6 +25,7 @@ from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, defaul
 from .continuation import ConvergenceError, StepControl
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import CyclicStructure
+from .damper import DamperContact, UnderPlatformDamper
 from .condensation import SingularInteriorError
 from .hbm import HarmonicBalance
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
@@ -35,6 +38,7 @@ __all__ = [
     "ConvergenceError",
     "CraigBampton",
     "CyclicStructure",
+    "DamperContact",
     "FrequencyResponse",
     "HarmonicBalance",
     "IncompleteCurveWarning",
@@ -42,6 +46,7 @@ __all__ = [
     "SingularInteriorError",
     "StepControl",
     "SteadyState",
+    "UnderPlatformDamper",
     "Structure",
     "aft",
     "aft_batch",

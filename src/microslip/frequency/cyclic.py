@@ -158,8 +158,8 @@ class CyclicStructure(Structure):
         return contact
 
     def preload_force(self) -> np.ndarray:
-        """Static force of the preloads on the sector (N), ``(ndof,)``: along own and next-sector normals."""
-        f = np.zeros(self.ndof)
+        """Static force on the sector (N), ``(ndof,)``: preloads along own and next-sector normals, static forces."""
+        f = self.static_force.copy()
         for c, (_, bn_next) in zip(self.contacts, self.next_directions):
             f += c.preload * (c.normal + bn_next)
         return f

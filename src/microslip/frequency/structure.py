@@ -174,6 +174,8 @@ class Structure:
         self.C = sp.csr_matrix((ndof, ndof)) if C is None and sp.issparse(self.M) else (
             np.zeros((ndof, ndof)) if C is None else _matrix("C", C, ndof))
         self.contacts: list[Contact] = []
+        #: external static forces on the structure (N), ``(ndof,)``, e.g. a damper's centrifugal load
+        self.static_force = np.zeros(ndof)
 
     @property
     def ndof(self) -> int:
@@ -265,9 +267,14 @@ class Structure:
         Bn = np.array([c.normal for c in self.contacts]).T.reshape(self.ndof, nc)
         return Bt, Bn, np.array([c.approach for c in self.contacts])
 
+    def add_static_force(self, force) -> None:
+        """Add an external static force (N), ``(ndof,)`` (e.g. a centrifugal load), acting in every solution."""
+        self.static_force = self.static_force + self.force_vector(force, "force").real
+
     def preload_force(self) -> np.ndarray:
-        """Static force of the contacts' preloads on the structure (N), ``sum_c P_c b_n,c``, shape ``(ndof,)``."""
-        f = np.zeros(self.ndof)
+        """Static force on the structure (N), shape ``(ndof,)``: the contacts' preloads ``sum_c P_c b_n,c`` and
+        the static forces of :meth:`add_static_force`."""
+        f = self.static_force.copy()
         for c in self.contacts:
             f += c.preload * c.normal
         return f

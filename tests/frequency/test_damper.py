@@ -1,0 +1,166 @@
+"""The under-platform damper between two blade platforms: static equilibrium, limits, time integration."""
+
+import numpy as np
+import pytest
+
+from microslip import MicroslipModel, Sphere, tune
+from microslip.frequency import Structure, UnderPlatformDamper, frequency_point
+
+SPHERE = Sphere.paper()
+CURVED = tune(SPHERE, 37.5, elements=4)
+FLAT = tune(SPHERE, 37.5, elements=4)
+LOAD = 50.0  # N, centrifugal: about 35 N on each interface
+
+
+def blade_pair():
+    """Two blades, DOFs [px0, py0, tip0, px1, py1, tip1]: platforms on springs, a tip on each platform."""
+    K = np.zeros((6, 6))
+    for b in (0, 3):
+        K[b, b] += 5e6          # platform, circumferential
+        K[b + 1, b + 1] += 2e7  # platform, radial
+        for i, j in ((b, b + 2),):
+            K[i, i] += 1e6
+            K[j, j] += 1e6
+            K[i, j] -= 1e6
+            K[j, i] -= 1e6
+    M = np.diag([0.1, 0.1, 0.05, 0.1, 0.1, 0.05])
+    return Structure(M, 1e-6 * K + 1.0 * M, K)
+
+
+def damper(flat=FLAT, curved=CURVED, load=LOAD):
+    d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=load)
+    a = np.radians(135.0)  # the flat face against blade 0's platform, normal up and to the left
+    tau = np.array([-np.sin(a), np.cos(a)])
+    centre = np.array([-3e-3, 2e-3])
+    d.add_interface(flat, points=[centre - 1.5e-3 * tau, centre + 1.5e-3 * tau], angle=a,
+                    platform={"x": 0, "y": 1}, name="flat")
+    d.add_interface(curved, points=[(3e-3, 2e-3)], angle=np.radians(45.0), platform={"x": 3, "y": 4},
+                    name="curved")
+    return d
+
+
+def tip_force(s, amplitude):
+    f = np.zeros(s.ndof)
+    f[2] = amplitude
+    return f
+
+
+def test_the_static_state_balances_the_damper():
+    d = damper()
+    s = d.attach(blade_pair())
+    assert s.ndof == 9 and d.dofs == (6, 7, 8) and len(s.contacts) == 3
+    r = frequency_point(s, tip_force(s, 1.0), 1500.0, harmonics=3)
+    # Newton's static tolerance is 1e-10 of the residual scale (the load)
+    assert d.static_balance(r) < 1e-10
+    N0 = r.static_normal_force
+    assert np.all(N0 > 0) and abs(N0[:2].sum() - N0[2]) < 0.5 * N0[2]  # both interfaces carry load
+
+
+def test_a_stuck_damper_is_the_linear_structure_with_its_stick_stiffnesses():
+    sticky = MicroslipModel(FLAT.kt, FLAT.kn, FLAT.gaps, 1e3)  # friction that never slips
+    d = damper(sticky, MicroslipModel(CURVED.kt, CURVED.kn, CURVED.gaps, 1e3))
+    s = d.attach(blade_pair())
+    omega, F = 1500.0, 0.5
+    r = frequency_point(s, tip_force(s, F), omega, harmonics=3, reduction="none")
+    # the linear structure: every element closed at the static state adds kt and kn along its directions
+    Bt, Bn, n0 = s.contact_directions()
+    K = s.K.copy()
+    q0 = r.coefficients[0, 0]
+    for c, contact in enumerate(s.contacts):
+        closed = Bn[:, c] @ q0 + n0[c] > contact.model.gaps
+        K += contact.model.kt[closed].sum() * np.outer(Bt[:, c], Bt[:, c])
+        K += contact.model.kn[closed].sum() * np.outer(Bn[:, c], Bn[:, c])
+    z = np.linalg.solve(K - omega**2 * s.M + 1j * omega * s.C, tip_force(s, F))
+    # the solver's tolerance, 1e-9 of the residual, bounds the difference
+    np.testing.assert_allclose(r.coefficients[0, 1] - 1j * r.coefficients[0, 2], z, rtol=0,
+                               atol=1e-8 * np.abs(z).max())
+    assert np.abs(r.coefficients[0, 3:]).max() < 1e-8 * np.abs(z).max()  # no higher harmonics
+
+
+@pytest.mark.parametrize("omega", [3500.0, 3700.0, 3850.0])  # rad/s, below the first resonance, the damper slipping
+def test_the_energy_balances_on_a_sliding_damper(omega):
+    s = damper().attach(blade_pair())
+    r = frequency_point(s, tip_force(s, 5.0), omega, harmonics=5, reduction="none")
+    assert r.contact_dissipation.sum() > 1e-3 * r.excitation_work[0]  # the damper dissipates
+    # harmonic balance conserves the energy of the harmonics kept: to the solver's tolerance
+    assert abs(r.viscous_dissipation[0] + r.contact_dissipation.sum() - r.excitation_work[0]) \
+        < 1e-6 * r.excitation_work[0]
+
+
+@pytest.mark.parametrize("kwargs, error, message", [
+    ({"centrifugal_load": -1.0}, ValueError, "centrifugal_load"),
+    ({}, ValueError, "the damper needs its static load"),
+    ({"centrifugal_load": 10.0, "speed": 100.0, "radius": 0.2}, ValueError, "not both"),
+])
+def test_damper_arguments_are_checked(kwargs, error, message):
+    with pytest.raises(error, match=message):
+        UnderPlatformDamper(0.02, 1e-6, **kwargs)
+
+
+def test_interface_arguments_are_checked():
+    d = UnderPlatformDamper(0.02, 1e-6, speed=1000.0, radius=0.3)
+    assert d.centrifugal_load == pytest.approx(0.02 * 0.3 * 1000.0**2)
+    with pytest.raises(ValueError, match=r"points must have shape \(k, 2\)"):
+        d.add_interface(FLAT, points=[[1.0, 2.0, 3.0]], angle=0.0, platform={"x": 0, "y": 1})
+    with pytest.raises(ValueError, match=r"platform\[0\] must be a mapping with keys 'x' and 'y'"):
+        d.add_interface(FLAT, points=[(0, 0)], angle=0.0, platform={"x": 0})
+    with pytest.raises(TypeError, match="models must be a MicroslipModel or a list of 2"):
+        d.add_interface([FLAT], points=[(0, 0), (1e-3, 0)], angle=0.0, platform={"x": 0, "y": 1})
+    with pytest.raises(ValueError, match="the damper has no interface"):
+        d.attach(blade_pair())
+    d.add_interface(FLAT, points=[(0, 0)], angle=0.0, platform={"x": 99, "y": 1}, name="side")
+    with pytest.raises(ValueError, match="platform DOF 99 is out of range"):
+        d.attach(blade_pair())
+
+
+def test_a_damper_between_sectors_of_a_disk_equals_the_whole_disk_with_its_dampers():
+    from microslip.frequency import CyclicStructure
+
+    N, EO, omega = 6, 2, 3300.0
+    samples = 16 * N  # a whole number of samples per sector's phase lag (see test_cyclic.py)
+    # sector DOFs: 0 ring (left), 1 ring (right), 2 platform x, 3 platform y, 4 tip x
+    Ks = np.zeros((5, 5))
+    for i, j, k in [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (2, 4, 1e6), (0, None, 1e6), (1, None, 1e6),
+                    (3, None, 2e7)]:
+        Ks[i, i] += k
+        if j is not None:
+            Ks[j, j] += k
+            Ks[i, j] -= k
+            Ks[j, i] -= k
+    Ms = np.diag([0.05, 0.05, 0.1, 0.1, 0.05])
+    Cs = 1e-6 * Ks + 1.0 * Ms
+
+    def upd(own, nxt):
+        d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=LOAD)
+        a = np.radians(135.0)
+        tau = np.array([-np.sin(a), np.cos(a)])
+        c = np.array([-3e-3, 2e-3])
+        d.add_interface(FLAT, points=[c - 1.5e-3 * tau, c + 1.5e-3 * tau], angle=a,
+                        platform={"x": own(2), "y": own(3)})
+        d.add_interface(CURVED, points=[(3e-3, 2e-3)], angle=np.radians(45.0), platform={"x": nxt(2), "y": nxt(3)})
+        return d
+
+    disk = CyclicStructure(Ms, Cs, Ks, sectors=N, left=[0], right=[1])
+    disk = upd(lambda i: i, disk.next).attach(disk)
+    f = np.zeros(disk.ndof)
+    f[4] = 3.0
+    sector = frequency_point(disk, f, omega, harmonics=3, engine_order=EO, samples=samples)
+
+    g = lambda s, i: (s % N, (s + 1) % N, N + s % N, 2 * N + s % N, 3 * N + s % N)[i]  # noqa: E731
+    M, C, K = (np.zeros((4 * N, 4 * N)) for _ in range(3))
+    for s in range(N):
+        idx = [g(s, i) for i in range(5)]
+        for A, a in ((M, Ms), (C, Cs), (K, Ks)):
+            A[np.ix_(idx, idx)] += a
+    whole = Structure(M, C, K)
+    for s in range(N):
+        whole = upd(lambda i, s=s: g(s, i), lambda i, s=s: g(s + 1, i)).attach(whole)
+    F = np.zeros(whole.ndof, dtype=complex)
+    for s in range(N):
+        F[g(s, 4)] = 3.0 * np.exp(-2j * np.pi * EO * s / N)
+    full = frequency_point(whole, F, omega, harmonics=3, reduction="none", samples=samples)
+    scale = np.abs(full.coefficients).max()
+    # sector 0's DOFs, and its damper (the first damper attached to the whole disk: DOFs 4N, 4N+1, 4N+2)
+    for mine, theirs in [(i, g(0, i)) for i in range(5)] + [(5 + k, 4 * N + k) for k in range(3)]:
+        np.testing.assert_allclose(sector.dof_coefficients(mine), full.dof_coefficients(theirs), rtol=0,
+                                   atol=1e-8 * scale)
