@@ -105,3 +105,36 @@ def test_next_dofs_and_boundaries_are_checked():
         frequency_point(d, [0, 1.0, 0, 0], 9000.0, harmonics=3, engine_order=1)
     with pytest.raises(ValueError, match="a CyclicStructure is solved with reduction='exact'"):
         frequency_point(d, [0, 0, 0, 1.0], 9000.0, harmonics=3, engine_order=1, reduction="none")
+
+
+def test_a_craig_bampton_sector_keeps_its_boundaries_and_equals_the_full_sector(tmp_path):
+    from microslip.frequency import CraigBampton, craig_bampton
+
+    # a sector whose blade is a chain of 8 DOFs: ring 0 (left), ring 1 (right), blade 2..9 (2 the platform)
+    n = 10
+    K = np.zeros((n, n))
+    springs = [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (0, None, 1e6), (1, None, 1e6)]
+    springs += [(i, i + 1, 8e6) for i in range(2, n - 1)]
+    for i, j, k in springs:
+        K[i, i] += k
+        if j is not None:
+            K[j, j] += k
+            K[i, j] -= k
+            K[j, i] -= k
+    M = np.diag([0.05, 0.05] + [0.02] * (n - 2))
+    d = CyclicStructure(M, 1e-6 * K + 2.0 * M, K, sectors=SECTORS, left=[0], right=[1])
+    d.add_contact(MODEL, tangential={2: 1.0, d.next(2): -1.0}, approach=SPHERE.approach(20.0))
+    f = np.zeros(n)
+    f[n - 1] = 3.0
+    keep = [0, 1, 2, n - 1]
+    ref = frequency_point(d, f, 5000.0, harmonics=3, engine_order=2, samples=SAMPLES)
+    cb = craig_bampton(d, keep, modes=n - len(keep))  # every interior mode: the same structure in other coordinates
+    assert isinstance(cb.structure, CyclicStructure) and list(cb.structure.left) == [0] and list(cb.structure.right) == [1]
+    back = CraigBampton.load(cb.save(tmp_path / "sector.npz"))
+    fr = np.zeros(cb.structure.ndof)
+    fr[3] = 3.0
+    for model in (cb, back):
+        r = frequency_point(model.structure, fr, 5000.0, harmonics=3, engine_order=2, samples=SAMPLES)
+        scale = np.abs(ref.coefficients).max()
+        for k, dof in enumerate(keep):
+            np.testing.assert_allclose(r.dof_coefficients(k), ref.dof_coefficients(dof), rtol=0, atol=1e-8 * scale)

@@ -23,6 +23,7 @@ import scipy.sparse.linalg as spla
 from ..common import _checks
 from ..common._io import atomic_write
 from ..model import MicroslipModel
+from .cyclic import CyclicStructure, add_contact_terms, contact_terms
 from .structure import Structure
 
 #: interior DOFs up to which the fixed-interface eigenproblem is solved densely
@@ -66,13 +67,19 @@ class CraigBampton:
         if not path.endswith(".npz"):
             raise ValueError(f"path must end with .npz, got {path!r}")
         s = self.structure
-        contacts = [{"model": c.model.to_dict(), "tangential": c.tangential.tolist(), "normal": c.normal.tolist(),
-                     "preload": c.preload, "approach": c.approach, "name": c.name} for c in s.contacts]
+        contacts = []
+        for i, c in enumerate(s.contacts):
+            tangential, normal = contact_terms(s, i)
+            contacts.append({"model": c.model.to_dict(), "tangential": tangential, "normal": normal,
+                             "preload": c.preload, "approach": c.approach, "name": c.name})
+        cyclic = ({"sectors": s.sectors, "left": s.left.tolist(), "right": s.right.tolist()}
+                  if isinstance(s, CyclicStructure) else None)
         import io
 
         buffer = io.BytesIO()
         np.savez_compressed(buffer, M=s.M, C=s.C, K=s.K, recovery=self.recovery, keep=self.keep,
-                            frequencies=self.frequencies, contacts=np.array(json.dumps(contacts)))
+                            frequencies=self.frequencies, contacts=np.array(json.dumps(contacts)),
+                            static_force=s.static_force, cyclic=np.array(json.dumps(cyclic)))
         atomic_write(path, buffer.getvalue())
         return path
 
@@ -83,11 +90,16 @@ class CraigBampton:
             missing = {"M", "C", "K", "recovery", "keep", "frequencies", "contacts"} - set(data.files)
             if missing:
                 raise ValueError(f"{path}: not a Craig-Bampton model file (missing {', '.join(sorted(missing))})")
-            s = Structure(data["M"], data["C"], data["K"])
+            cyclic = json.loads(str(data["cyclic"])) if "cyclic" in data.files else None
+            if cyclic:
+                s = CyclicStructure(data["M"], data["C"], data["K"], **cyclic)
+            else:
+                s = Structure(data["M"], data["C"], data["K"])
             for c in json.loads(str(data["contacts"])):
-                s.add_contact(MicroslipModel.from_dict(c["model"]), tangential=np.array(c["tangential"]),
-                              normal=np.array(c["normal"]) if any(c["normal"]) else None,
-                              preload=c["preload"] or None, approach=c["approach"], name=c["name"])
+                add_contact_terms(s, MicroslipModel.from_dict(c["model"]), c["tangential"], c["normal"],
+                                  preload=c["preload"], approach=c["approach"], name=c["name"])
+            if "static_force" in data.files:
+                s.static_force = data["static_force"]
             return cls(s, data["recovery"], data["keep"], data["frequencies"])
 
 
@@ -100,10 +112,18 @@ def _kept(structure: Structure, keep) -> np.ndarray:
     if np.unique(keep).size != keep.size:
         raise ValueError("keep must not repeat a DOF")
     Bt, Bn, _ = structure.contact_directions()
-    used = np.flatnonzero(np.any(Bt != 0, axis=1) | np.any(Bn != 0, axis=1) | (structure.preload_force() != 0))
-    missing = np.setdiff1d(used, keep)
+    used = np.any(Bt != 0, axis=1) | np.any(Bn != 0, axis=1) | (structure.preload_force() != 0)
+    if isinstance(structure, CyclicStructure):
+        Btn, Bnn = structure.contact_directions_next()
+        used |= np.any(Btn != 0, axis=1) | np.any(Bnn != 0, axis=1)
+        boundary = np.setdiff1d(np.concatenate([structure.left, structure.right]), keep)
+        if boundary.size:
+            raise ValueError(f"keep must include the sector's left and right boundary DOFs; missing "
+                             f"{boundary[:10].tolist()}")
+    missing = np.setdiff1d(np.flatnonzero(used), keep)
     if missing.size:
-        raise ValueError(f"keep must include every DOF a contact uses; missing {missing[:10].tolist()}")
+        raise ValueError(f"keep must include every DOF a contact or a static force uses; missing "
+                         f"{missing[:10].tolist()}")
     return keep
 
 
@@ -140,8 +160,10 @@ def craig_bampton(structure: Structure, keep, modes: int) -> CraigBampton:
     mask[b] = False
     i = np.flatnonzero(mask)
     modes = _checks.positive_int("modes", modes, minimum=0)
-    if modes > max(i.size - 1, 0) and modes:
-        raise ValueError(f"modes must be below the {i.size} interior DOFs, got {modes}")
+    limit = i.size if i.size <= DENSE_EIGEN else i.size - 1  # the sparse eigensolver finds fewer than all
+    if modes > limit:
+        raise ValueError(f"modes must be at most {limit} (the structure has {i.size} DOFs besides the kept ones), "
+                         f"got {modes}")
     K = sp.csr_matrix(structure.K)
     M = sp.csr_matrix(structure.M)
     Kii, Kib = K[i][:, i].tocsc(), K[i][:, b].toarray()
@@ -170,12 +192,21 @@ def craig_bampton(structure: Structure, keep, modes: int) -> CraigBampton:
             frequencies = np.sqrt(np.maximum(lam, 0.0))
     reduced = [T.T @ (A @ T) for A in (structure.M, structure.C, structure.K)]
     reduced = [0.5 * (A + A.T) for A in reduced]
-    out = Structure(reduced[0], reduced[1], reduced[2])
-    for c in structure.contacts:
-        bt = np.zeros(b.size + modes)
-        bn = np.zeros(b.size + modes)
-        bt[:b.size] = c.tangential[b]
-        bn[:b.size] = c.normal[b]
-        out.add_contact(c.model, tangential=bt, normal=bn if bn.any() else None, preload=c.preload or None,
-                        approach=c.approach, name=c.name)
-    return CraigBampton(out, T, b, frequencies)
+    return CraigBampton(_carry_over(structure, reduced, b), T, b, frequencies)
+
+
+def _carry_over(structure: Structure, reduced, keep) -> Structure:
+    """The reduced structure (cyclic when ``structure`` is) with the contacts and static forces on the kept DOFs."""
+    position = {int(d): k for k, d in enumerate(keep)}
+    if isinstance(structure, CyclicStructure):
+        out = CyclicStructure(*reduced, sectors=structure.sectors, left=[position[int(d)] for d in structure.left],
+                              right=[position[int(d)] for d in structure.right])
+    else:
+        out = Structure(*reduced)
+    for i, c in enumerate(structure.contacts):
+        add_contact_terms(out, c.model, *contact_terms(structure, i), position=position, preload=c.preload,
+                          approach=c.approach, name=c.name)
+    static = np.zeros(out.ndof)
+    static[:keep.size] = structure.static_force[keep]
+    out.static_force = static
+    return out

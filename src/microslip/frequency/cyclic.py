@@ -201,3 +201,37 @@ class CyclicStructure(Structure):
         if not phi:
             out = [A.real.tocsr() if np.iscomplexobj(A.data) else A for A in out]
         return tuple(out)
+
+
+def contact_terms(structure: Structure, index: int) -> tuple[list, list]:
+    """Contact ``index``'s directions as terms ``(dof, coefficient, next_sector)``: ``(tangential, normal)``.
+
+    The plain form of a contact's directions, to copy it onto another structure
+    (more DOFs, kept DOFs) or to write it to a file.
+    """
+    c = structure.contacts[index]
+    t_next, n_next = (structure.next_directions[index] if isinstance(structure, CyclicStructure)
+                      else (np.zeros(structure.ndof), np.zeros(structure.ndof)))
+
+    def terms(own, nxt):
+        return ([(int(i), float(own[i]), False) for i in np.flatnonzero(own)]
+                + [(int(j), float(nxt[j]), True) for j in np.flatnonzero(nxt)])
+
+    return terms(c.tangential, t_next), terms(c.normal, n_next)
+
+
+def add_contact_terms(target: Structure, model, tangential, normal, *, position=None, preload=0.0, approach=0.0,
+                      name=None):
+    """Add a contact given by :func:`contact_terms` to ``target``, each DOF mapped through ``position``."""
+    where = (lambda d: d) if position is None else position.__getitem__
+
+    def spec(terms):
+        out = {}
+        for dof, coef, nxt in terms:
+            key = target.next(where(dof)) if nxt else where(dof)
+            out[key] = out.get(key, 0.0) + coef
+        return out
+
+    normal_spec = spec(normal)
+    return target.add_contact(model, tangential=spec(tangential), normal=normal_spec or None,
+                              preload=preload or None, approach=approach, name=name)

@@ -28,7 +28,7 @@ import scipy.sparse as sp
 
 from ..common import _checks
 from ..model import MicroslipModel
-from .cyclic import CyclicStructure, NextDof
+from .cyclic import CyclicStructure, NextDof, add_contact_terms, contact_terms
 from .structure import Structure
 
 _AXES = ("x", "y")
@@ -255,14 +255,6 @@ def _grow(A, diagonal):
 
 def _copy_contacts(source: Structure, target: Structure) -> None:
     """The contacts of ``source`` on ``target`` (same DOF numbers, more DOFs)."""
-    nexts = source.next_directions if isinstance(source, CyclicStructure) else [(None, None)] * len(source.contacts)
-    for c, (t_next, n_next) in zip(source.contacts, nexts):
-        def spec(own, nxt):
-            out = {int(i): float(own[i]) for i in np.flatnonzero(own)}
-            if nxt is not None:
-                out.update({target.next(int(j)): float(nxt[j]) for j in np.flatnonzero(nxt)})
-            return out
-
-        normal = spec(c.normal, n_next)
-        target.add_contact(c.model, tangential=spec(c.tangential, t_next), normal=normal or None,
-                           preload=c.preload or None, approach=c.approach, name=c.name)
+    for i, c in enumerate(source.contacts):
+        add_contact_terms(target, c.model, *contact_terms(source, i), preload=c.preload, approach=c.approach,
+                          name=c.name)
