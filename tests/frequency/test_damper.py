@@ -28,7 +28,7 @@ def blade_pair():
 
 
 def damper(flat=FLAT, curved=CURVED, load=LOAD):
-    d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=load)
+    d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=load, damping=200.0)
     a = np.radians(135.0)  # the flat face against blade 0's platform, normal up and to the left
     tau = np.array([-np.sin(a), np.cos(a)])
     centre = np.array([-3e-3, 2e-3])

@@ -15,6 +15,8 @@
   engine-order excitation (``engine_order=`` of the solvers);
 * :class:`UnderPlatformDamper` -- a rigid damper body between two platforms,
   its interfaces given by geometry, attached to a structure or a sector;
+* :func:`damper_design_curve` -- peak response against the damper's
+  centrifugal load, the curve used to choose a damper;
 * :func:`craig_bampton` -- a smaller :class:`Structure` on kept DOFs plus
   fixed-interface modes, with its recovery matrix;
 * :func:`steady_state` -- direct time integration
@@ -26,6 +28,7 @@ from .continuation import ConvergenceError, StepControl
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import CyclicStructure
 from .damper import DamperContact, UnderPlatformDamper
+from .design import DesignCurve, damper_design_curve
 from .condensation import SingularInteriorError
 from .hbm import HarmonicBalance
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
@@ -39,6 +42,7 @@ __all__ = [
     "CraigBampton",
     "CyclicStructure",
     "DamperContact",
+    "DesignCurve",
     "FrequencyResponse",
     "HarmonicBalance",
     "IncompleteCurveWarning",
@@ -52,6 +56,7 @@ __all__ = [
     "aft_batch",
     "craig_bampton",
     "cycle_work",
+    "damper_design_curve",
     "default_samples",
     "frequency_point",
     "frequency_response",

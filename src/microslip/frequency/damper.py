@@ -81,6 +81,11 @@ class UnderPlatformDamper:
     speed, radius : float, optional
         Or the rotation speed (rad/s) and the radius of the centre of mass (m):
         ``centrifugal_load = mass * radius * speed**2``.
+    damping : float, default 0
+        Mass-proportional viscous damping of the damper body (1/s): ``C = damping
+        * M`` on its DOFs. Without it a mode of the damper on its stuck contacts
+        is undamped, and the response is unbounded where a harmonic of the
+        excitation meets it (the harmonic balance then has no solution there).
 
     Examples
     --------
@@ -94,9 +99,10 @@ class UnderPlatformDamper:
     """
 
     def __init__(self, mass: float, inertia: float, *, centrifugal_load: float | None = None,
-                 speed: float | None = None, radius: float | None = None):
+                 speed: float | None = None, radius: float | None = None, damping: float = 0.0):
         self.mass = _checks.positive_scalar("mass", mass)
         self.inertia = _checks.positive_scalar("inertia", inertia)
+        self.damping = _checks.positive_scalar("damping", damping, allow_zero=True)
         if centrifugal_load is not None:
             if speed is not None or radius is not None:
                 raise ValueError("give centrifugal_load, or speed and radius, not both")
@@ -194,7 +200,8 @@ class UnderPlatformDamper:
                                      f"with {structure.ndof} DOFs")
         n = structure.ndof
         extra = np.array([self.mass, self.mass, self.inertia])
-        M, C, K = (_grow(A, extra if A is structure.M else np.zeros(3)) for A in (structure.M, structure.C, structure.K))
+        M, C, K = (_grow(A, d) for A, d in ((structure.M, extra), (structure.C, self.damping * extra),
+                                            (structure.K, np.zeros(3))))
         if cyclic:
             out = CyclicStructure(M, C, K, sectors=structure.sectors, left=structure.left, right=structure.right)
         else:
