@@ -176,6 +176,7 @@ def finite_result(name: str, value, result):
     """``result`` if it is finite; else a ``ValueError``: ``name`` (whose ``value`` gave it) is too large."""
     out = np.asarray(result)
     if np.count_nonzero(np.isfinite(out)) != out.size:
-        raise ValueError(f"{name} is too large: {_show(value)} gives a result beyond the floating-point range "
+        largest = float(np.max(np.abs(np.asarray(value, dtype=float))))
+        raise ValueError(f"{name} is too large: {largest:.6g} gives a result beyond the floating-point range "
                          "(about 1.8e308)")
     return result
