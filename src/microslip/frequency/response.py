@@ -167,7 +167,7 @@ class FrequencyResponse:
         if point >= self.points:
             raise ValueError(f"point must be below the number of points {self.points}, got {point}")
         c = self._dof_coefficients(dof)[point]
-        Ns = _checks.positive_int("samples", samples, minimum=2 * self.harmonics + 1)
+        Ns = _checks.size("samples", samples, minimum=2 * self.harmonics + 1)
         return 2 * np.pi / self.omega[point] * np.arange(Ns) / Ns, synthesise(c, Ns)
 
     def plot(self, dof=0, harmonic: int | None = None, ax=None, *, label: str | None = None, unit: str = "µm",
@@ -232,6 +232,7 @@ class FrequencyResponse:
 
     def to_csv(self, path, dofs=None):
         """Write :meth:`columns` to ``path`` as CSV (atomically). Returns the path."""
+        path = _checks.file_path("path", path)
         return write_csv(path, self.columns(dofs),
                          header_comment=f"microslip frequency response: H = {self.harmonics}, "
                                         f"{self.samples} samples per period, {self.points} points")
@@ -261,6 +262,7 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
     tolerance : float
         Relative residual of Newton's method.
     """
+    tolerance = _checks.in_range("tolerance", tolerance, 0.0, 1.0, lo_open=True, hi_open=True)
     return _static_state(structure, force, tolerance=tolerance)[0]
 
 
@@ -280,7 +282,7 @@ def _static_state(structure: Structure, force=None, *, tolerance: float = 1e-10)
         x = np.linalg.lstsq(K, rhs, rcond=None)[0]
     x_scale = max(float(np.max(np.abs(x))), 1e-12)
     x, _ = newton(hb, x, 1.0, r_scale=r_scale, x_scale=x_scale, tolerance=tolerance)
-    _, n = hb.local(x)
+    _, n = hb._local(x)
     hb._aft(x)
     closed = np.array([int(np.count_nonzero(n[i, 0] > c.model.gaps)) for i, c in enumerate(structure.contacts)],
                       dtype=np.int64)
@@ -341,6 +343,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     lo, hi = _omega_range(omega)
     if control is not None and not isinstance(control, StepControl):
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
+    progress = _checks.flag("progress", progress)
     hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi)
     report = Progress(10, enabled=progress)
     reached = [0]
@@ -407,7 +410,7 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
         With one point.
     """
     start = time.perf_counter()
-    omega = _checks.positive_scalar("omega", omega)
+    omega = HarmonicBalance._omega(omega)
     hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega)
     result = _collect(hb, x[None, :], np.array([omega]), np.array([0]), static, True)
     return replace(result, elapsed=time.perf_counter() - start)

@@ -159,7 +159,7 @@ def read(path, *, columns=None, units=None, normal_load=None) -> Record:
         ``units`` that conflicts with the header's, a cell that is not
         a number or not finite (row and column named), too few samples.
     """
-    path = Path(path)
+    path = _checks.file_path("path", path)
     columns = _role_map("columns", columns)
     units = _role_map("units", units)
     if not path.is_file():
