@@ -432,7 +432,8 @@ CASES += [
     case("tuning.tangential_stiffnesses", lambda: microslip.tuning.tangential_stiffnesses, kinds=ARRAY,
          t=L(lambda: points().t), T=L(lambda: points().T)),
     case("tuning.normal_parameters", lambda: microslip.tuning.normal_parameters, kinds=ARRAY, reference=REFERENCE,
-         kt=L(lambda: microslip.tuning.tangential_stiffnesses(points().t, points().T)), slip_displacements=L(lambda: points().t[::-1]), normal_load=N_TOT),
+         kt=L(lambda: microslip.tuning.tangential_stiffnesses(points().t, points().T)),
+         slip_displacements=L(lambda: points().t[::-1]), normal_load=N_TOT),
     # each of these searches for minutes once its arguments are accepted
     case("microslip.tune_to_target", lambda: microslip.tune_to_target, refused_only=True, reference=REFERENCE,
          load_range=(20.0, N_TOT), elements=3, energy_target=0.02, force_target=0.02, min_amplitude=0.5),
