@@ -293,6 +293,7 @@ class MicroslipModel:
         ``sum_i sign(t) min(kt_i |t|, mu N_i)``; ``t`` and ``n`` broadcast.
         """
         t = _checks.real_array("t", t)
+        _checks.broadcast(t=t, n=_checks.real_array("n", n))
         Ni = self.element_normal_forces(n)
         t = np.asarray(t)[..., None]
         return (np.sign(t) * np.minimum(self.kt * np.abs(t), self.mu * Ni)).sum(axis=-1)
@@ -342,6 +343,7 @@ class MicroslipModel:
         """
         t = _checks.real_array("t", t, ndim=1, min_size=1)
         n = _checks.real_array("n", n)
+        per_element, work = _checks.flag("per_element", per_element), _checks.flag("work", work)
         if n.ndim == 0:
             n = np.full(t.shape, float(n))
         elif n.shape != t.shape:
@@ -424,12 +426,13 @@ class MicroslipModel:
 
     def save(self, path) -> Path:
         """Write the model as JSON to ``path`` (atomically). Returns the path."""
+        path = _checks.file_path("path", path)
         return atomic_write(path, json.dumps(self.to_dict(), indent=2) + "\n")
 
     @classmethod
     def load(cls, path) -> "MicroslipModel":
         """Read a model written by :meth:`save`."""
-        path = Path(path)
+        path = _checks.file_path("path", path)
         try:
             data = json.loads(path.read_text(encoding="utf-8"))
         except FileNotFoundError:

@@ -111,6 +111,18 @@ def test_from_arrays():
     (lambda: paths.from_arrays([0.0, 1.0, 2.0], N=[1.0, 2.0], reference=SPHERE), ValueError,
      r"N must be a scalar or have the shape of t \(3,\), got shape \(2,\)"),
     (lambda: paths.default_family(SPHERE, 37.5, levels=[0.5, 1.2]), ValueError, "levels must not exceed 1"),
+    (lambda: paths.loop(SPHERE, 10.0, 1e-6).simulate("model"), TypeError,
+     "model must be a MicroslipModel .* got str"),
+    (lambda: paths.loop(SPHERE, 10.0, 1e-6).simulate(tune(SPHERE, 37.5, elements=2), per_element="no"), TypeError,
+     "per_element must be True or False, got 'no'"),
+    (lambda: paths.from_arrays([0.0, 1e-6], n=0.0, periodic="no"), TypeError, "periodic must be True or False"),
+    (lambda: paths.from_arrays([0.0, 1e-6], n=0.0, label=1.0), TypeError, "label must be a string, got 1.0"),
+    (lambda: Path(t=[0.0, 1.0], n=[0.0, 1.0], steady=slice(0, 2), params="abc"), TypeError,
+     "params must be a mapping"),
+    (lambda: paths.loop(SPHERE, 10.0, 1e-6, cycles=10**12), ValueError, "cycles must be at most 10000000"),
+    (lambda: paths.loop(SPHERE, 10.0, 1e-6, cycles=10**5, steps_per_cycle=10**5), ValueError,
+     "cycles [*] steps_per_cycle must be below 10000000 samples, got 100000 [*] 100000"),
+    (lambda: paths.paper_fig4(SPHERE, steps=10**7), ValueError, "steps must be at most 3333333"),
 ])
 def test_bad_input(call, exc, message):
     if exc is None:  # accepted: what it needs is there

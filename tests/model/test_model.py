@@ -200,10 +200,21 @@ def test_scalar_n_is_held_constant(paper_model):
      "state must be a microslip State (from a Response or Step), got ndarray"),
     (dict(t=[0.0], n=1e-6, state=State(np.zeros(3))), ValueError,
      "state has 3 sliders, this model has J = 4"),
+    (dict(t=[0.0], n=1e-6, per_element="no"), TypeError, "per_element must be True or False, got 'no'"),
+    (dict(t=[0.0], n=1e-6, work=1), TypeError, "work must be True or False, got 1"),
 ])
 def test_simulate_rejects_bad_input(paper_model, kwargs, error, message):
     with pytest.raises(error, match=re.escape(message)):
         paper_model.simulate(**kwargs)
+
+
+def test_backbone_and_files_name_their_arguments(paper_model):
+    with pytest.raises(ValueError, match=re.escape("t (shape (3,)) and n (shape (2,)) must have shapes that")):
+        paper_model.backbone([0.0, 1e-7, 2e-7], [1e-6, 2e-6])
+    with pytest.raises(TypeError, match=re.escape("path must be a file name (str or os.PathLike), got 1.0")):
+        paper_model.save(1.0)
+    with pytest.raises(TypeError, match=re.escape("path must be a file name (str or os.PathLike), got None")):
+        MicroslipModel.load(None)
 
 
 def test_initial_state_rejects_bad_t0(paper_model):

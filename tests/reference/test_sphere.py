@@ -165,6 +165,31 @@ def test_mindlin_energy_limits(sphere):
         T_small**3 / (36 * MU * N_TOT * a * G_star), rel=1e-2)
 
 
+@pytest.mark.parametrize("T_amp, N", [(1e-8 * MU * N_TOT, N_TOT), (5.0, 1e30)])
+def test_mindlin_energy_keeps_its_digits_at_small_amplitudes(sphere, T_amp, N):
+    """The bracket is 5 x^3 / 162 (1 + 2x/3 + O(x^2)) (its series: c_4 / c_3 = 2/3), so W is the
+    small-amplitude limit T*^3 / (36 mu N a G*) to a relative 2x/3: 7e-9 at x = 1e-8, 1e-29 at
+    N = 1e30 N. The closed form cancels to noise there (relative error ~ 1e-16 / x^2): rtol 1e-7."""
+    a = float(sphere.contact_radius(N))
+    limit = T_amp**3 / (36 * MU * N * a * sphere.G_star)
+    assert float(sphere.dissipation(T_amp, N)) == pytest.approx(limit, rel=1e-7, abs=0.0)
+
+
+def test_mindlin_energy_at_an_enormous_load_is_finite():
+    """5 N at 1e300 N: x = 1e-299, W about 1e-407 J underflows to 0; it once came out as -inf
+    (N^2 overflowed and multiplied the bracket's cancellation noise)."""
+    W = float(Sphere.paper().dissipation(5.0, 1e300))
+    assert W == 0.0
+
+
+@pytest.mark.parametrize("x", [0.0999999, 0.1])
+def test_mindlin_energy_is_continuous_where_series_and_closed_form_meet(sphere, x):
+    """Both sides of x = 0.1 agree to the closed form's own round-off there (~1e-16 / x^2 relative)."""
+    T_amp = x * MU * N_TOT
+    below = float(sphere.dissipation(T_amp * (1 - 1e-9), N_TOT)) / (1 - 1e-9) ** 3
+    assert float(sphere.dissipation(T_amp, N_TOT)) == pytest.approx(below, rel=1e-8, abs=0.0)
+
+
 # -- Mindlin--Deresiewicz -----------------------------------------------------------------
 @pytest.mark.parametrize("T_A_frac, dN", [(0.0, 5.0), (0.4, 5.0), (0.9, 12.5), (1.0, 2.0)])
 def test_join_point_and_raised_load_path(sphere, T_A_frac, dN):
@@ -233,10 +258,19 @@ def test_constructor_errors(change, message):
     ("backbone_displacement", (16.0, 37.5), "T must satisfy |T| <= mu*N (gross slip); it exceeds it by up to 1 N"),
     ("backbone_displacement", (-16.0, 37.5), "T must satisfy |T| <= mu*N"),
     ("branch", (0.0, -1.0, 0.0, 0.0), "N must be positive, got -1.0"),
+    ("branch", (0.0, 37.5, 0.0, np.nan), "T_reversal must be finite, got nan"),
+    ("branch", (0.0, 37.5, np.nan, 0.0), "t_reversal must be finite, got nan"),
+    ("branch", (0.0, 37.5, 0.0, 16.0), "T_reversal must satisfy |T_reversal| <= mu*N = 15 N (no force beyond "
+                                       "gross slip), got 16 N"),
+    ("branch", ("abc", 37.5, 0.0, 0.0), "t must be an array of real numbers, got 'abc'"),
+    ("backbone", ([0.0, 1e-6, 2e-6], []), "t (shape (3,)) and N (shape (0,)) must have shapes that broadcast"),
+    ("backbone_displacement", ([1.0, 2.0], [1.0, 2.0, 3.0]), "T (shape (2,)) and N (shape (3,)) must have"),
+    ("normal_force", (1e300,), "n is too large"),
     ("loop", (0.0, 37.5), "amplitude must be positive, got 0.0"),
     ("loop", (1e-6, 0.0), "N must be positive, got 0.0"),
     ("loop", (1e-6, 37.5, 2), "points must be an integer >= 3, got 2"),
     ("loop", (1e-6, 37.5, 10.5), "points must be an integer, got 10.5"),
+    ("loop", (1e-6, 37.5, 10**12), "points must be at most 10000000 (a size: larger ones would need gigabytes)"),
     ("dissipation", (16.0, 37.5), "T_amplitude must not exceed mu*N (the gross-slip force); "
                                   "got T_amplitude/(mu N) up to 1.06667"),
     ("dissipation", (-1.0, 37.5), "T_amplitude must be non-negative, got -1.0"),

@@ -114,10 +114,13 @@ def test_unreachable_target_reports_the_best_found():
     ({"load_range": (-1.0, 7.5)}, ValueError, r"load_range\[0\] must be positive"),
     ({"load_range": (7.5, 37.5), "energy_target": 0.0}, ValueError, "energy_target must be positive"),
     ({"load_range": (7.5, 37.5), "min_amplitude": 50.0}, ValueError, "leave no path of the family"),
+    ({"load_range": (7.5, 37.5), "reference_elements": 10**12}, ValueError,
+     "reference_elements must be at most 10000000"),
+    ({"load_range": (7.5, 37.5), "reference_elements": 2.5}, TypeError, "reference_elements must be an integer"),
 ])
 def test_problem_bad_input(kwargs, exc, message):
     with pytest.raises(exc, match=message):
-        TargetProblem(SPHERE, reference_elements=50, steps_per_cycle=16, family_options=SMALL, **kwargs)
+        TargetProblem(SPHERE, **{"reference_elements": 50, "steps_per_cycle": 16, "family_options": SMALL, **kwargs})
 
 
 def test_bad_arguments(small):
@@ -138,6 +141,24 @@ def test_bad_arguments(small):
         small.tune_spacing("optimal", 3)
     with pytest.raises(ValueError, match="spacings must be among"):
         element_sweep(small, [2], spacings=("even",))
+    with pytest.raises(TypeError, match="family_options must be a mapping"):
+        TargetProblem(SPHERE, (7.5, 37.5), family_options="abc", reference_elements=50, steps_per_cycle=16)
+    with pytest.raises(TypeError, match="problem must be a TargetProblem, got str"):
+        element_sweep("problem", [2])
+    with pytest.raises(TypeError, match=r"elements\[i\] must be an integer, got nan"):
+        element_sweep(small, [2, float("nan")])
+    with pytest.raises(ValueError, match="spacing must be one of 'force'"):
+        element_sweep(small, [2], spacings=("force",)).smallest("forse")
+    with pytest.raises(ValueError, match="energy_error must be finite, got nan"):
+        small.normalised(float("nan"), 0.01)
+    with pytest.raises(ValueError, match="spacing must be one of 'force', 'displacement', 'optimal', got 'even'"):
+        small.result(*small.tune_fractions([0.5, 1.0]), "even")
+    with pytest.raises(TypeError, match="points must be TuningPoints"):
+        small.result(small.tune_fractions([0.5, 1.0])[0], [0.5, 1.0], "optimal")
+    with pytest.raises(ValueError, match=r"fractions must increase strictly up to 1 \(gross slip\), got \[0.5 2. \]"):
+        small.tune_fractions([0.5, 2.0])
+    with pytest.raises(ValueError, match="elements must be at most 10000000"):
+        small.tune_spacing("force", 10**12)
 
 
 @settings(max_examples=40, deadline=None)

@@ -9,7 +9,7 @@ import pytest
 from scipy import optimize
 
 from microslip import ContactReference, MicroslipModel, Sphere, TuningError, tune, tuning_points
-from microslip.tuning import normal_parameters, tangential_stiffnesses
+from microslip.tuning import model_from_points, normal_parameters, tangential_stiffnesses
 
 N_TOT = 37.5
 
@@ -170,12 +170,28 @@ def test_points_not_strictly_increasing(sphere):
 
 def test_last_point_not_at_gross_slip(sphere):
     with pytest.raises(ValueError, match=re.escape(
-            "forces: the last point must be at gross slip, mu*N_tot = 15 N, got 14 N")):
+            "forces: the last point must be at gross slip, mu*normal_load = 15 N, got 14 N")):
         tune(sphere, N_TOT, forces=[5.0, 10.0, 14.0])
     with pytest.raises(ValueError, match=re.escape(
-            "displacements: the last point must be at gross slip, t_gs = 1.14502e-06 m at N_tot = 37.5 N, "
+            "displacements: the last point must be at gross slip, t_gs = 1.14502e-06 m at normal_load = 37.5 N, "
             "got 1e-06 m")):
         tune(sphere, N_TOT, displacements=[0.5e-6, 1e-6])
+
+
+@pytest.mark.parametrize("call, exc, message", [
+    (lambda s: tune(s, N_TOT, elements=10**12), ValueError, "elements must be at most 10000000"),
+    (lambda s: model_from_points("sphere", tuning_points(s, N_TOT, elements=2)), TypeError,
+     "reference must provide mu, backbone"),
+    (lambda s: normal_parameters(s, [1e7, np.nan], [2e-7, 1e-7], N_TOT), ValueError, "kt must be finite"),
+    (lambda s: normal_parameters(s, [1e7, 1e7], [2e-7], N_TOT), ValueError,
+     r"slip_displacements must have one value per element of kt \(2\), got 1"),
+    (lambda s: normal_parameters(s, [1e7, 1e7], [2e-7, 1e-7], 0.0), ValueError, "normal_load must be positive"),
+    (lambda s: normal_parameters(s, [1e300, 1e300], [2e-7, 1e-7], N_TOT), TuningError,
+     r"kt, slip_displacements and normal_load = 37.5 N: eq. \(9\) has no solution for element 2"),
+])
+def test_bad_arguments_are_named(sphere, call, exc, message):
+    with pytest.raises(exc, match=message):
+        call(sphere)
 
 
 def test_points_not_concave_name_the_point():

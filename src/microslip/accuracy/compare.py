@@ -71,6 +71,7 @@ def restriction_mask(paths, min_load: float = 0.0, min_amplitude: float = 0.0) -
         Both bounds met, with a relative tolerance of 1e-12 (round-off of the
         loads computed from the levels).
     """
+    paths = _check_paths(paths)
     lo = _checks.positive_scalar("min_load", min_load, allow_zero=True)
     amin = _checks.positive_scalar("min_amplitude", min_amplitude, allow_zero=True)
     get = lambda name: np.array([float(p.params.get(name, np.nan)) for p in paths])  # noqa: E731
@@ -124,6 +125,7 @@ class PathBatch:
 
     def n_for(self, model) -> np.ndarray:
         """Approaches with the separators set below every gap of ``model`` (m)."""
+        _check_model("model", model)
         n = self._n.copy()
         low = min(float(model.gaps.min()), float(n.min()))
         n[self._sep] = low - max(1.0, abs(low))
@@ -137,6 +139,7 @@ class PathBatch:
         T, N, W : ndarray, shape (samples,)
         """
         n = self.n_for(model)
+        chunks = _checks.size("chunks", chunks)
         T = np.empty_like(self.t)
         N = np.empty_like(self.t)
         W = np.empty_like(self.t)
@@ -154,18 +157,28 @@ class PathBatch:
 
         ``values`` has shape ``(steady samples,)``: a batch array indexed with ``steady_index``.
         """
-        op = np.add if how == "sum" else np.maximum
+        values = self._samples("values", values, self.steady_index.size)
+        op = np.add if _checks.one_of("how", how, ("sum", "max")) == "sum" else np.maximum
         return op.reduceat(values, self.steady_starts)
+
+    def _samples(self, name: str, values, size: int) -> np.ndarray:
+        """``values`` checked finite, 1-D, of ``size`` samples."""
+        values = _checks.real_array(name, values, ndim=1)
+        if values.size != size:
+            raise ValueError(f"{name} must have {size} samples, one per sample of the batch, got {values.size}")
+        return values
 
     def steady_metrics(self, T, N, W):
         """``(energy, peak |T|, sum N)`` per path over the steady parts of batch arrays from :meth:`run`."""
+        T, N, W = (self._samples(name, v, self.t.size) for name, v in (("T", T), ("N", N), ("W", W)))
         k = self.steady_index
         Ts = T[k]
         energy = self.per_path(self.steady_weight * Ts + self.steady_work_weight * W[k])
         return energy, self.per_path(np.abs(Ts), "max"), self.per_path(N[k])
 
     def split(self, values) -> list:
-        """``values`` over the batch cut back into one array per path."""
+        """``values`` (shape ``(samples,)``) over the batch cut back into one array per path."""
+        values = self._samples("values", values, self.t.size)
         return [values[k0:k0 + len(p)] for p, k0 in zip(self.paths, self.starts)]
 
 
@@ -214,6 +227,7 @@ def reference_run(reference_model, paths, *, progress: Progress | None = None, c
         Number of kernel calls (progress is stepped once per call).
     """
     _check_model("reference_model", reference_model)
+    chunks = _checks.size("chunks", chunks)
     batch = paths if isinstance(paths, PathBatch) else PathBatch(paths)
     limit = getattr(reference_model, "max_approach", np.inf)
     for k, p in enumerate(batch.paths):
@@ -266,7 +280,7 @@ def accuracy(model, reference_model, paths=None, *, progress: bool = False) -> "
         One row per path; see :data:`METRICS`.
     """
     _check_model("model", model)
-    bar = Progress(8, enabled=progress) if progress else None
+    bar = Progress(8, enabled=progress) if _checks.flag("progress", progress) else None
     if isinstance(reference_model, ReferenceRun):
         ref = reference_model
         if paths is not None and _check_paths(paths) != ref.paths:
@@ -348,18 +362,24 @@ class AccuracyReport:
 
     def metric(self, name: str) -> np.ndarray:
         """The values of metric ``name`` (one of :data:`METRICS`), shape (P,)."""
-        if name not in METRICS:
-            raise ValueError(f"metric must be one of {', '.join(METRICS)}, got {name!r}")
+        _checks.one_of("name", name, tuple(METRICS))
         return np.asarray(getattr(self, name), dtype=float)
 
     def param(self, name: str) -> np.ndarray:
-        """Path parameter ``name`` (e.g. ``amplitude``, ``ratio``) per path; NaN where a path lacks it."""
+        """Path parameter ``name`` (e.g. ``amplitude``, ``ratio``) per path; NaN where a path lacks it.
+
+        ``name`` is one of the default family's parameters (:data:`PARAMS`) or
+        a parameter of at least one of the paths.
+        """
+        known = set(PARAMS).union(*(p.params for p in self.paths))
+        if not isinstance(name, str) or name not in known:
+            raise ValueError(f"name must be a path parameter, one of {', '.join(sorted(known))}, got {name!r}")
         return np.array([float(p.params.get(name, np.nan)) for p in self.paths])
 
     def where(self, mask) -> "AccuracyReport":
         """The report restricted to the paths where ``mask`` (bool array, shape (P,)) is true."""
-        mask = np.asarray(mask, dtype=bool)
-        if mask.shape != (len(self),):
+        mask = np.asarray(mask)
+        if mask.dtype != bool or mask.shape != (len(self),):
             raise ValueError(f"mask must be a boolean array of shape ({len(self)},), got {mask.shape}")
         if not mask.any():
             raise ValueError("mask selects no path")
@@ -447,6 +467,7 @@ class AccuracyReport:
 
     def to_csv(self, path):
         """Write :meth:`columns` as CSV (atomically). Returns the path."""
+        path = _checks.file_path("path", path)
         return write_csv(path, self.columns(), header_comment="microslip accuracy: one row per path; "
                                                               "metrics relative to the reference model")
 

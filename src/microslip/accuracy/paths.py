@@ -34,7 +34,7 @@ from functools import cached_property
 import numpy as np
 
 from ..common import _checks
-from ..model import _frozen
+from ..model import MicroslipModel, _frozen
 
 __all__ = ["AMPLITUDES", "LEVELS", "PHASES_DEG", "Path", "RATIOS", "default_family", "from_arrays", "loop",
            "paper_fig4", "variable_load_cycles"]
@@ -89,7 +89,9 @@ class Path:
             if N.shape != t.shape:
                 raise ValueError(f"N must have the same shape as t {t.shape}, got {N.shape}")
             object.__setattr__(self, "N", _frozen(N))
-        object.__setattr__(self, "params", dict(self.params))
+        object.__setattr__(self, "params", _checks.mapping("params", self.params))
+        object.__setattr__(self, "periodic", _checks.flag("periodic", self.periodic))
+        object.__setattr__(self, "label", _checks.text("label", self.label, allow_empty=True))
         if self.periodic:
             k0, k1 = self.steady.start, self.steady.stop - 1
             for name, x in (("t", t), ("n", n)):
@@ -122,7 +124,9 @@ class Path:
             Forces in N, shapes ``(steps,)`` and, per element, ``(steps, J)``
             (:meth:`MicroslipModel.simulate`).
         """
-        return model.simulate(self.t, self.n, per_element=per_element)
+        if not isinstance(model, MicroslipModel):
+            raise TypeError(f"model must be a MicroslipModel (e.g. from tune() or mdr()), got {type(model).__name__}")
+        return model.simulate(self.t, self.n, per_element=_checks.flag("per_element", per_element))
 
     def plot(self, ax=None):
         """Plot ``t`` (µm) and ``N`` (N, or ``n`` in µm) against the sample index, steady cycle shaded.
@@ -172,8 +176,10 @@ def _approach(reference, N, name="N"):
 
 
 def _cycles_grid(cycles, steps_per_cycle):
-    cycles = _checks.positive_int("cycles", cycles)
-    spc = _checks.positive_int("steps_per_cycle", steps_per_cycle, minimum=8)
+    cycles = _checks.size("cycles", cycles)
+    spc = _checks.size("steps_per_cycle", steps_per_cycle, minimum=8)
+    if cycles * spc >= _checks.MAX_SIZE:
+        raise ValueError(f"cycles * steps_per_cycle must be below {_checks.MAX_SIZE} samples, got {cycles} * {spc}")
     tau = 2.0 * np.pi * np.arange(cycles * spc + 1) / spc
     return tau, slice((cycles - 1) * spc, cycles * spc + 1)
 
@@ -286,7 +292,7 @@ def paper_fig4(reference, normal_load: float = 25.0, load_step: float = 12.5, ra
     dN = _checks.positive_scalar("load_step", load_step, allow_zero=True)
     x = _checks.in_range("raised_at", raised_at, 0.0, 1.0)
     beyond = _checks.positive_scalar("beyond", beyond)
-    steps = _checks.positive_int("steps", steps, minimum=2)
+    steps = _checks.size("steps", steps, minimum=2, maximum=_checks.MAX_SIZE // 3)
     _require(reference, "approach", "backbone_displacement", "gross_slip_displacement")
     if not hasattr(reference, "mu"):
         raise TypeError(f"reference must provide mu (its friction coefficient), got {type(reference).__name__}")

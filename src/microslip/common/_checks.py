@@ -105,3 +105,78 @@ def positive_int(name: str, value, *, minimum: int = 1) -> int:
     if value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value}")
     return int(value)
+
+
+#: the largest size (samples, elements, points, ...) an entry point accepts: 1e7 float64 values are 80 MB,
+#: so a size typed with a few zeros too many is refused instead of allocating gigabytes
+MAX_SIZE = 10_000_000
+
+
+def size(name: str, value, *, minimum: int = 1, maximum: int = MAX_SIZE) -> int:
+    """An integer size in ``[minimum, maximum]``, refused before anything is allocated."""
+    n = positive_int(name, value, minimum=minimum)
+    if n > maximum:
+        raise ValueError(f"{name} must be at most {maximum} (a size: larger ones would need gigabytes), got {n}")
+    return n
+
+
+def flag(name: str, value) -> bool:
+    """``True`` or ``False`` (NumPy booleans too); strings such as ``"no"``, numbers and None are refused."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise TypeError(f"{name} must be True or False, got {_show(value)}")
+
+
+def text(name: str, value, *, allow_empty: bool = False) -> str:
+    """A string (non-empty unless ``allow_empty``)."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {_show(value)}")
+    if not value and not allow_empty:
+        raise ValueError(f"{name} must not be empty")
+    return value
+
+
+def one_of(name: str, value, choices) -> str:
+    """``value`` if it is one of ``choices`` (strings), else raise naming ``name`` and listing them."""
+    if not isinstance(value, str) or value not in choices:
+        raise ValueError(f"{name} must be one of {', '.join(map(repr, choices))}, got {_show(value)}")
+    return value
+
+
+def mapping(name: str, value) -> dict:
+    """A copy of a mapping (``dict`` or any ``collections.abc.Mapping``)."""
+    from collections.abc import Mapping
+
+    if not isinstance(value, Mapping):
+        raise TypeError(f"{name} must be a mapping (dict), got {_show(value)}")
+    return dict(value)
+
+
+def file_path(name: str, value):
+    """A ``pathlib.Path`` from a ``str`` or ``os.PathLike`` file name."""
+    import os
+    from pathlib import Path
+
+    if isinstance(value, (str, os.PathLike)) and str(value):
+        return Path(value)
+    raise TypeError(f"{name} must be a file name (str or os.PathLike), got {_show(value)}")
+
+
+def broadcast(**arrays) -> tuple:
+    """The shape the named arrays broadcast to, or a ``ValueError`` naming them and their shapes."""
+    shapes = {k: np.shape(v) for k, v in arrays.items()}
+    try:
+        return np.broadcast_shapes(*shapes.values())
+    except ValueError:
+        listed = " and ".join(f"{k} (shape {s})" for k, s in shapes.items())
+        raise ValueError(f"{listed} must have shapes that broadcast together") from None
+
+
+def finite_result(name: str, value, result):
+    """``result`` if it is finite; else a ``ValueError``: ``name`` (whose ``value`` gave it) is too large."""
+    out = np.asarray(result)
+    if np.count_nonzero(np.isfinite(out)) != out.size:
+        largest = float(np.max(np.abs(np.asarray(value, dtype=float))))
+        raise ValueError(f"{name} is too large: {largest:.6g} gives a result beyond the floating-point range "
+                         "(about 1.8e308)")
+    return result

@@ -62,7 +62,7 @@ def check_samples(samples, harmonics: int) -> int:
     """``samples`` checked against ``harmonics`` (``None``: :func:`default_samples`)."""
     if samples is None:
         return default_samples(harmonics)
-    Ns = _checks.positive_int("samples", samples, minimum=1)
+    Ns = _checks.size("samples", samples, minimum=1)
     if Ns < 2 * harmonics + 1:
         raise ValueError(f"samples must be at least 2 * harmonics + 1 = {2 * harmonics + 1} "
                          f"to resolve {harmonics} harmonics, got {Ns}")

@@ -12,7 +12,6 @@ exchanged as a file (:meth:`CraigBampton.save`, :meth:`CraigBampton.load`).
 from __future__ import annotations
 
 import json
-import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,7 +62,7 @@ class CraigBampton:
 
     def save(self, path) -> str:
         """Write the reduced model (matrices, recovery, kept DOFs, contacts) to a ``.npz`` file atomically."""
-        path = os.fspath(path)
+        path = str(_checks.file_path("path", path))
         if not path.endswith(".npz"):
             raise ValueError(f"path must end with .npz, got {path!r}")
         s = self.structure
@@ -86,7 +85,10 @@ class CraigBampton:
     @classmethod
     def load(cls, path) -> "CraigBampton":
         """Read a model written by :meth:`save`."""
-        with np.load(os.fspath(path), allow_pickle=False) as data:
+        path = _checks.file_path("path", path)
+        if not path.is_file():
+            raise ValueError(f"path: no Craig-Bampton model file at {str(path)!r}")
+        with np.load(path, allow_pickle=False) as data:
             missing = {"M", "C", "K", "recovery", "keep", "frequencies", "contacts"} - set(data.files)
             if missing:
                 raise ValueError(f"{path}: not a Craig-Bampton model file (missing {', '.join(sorted(missing))})")

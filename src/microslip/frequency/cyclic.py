@@ -179,10 +179,13 @@ class CyclicStructure(Structure):
     # -- the sector's matrices in a nodal diameter ------------------------------------------
     def phase(self, harmonic: int, engine_order: int) -> float:
         """``phi_h = 2 pi h EO / N`` (rad): the phase lag of harmonic ``h`` from one sector to the next."""
-        return 2.0 * np.pi * ((harmonic * engine_order) % self.sectors) / self.sectors
+        h = _checks.positive_int("harmonic", harmonic, minimum=0)
+        eo = _checks.positive_int("engine_order", engine_order, minimum=0)
+        return 2.0 * np.pi * ((h * eo) % self.sectors) / self.sectors
 
     def constraint(self, phi: float):
         """``T`` (sparse, ``(ndof, len(independent))``): every DOF from the independent ones, ``q_R = e^{-i phi} q_L``."""
+        phi = _checks.real_scalar("phi", phi)
         col = {int(d): k for k, d in enumerate(self.independent)}
         rows = list(self.independent) + list(self.right)
         cols = [col[int(d)] for d in self.independent] + [col[int(d)] for d in self.left]
@@ -193,7 +196,7 @@ class CyclicStructure(Structure):
 
     def matrices(self, phi: float):
         """``(M, C, K)`` on the independent DOFs for the phase ``phi`` (complex Hermitian; real for 0)."""
-        T = self.constraint(phi)
+        T = self.constraint(phi)  # checks phi
         out = []
         for A in (self.M, self.C, self.K):
             A = sp.csr_matrix(A)

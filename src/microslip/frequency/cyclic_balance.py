@@ -105,7 +105,7 @@ class CyclicHarmonicBalance(ReducedHarmonicBalance):
         self.Gn = (eye * self.Bn.T[:, None, None, :] + self.P[None, :, :, None] * self.Bn_next.T[:, None, None, :]
                    ).reshape(self.nc, self.nb, self.n)
 
-    def local(self, x) -> tuple[np.ndarray, np.ndarray]:
+    def _local(self, x) -> tuple[np.ndarray, np.ndarray]:
         """Coefficients of every contact's ``t`` and ``n`` (m), each ``(nc, 2H+1)``: own and next-sector DOFs."""
         xt = np.ascontiguousarray(self.Gt @ x)
         xn = np.ascontiguousarray(self.Gn @ x)
@@ -135,7 +135,7 @@ class CyclicHarmonicBalance(ReducedHarmonicBalance):
             K += contact.model.kn.sum() * np.outer(Bn[:, c], Bn[:, c])
         return K
 
-    def full(self, x, omega: float) -> np.ndarray:
+    def _full(self, x, omega: float) -> np.ndarray:
         """Coefficients of every sector DOF ``(2H+1, ndof)`` (m), the right boundary from the left one."""
         disk = self.structure
         ind = self.linear.recover(np.reshape(x, (self.nb, self.ndof)), omega, self.H)

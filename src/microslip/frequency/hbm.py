@@ -146,7 +146,11 @@ class HarmonicBalance:
 
     # -- pieces ---------------------------------------------------------------
     def local(self, x) -> tuple[np.ndarray, np.ndarray]:
-        """Coefficients of every contact's ``t`` and ``n`` (m), each ``(nc, 2H+1)``."""
+        """Coefficients of every contact's ``t`` and ``n`` (m), each ``(nc, 2H+1)``, at the unknowns ``x`` (n,)."""
+        return self._local(self._unknowns(x))
+
+    def _local(self, x) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`local` without the check of ``x`` (the solvers' own vectors)."""
         X = np.reshape(x, (self.nb, self.ndof))
         xt = np.ascontiguousarray((X @ self.Bt).T)
         xn = np.ascontiguousarray((X @ self.Bn).T)
@@ -156,23 +160,34 @@ class HarmonicBalance:
     def _aft(self, x) -> None:
         if not self.nc:
             return
-        xt, xn = self.local(x)
+        xt, xn = self._local(x)
         _aft.aft_batch(*self.packed, xt, xn, *self.tables, self.max_periods,
                        self.FT, self.FN, self.JTt, self.JTn, self.JNn, self.periods)
         check_periodic(self.periods, self.max_periods)
 
     def dynamic_stiffness(self, omega: float):
         """``Z(omega) = Kx + omega Cx - omega^2 Mx``, shape ``(n, n)`` (dense or sparse CSC)."""
+        omega = self._omega(omega)
         return self.Kx + omega * self.Cx - (omega * omega) * self.Mx
 
-    def _point(self, x, omega) -> tuple[np.ndarray, float]:
-        """``x`` and ``omega`` checked: a finite vector of the ``n`` unknowns and a positive frequency."""
+    def _unknowns(self, x) -> np.ndarray:
+        """``x`` checked: a finite vector of the ``n`` unknowns."""
         x = np.asarray(x)
         if x.shape != (self.n,):
             raise ValueError(f"x must be a vector of the n = (2H+1) ndof = {self.n} unknowns "
                              f"(harmonic-major Fourier coefficients, m), got shape {x.shape}")
-        x = _checks.real_array("x", x)
-        return np.ascontiguousarray(x, dtype=np.float64), _checks.positive_scalar("omega", omega)
+        return np.ascontiguousarray(_checks.real_array("x", x), dtype=np.float64)
+
+    def _point(self, x, omega) -> tuple[np.ndarray, float]:
+        """``x`` and ``omega`` checked: a finite vector of the ``n`` unknowns and a positive frequency."""
+        return self._unknowns(x), self._omega(omega)
+
+    @staticmethod
+    def _omega(omega) -> float:
+        """A positive frequency (rad/s) whose square ``omega^2 M`` needs is still a float."""
+        omega = _checks.positive_scalar("omega", omega)
+        _checks.finite_result("omega", omega, omega * omega)
+        return omega
 
     def evaluate(self, x, omega: float, *, jacobian: bool = True):
         """Residual of the harmonic balance equations and its derivatives.
@@ -206,7 +221,7 @@ class HarmonicBalance:
             ``x`` of the wrong shape or not finite, ``omega`` not positive and finite.
         """
         x, omega = self._point(x, omega)
-        return self._evaluate(x, omega, jacobian=jacobian)
+        return self._evaluate(x, omega, jacobian=_checks.flag("jacobian", jacobian))
 
     def _evaluate(self, x, omega: float, *, jacobian: bool = True):
         """:meth:`evaluate` without the input checks (for the solvers, which build ``x`` themselves)."""
@@ -227,7 +242,7 @@ class HarmonicBalance:
     def evaluate_reference(self, x, omega: float, *, jacobian: bool = True):
         """As :meth:`evaluate`, with NumPy/SciPy array operations (any storage; ``Jx`` sparse CSC when sparse)."""
         x, omega = self._point(x, omega)
-        return self._evaluate_reference(x, omega, jacobian=jacobian)
+        return self._evaluate_reference(x, omega, jacobian=_checks.flag("jacobian", jacobian))
 
     def _evaluate_reference(self, x, omega: float, *, jacobian: bool = True):
         Z = self.dynamic_stiffness(omega)
@@ -238,9 +253,9 @@ class HarmonicBalance:
         if not jacobian:
             return R
         Jx = Z + self._contact_jacobian() if self.nc else Z
-        return R, Jx, self.omega_derivative(x, omega)
+        return R, Jx, self._omega_derivative(x, omega)
 
-    def omega_derivative(self, x, omega: float) -> np.ndarray:
+    def _omega_derivative(self, x, omega: float) -> np.ndarray:
         """``dR/domega`` (N s), shape ``(n,)``: the linear part's, the contact forces not depending on omega."""
         return self.Cx @ x - 2.0 * omega * (self.Mx @ x)
 
@@ -351,7 +366,7 @@ class HarmonicBalance:
         :meth:`Structure.stuck_stiffness <microslip.frequency.structure.Structure.stuck_stiffness>`."""
         return self.structure.stuck_stiffness()
 
-    def full(self, x, omega: float) -> np.ndarray:
+    def _full(self, x, omega: float) -> np.ndarray:
         """Coefficients of every DOF ``(2H+1, ndof)`` (m): here the unknowns themselves."""
         return np.reshape(x, (self.nb, self.ndof))
 
@@ -380,7 +395,7 @@ class HarmonicBalance:
                "T": np.zeros((P, self.nc, self.nb)), "N": np.zeros((P, self.nc, self.nb))}
         for k in range(P):
             if self.nc:
-                out["t"][k], out["n"][k] = self.local(xs[k])
+                out["t"][k], out["n"][k] = self._local(xs[k])
                 self._aft(xs[k])
                 out["T"][k], out["N"][k] = self.FT, self.FN
         out["contacts"] = cycle_work(out["T"], out["t"]) + cycle_work(out["N"], out["n"])

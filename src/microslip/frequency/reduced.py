@@ -126,7 +126,7 @@ class ReducedHarmonicBalance(HarmonicBalance):
         """The condensed ``Z(omega)``, dense ``(n, n)`` (N/m)."""
         return self.linear.operator(omega, self.H)[0]
 
-    def omega_derivative(self, x, omega: float) -> np.ndarray:
+    def _omega_derivative(self, x, omega: float) -> np.ndarray:
         """``dR/domega = Z'(omega) x`` (N s), shape ``(n,)``."""
         return self.linear.operator(omega, self.H)[1] @ x
 
@@ -138,7 +138,7 @@ class ReducedHarmonicBalance(HarmonicBalance):
                 K += k * np.outer(b, b)
         return K
 
-    def full(self, x, omega: float) -> np.ndarray:
+    def _full(self, x, omega: float) -> np.ndarray:
         """Coefficients of every DOF ``(2H+1, ndof)`` (m) from the reduced unknowns ``x``."""
         return self.linear.recover(np.reshape(x, (self.nb, self.ndof)), omega, self.H)
 

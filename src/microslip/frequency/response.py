@@ -222,7 +222,7 @@ class FrequencyResponse:
         if point >= self.points:
             raise ValueError(f"point must be below the number of points {self.points}, got {point}")
         c = self._dof_coefficients(dof)[point]
-        Ns = _checks.positive_int("samples", samples, minimum=2 * self.harmonics + 1)
+        Ns = _checks.size("samples", samples, minimum=2 * self.harmonics + 1)
         return 2 * np.pi / self.omega[point] * np.arange(Ns) / Ns, synthesise(c, Ns)
 
     def plot(self, dof=0, harmonic: int | None = None, ax=None, *, label: str | None = None, unit: str = "µm",
@@ -288,6 +288,7 @@ class FrequencyResponse:
 
     def to_csv(self, path, dofs=None):
         """Write :meth:`columns` to ``path`` as CSV (atomically). Returns the path."""
+        path = _checks.file_path("path", path)
         return write_csv(path, self.columns(dofs),
                          header_comment=f"microslip frequency response: H = {self.harmonics}, "
                                         f"{self.samples} samples per period, {self.points} points")
@@ -321,10 +322,11 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
         As in :func:`frequency_response` (the static problem is solved on the
         retained DOFs, then every DOF is recovered).
     """
+    tolerance = _checks.in_range("tolerance", tolerance, 0.0, 1.0, lo_open=True, hi_open=True)
     static, _, _ = _equations(structure, _static_force(force) if force is not None else {}, 0, None,
                               MAX_PERIODS, reduction, modes)
     x = _static_state(static, tolerance=tolerance)[0]
-    return static.full(x, 1.0)[0]
+    return static._full(x, 1.0)[0]
 
 
 def _equations(structure, force, harmonics, samples, max_periods, reduction, modes, engine_order=None):
@@ -334,7 +336,7 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     """
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
-    H = _checks.positive_int("harmonics", harmonics, minimum=0)
+    H = _checks.size("harmonics", harmonics, minimum=0)
     engine_order = check_engine_order(structure, engine_order)
     static_force = _static_force(force) if force is not None else {}
     if isinstance(structure, CyclicStructure):
@@ -374,7 +376,7 @@ def _static_state(hb, *, tolerance: float = 1e-10):
         x = np.linalg.lstsq(K, rhs, rcond=None)[0]
     x_scale = max(float(np.max(np.abs(x))), 1e-12)
     x, _ = newton(hb, x, 1.0, r_scale=r_scale, x_scale=x_scale, tolerance=tolerance)
-    _, n = hb.local(x)
+    _, n = hb._local(x)
     hb._aft(x)
     closed = np.array([int(np.count_nonzero(n[i, 0] > c.model.gaps)) for i, c in enumerate(structure.contacts)],
                       dtype=np.int64)
@@ -453,6 +455,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     lo, hi = _omega_range(omega)
     if control is not None and not isinstance(control, StepControl):
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
+    progress = _checks.flag("progress", progress)
     hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
                                                    reduction, modes, engine_order)
     report = Progress(10, enabled=progress)
@@ -522,7 +525,7 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
         With one point.
     """
     start = time.perf_counter()
-    omega = _checks.positive_scalar("omega", omega)
+    omega = HarmonicBalance._omega(omega)
     hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega, reduction,
                                        modes, engine_order)
     result = _collect(hb, x[None, :], np.array([omega]), np.array([0]), static, True)
@@ -552,7 +555,7 @@ def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> 
         extra = dict(dofs=hb.retained, reduction="modal" if hasattr(linear, "modes") else "exact",
                      engine_order=getattr(hb, "engine_order", None),
                      modes=getattr(linear, "modes", None),
-                     recovery=lambda k: hb.full(xs[k], float(omegas[k])))
+                     recovery=lambda k: hb._full(xs[k], float(omegas[k])))
         if extra["reduction"] == "modal":
             peak = int(np.argmax(np.abs(xs[:, hb.ndof:]).max(axis=1)))
             extra["reduction_error"] = modal_error(hb.structure, linear, float(omegas[peak]))

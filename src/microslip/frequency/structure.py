@@ -300,7 +300,8 @@ class Structure:
         return K
 
     def force_vector(self, force, name: str = "force") -> np.ndarray:
-        """A real or complex force vector of length ``ndof`` (N), checked."""
+        """A real or complex force vector of length ``ndof`` (N), checked; ``name`` names it in messages."""
+        name = _checks.text("name", name)
         f = np.asarray(force)
         if np.iscomplexobj(f):
             re = _checks.real_array(name, f.real, ndim=1)

@@ -64,6 +64,9 @@ class SteadyState:
             x = self.q @ b
             return float(np.max(np.abs(x - np.mean(x))))
         h = _checks.positive_int("harmonic", harmonic, minimum=1)
+        if h > (self.coefficients.shape[0] - 1) // 2:
+            raise ValueError(f"harmonic must be at most {(self.coefficients.shape[0] - 1) // 2} (the harmonics "
+                             f"computed), got {h}")
         c = self.coefficients @ b
         return float(np.hypot(c[2 * h - 1], c[2 * h]))
 
@@ -107,8 +110,10 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
     omega = _checks.positive_scalar("omega", omega)
-    steps = _checks.positive_int("steps_per_period", steps_per_period, minimum=8)
-    H = _checks.positive_int("harmonics", harmonics, minimum=1)
+    _checks.finite_result("omega", omega, omega * omega)  # the step's M / dt^2
+    steps = _checks.size("steps_per_period", steps_per_period, minimum=8)
+    H = _checks.size("harmonics", harmonics, minimum=1, maximum=steps // 2 - 1)
+    progress = _checks.flag("progress", progress)
     tolerance = _checks.positive_scalar("tolerance", tolerance)
     max_periods = _checks.positive_int("max_periods", max_periods)
     dense = [A.toarray() if sp.issparse(A) else np.asarray(A) for A in (structure.M, structure.C, structure.K)]
@@ -122,11 +127,15 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     w_max = float(np.sqrt(np.max(np.abs(sla.eigvals(K_max, M)))))
     period = 2 * np.pi / omega
     steps = max(steps, int(np.ceil(period * w_max / 1.8)))
+    if steps > _checks.MAX_SIZE:
+        raise ValueError(f"omega = {omega:g} rad/s is too low: a stable step needs {steps:.3g} steps per period "
+                         f"(at most {_checks.MAX_SIZE})")
     dt = period / steps
     A_inv = np.linalg.inv(M / dt**2 + C / (2 * dt))
     B1 = 2 * M / dt**2
     B0 = M / dt**2 - C / (2 * dt)
-    coef = excitation(structure, force, max(force) if isinstance(force, Mapping) and force else 1)
+    keys = [h for h in force if isinstance(h, (int, np.integer))] if isinstance(force, Mapping) else []
+    coef = excitation(structure, force, max(keys, default=1))
     coef[0] += structure.preload_force()
     # forcing (steps, ndof) at tau_k = 2 pi k / steps: aft.synthesise's cached table, without its
     # samples >= 2H+1 check (steps_per_period is raised for stability only, never refused here)

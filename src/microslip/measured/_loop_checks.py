@@ -20,6 +20,8 @@ _BACKLASH_RATIO = 2.0  # a branch step stiffer than this x the softest before it
 
 def loops_list(loops) -> list:
     """``loops`` (one :class:`Loops` or a sequence) as a non-empty list, each with a normal load."""
+    if not isinstance(loops, Loops) and (isinstance(loops, (str, bytes)) or not hasattr(loops, "__iter__")):
+        raise TypeError(f"loops must be microslip.loops.Loops or a sequence of them, got {type(loops).__name__}")
     items = [loops] if isinstance(loops, Loops) else list(loops)
     if not items:
         raise ValueError("loops must hold at least one analysed record, got none")

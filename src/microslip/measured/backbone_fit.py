@@ -156,7 +156,8 @@ def fit_backbone(x, y, *, knots: int = _KNOTS) -> FittedBackbone:
     y : array_like, shape (P,)
         Force (N) at each ``x``.
     knots : int, default 8
-        Number of knots ``M`` of the fit (see the module docstring).
+        Number of knots ``M`` of the fit (see the module docstring), 2 to 160
+        (the bins the points are averaged in).
 
     Returns
     -------
@@ -168,7 +169,7 @@ def fit_backbone(x, y, *, knots: int = _KNOTS) -> FittedBackbone:
         raise ValueError(f"x and y must have the same length, got {x.size} and {y.size}")
     if np.any(x < 0):
         raise ValueError(f"x must be >= 0 (displacement from the reversal), got {x.min():.6g} m")
-    M = _checks.positive_int("knots", knots, minimum=2)
+    M = _checks.size("knots", knots, minimum=2, maximum=_BINS)
     top = float(x.max())
     if not top > 0:
         raise ValueError("x must not be all zero")

@@ -106,12 +106,14 @@ class MeasuredContact:
     def backbone(self, t, N):
         """Virgin tangential force (N) at displacement ``t`` (m), load ``0 < N <= normal_load`` (N); odd in ``t``."""
         t = _checks.real_array("t", t)
+        _checks.broadcast(t=t, N=_checks.real_array("N", N))
         x0, N = self._x0(N)
         return np.sign(t) * (self._f(x0 + np.abs(t)) - self._f(x0))
 
     def backbone_displacement(self, T, N):
         """Inverse of :meth:`backbone`: displacement (m) at force ``T`` (N), ``|T| <= mu N``."""
         T = _checks.real_array("T", T)
+        _checks.broadcast(T=T, N=_checks.real_array("N", N))
         x0, N = self._x0(N)
         limit = self.mu * N
         if np.any(np.abs(T) > limit * (1 + 1e-9)):
@@ -250,6 +252,7 @@ class MeasuredContact:
         4
         """
         N_ref = _checks.positive_scalar("normal_load", normal_load)
+        source = _checks.text("source", source)
         b = analyse_branch(t, T, source=source)
         if not b.gross_slip:
             raise TuningError(f"{source}: the branch does not reach gross slip: its slope over the last 10 % of "

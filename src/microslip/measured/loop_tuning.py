@@ -98,9 +98,12 @@ class LoopTuning:
         loads = [L.normal_load for L in self.loops]
         N = min(loads) if N is None else _checks.positive_scalar("N", N)
         dN = max(loads) - N if dN is None else _checks.positive_scalar("dN", dN)
+        if N + dN > self.reference.normal_load * (1 + 1e-12):
+            raise ValueError(f"dN: N + dN = {N + dN:g} N must not exceed the tuning load "
+                             f"{self.reference.normal_load:g} N (no measured data above it)")
         ref, mu = self.reference, self.reference.mu
         T_A = _checks.in_range("at", at, 0.0, 1.0) * mu * N
-        points = _checks.positive_int("points", points, minimum=3)
+        points = _checks.size("points", points, minimum=3)
         path = paths.paper_fig4(ref, N, dN, at, beyond=1.2, steps=max(points // 3, 2))
         r = path.simulate(self.model)
         T_ref = np.linspace(0.0, mu * (N + dN), points)
@@ -123,6 +126,8 @@ class LoopTuning:
         """Write ``stem.html`` and ``stem.md`` (and the PNG figures, prefixed with ``stem``) into ``out_dir``."""
         from .loop_report import write_report
 
+        out_dir, stem = _checks.file_path("out_dir", out_dir), _checks.text("stem", stem)
+        title = None if title is None else _checks.text("title", title, allow_empty=True)
         return write_report(self, out_dir, stem=stem, title=title)
 
 

@@ -99,6 +99,7 @@ class Cylinder:
         """
         from ..common._table import column_si, read_table
 
+        path = _checks.file_path("path", path)
         columns, units = read_table(path)
         rows = np.column_stack([column_si(columns, units, "n", "length", path=path),
                                 column_si(columns, units, "N", "force", path=path)])
@@ -140,7 +141,8 @@ class Cylinder:
         m = np.maximum(n, 0.0)
         if self.law == "palmgren":
             l_mm = self.length * 1e3
-            return (m * 1e3 * l_mm**0.8 / _PALMGREN) ** (1.0 / 0.9)
+            with np.errstate(over="ignore"):  # an overflow is refused just below
+                return _checks.finite_result("n", n, (m * 1e3 * l_mm**0.8 / _PALMGREN) ** (1.0 / 0.9))
         if self.law == "lundberg":
             y = m / (2.0 * self.length)
             if np.any(y > 1.0 / np.e):

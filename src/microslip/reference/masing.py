@@ -39,7 +39,9 @@ def branch(backbone, t, t_reversal, T_reversal):
     ndarray
         Tangential force (N), same shape as ``t``.
     """
-    t = np.asarray(t, dtype=float)
+    t = _checks.real_array("t", t)
+    t_reversal = _checks.real_scalar("t_reversal", t_reversal)
+    T_reversal = _checks.real_scalar("T_reversal", T_reversal)
     return T_reversal + 2.0 * _odd(backbone, (t - t_reversal) / 2.0)
 
 
@@ -54,7 +56,7 @@ def loop(backbone, amplitude, points: int = 401):
         Displacement (m) and force (N) around the loop.
     """
     amplitude = _checks.positive_scalar("amplitude", amplitude)
-    points = _checks.positive_int("points", points, minimum=3)
+    points = _checks.size("points", points, minimum=3)
     Ta = float(backbone(np.asarray(amplitude)))
     down = np.linspace(amplitude, -amplitude, points)
     up = down[::-1][1:]

@@ -143,6 +143,10 @@ class MDRContact:
 
     model: MDRModel
 
+    def __post_init__(self):
+        if not isinstance(self.model, MDRModel):
+            raise TypeError(f"model must be an MDRModel (from microslip.mdr), got {type(self.model).__name__}")
+
     @property
     def mu(self) -> float:
         """Friction coefficient."""
@@ -163,6 +167,7 @@ class MDRContact:
 
     def backbone(self, t, N):
         """Virgin tangential force (N) at displacement ``t`` (m) and constant load ``N`` (N), broadcast."""
+        _checks.broadcast(t=_checks.real_array("t", t), N=_checks.real_array("N", N))
         return self.model.backbone(t, self.approach(N))
 
     def gross_slip_displacement(self, N):
@@ -269,7 +274,7 @@ def mdr(reference, *, max_load, elements: int = 2000, profile=None) -> MDRModel:
     if missing:
         raise TypeError(f"reference must provide E_star, G_star and mu (e.g. a Sphere); "
                         f"{type(reference).__name__} lacks {', '.join(missing)}")
-    J = _checks.positive_int("elements", elements, minimum=1)
+    J = _checks.size("elements", elements, minimum=1)
     load = _checks.positive_scalar("max_load", max_load)
     if profile is None:
         if not hasattr(reference, "radius"):

@@ -49,12 +49,14 @@ class SphereProfile:
     def height(self, r):
         """Height ``r^2 / (2 R)`` (m) at radius ``r`` (m)."""
         r = _checks.real_array("r", r)
-        return r**2 / (2.0 * self.radius)
+        with np.errstate(over="ignore"):  # an overflow is refused just below
+            return _checks.finite_result("r", r, r**2 / (2.0 * self.radius))
 
     def mdr(self, x):
         """Equivalent plane profile ``x^2 / R`` (m) at position ``x`` (m)."""
         x = _checks.real_array("x", x)
-        return x**2 / self.radius
+        with np.errstate(over="ignore"):
+            return _checks.finite_result("x", x, x**2 / self.radius)
 
 
 @dataclass(frozen=True)
@@ -82,7 +84,8 @@ class RoundedPunch:
     def height(self, r):
         """Height (m) at radius ``r`` (m): 0 on the flat, ``(|r| - b)^2 / (2 rho)`` beyond."""
         r = np.abs(_checks.real_array("r", r))
-        return np.maximum(r - self.flat_radius, 0.0) ** 2 / (2.0 * self.edge_radius)
+        with np.errstate(over="ignore"):
+            return _checks.finite_result("r", r, np.maximum(r - self.flat_radius, 0.0) ** 2 / (2.0 * self.edge_radius))
 
     def mdr(self, x):
         """Equivalent plane profile (m) at position ``x`` (m), closed form."""
@@ -91,8 +94,9 @@ class RoundedPunch:
         out = np.zeros_like(x)
         beyond = x > b
         xb = x[beyond]
-        out[beyond] = xb / self.edge_radius * (np.sqrt(xb**2 - b**2) - b * np.arccos(b / xb))
-        return out
+        with np.errstate(over="ignore", invalid="ignore"):
+            out[beyond] = xb / self.edge_radius * (np.sqrt(xb**2 - b**2) - b * np.arccos(b / xb))
+        return _checks.finite_result("x", x, out)
 
 
 @dataclass(frozen=True)
@@ -141,7 +145,12 @@ class AxisymmetricProfile:
     def height(self, r):
         """Height ``f(|r|)`` (m) at radius ``r`` (m)."""
         r = _checks.real_array("r", r)
-        return np.asarray(self.shape(np.abs(r)), dtype=float)
+        f = np.asarray(self.shape(np.abs(r)), dtype=float)
+        if np.count_nonzero(np.isfinite(f)) != f.size:
+            k = int(np.flatnonzero(~np.isfinite(f.ravel()))[0])
+            raise ValueError(f"r = {float(np.abs(r).ravel()[k]):.6g} m: the profile's shape(r) is not finite there "
+                             f"({float(f.ravel()[k])!r})")
+        return f
 
     def _slope(self, r):
         if self.slope is not None:
@@ -167,7 +176,7 @@ class AxisymmetricProfile:
             value, _ = integrate.quad(lambda th: float(self._slope(xk * np.sin(th))), 0.0, np.pi / 2,
                                       points=inner or None, limit=200, epsabs=0.0, epsrel=1e-10)
             if not np.isfinite(value):
-                raise ValueError(f"shape: the slope of the profile is not finite below r = {xk:.6g} m")
+                raise ValueError(f"x = {xk:.6g} m: the slope of the profile (shape) is not finite below that radius")
             out[k] = xk * value
         return out.reshape(x.shape)
 

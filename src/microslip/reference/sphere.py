@@ -95,7 +95,9 @@ class Sphere:
     def normal_force(self, n):
         """Hertz normal force ``N = 4/3 E* sqrt(R) n^(3/2)`` (N) at approach ``n`` (m); 0 for ``n <= 0``."""
         n = _checks.real_array("n", n)
-        return 4.0 / 3.0 * self.E_star * np.sqrt(self.radius) * np.maximum(n, 0.0) ** 1.5
+        with np.errstate(over="ignore"):  # an overflow is refused just below
+            N = 4.0 / 3.0 * self.E_star * np.sqrt(self.radius) * np.maximum(n, 0.0) ** 1.5
+        return _checks.finite_result("n", n, N)
 
     def normal_stiffness(self, N):
         """Hertz normal stiffness ``dN/dn = 2 a E*`` (N/m) at normal load ``N`` (N)."""
@@ -122,6 +124,7 @@ class Sphere:
         """
         t = _checks.real_array("t", t)
         N = self._load(N)
+        _checks.broadcast(t=t, N=N)
         tgs = self.gross_slip_displacement(N)
         with np.errstate(invalid="ignore", divide="ignore"):
             x = np.where(tgs > 0, np.minimum(np.abs(t) / np.where(tgs > 0, tgs, 1.0), 1.0), 1.0)
@@ -134,6 +137,7 @@ class Sphere:
         """
         T = _checks.real_array("T", T)
         N = self._load(N)
+        _checks.broadcast(T=T, N=N)
         limit = self.mu * N
         if np.any(np.abs(T) > limit * (1 + 1e-12)):
             worst = np.max(np.abs(T) - limit)
@@ -145,9 +149,14 @@ class Sphere:
     def branch(self, t, N, t_reversal, T_reversal):
         """Masing unloading/reloading branch (N) from the reversal ``(t_reversal, T_reversal)``.
 
-        ``T = T_r + 2 f((t - t_r)/2)`` with ``f`` the backbone at load ``N`` (N).
+        ``T = T_r + 2 f((t - t_r)/2)`` with ``f`` the backbone at load ``N`` (N); the
+        reversal is a point the contact can reach, ``|T_reversal| <= mu N``.
         """
         N = float(_checks.positive_scalar("N", N))
+        T_r = _checks.real_scalar("T_reversal", T_reversal)
+        if abs(T_r) > self.mu * N * (1 + 1e-12):
+            raise ValueError(f"T_reversal must satisfy |T_reversal| <= mu*N = {self.mu * N:.6g} N (no force beyond "
+                             f"gross slip), got {T_r:.6g} N")
         return masing.branch(lambda x: self.backbone(x, N), t, t_reversal, T_reversal)
 
     def loop(self, amplitude, N, points: int = 401):
@@ -168,7 +177,10 @@ class Sphere:
 
             W = 9 mu^2 N^2 / (10 a G*) * (1 - (1-x)^(5/3) - (5x/6) (1 + (1-x)^(2/3)))
 
-        (checked against the numerically integrated Masing loop in the tests).
+        (checked against the numerically integrated Masing loop in the tests),
+        evaluated as ``9 T*^2 / (10 a G*) * bracket / x^2`` with the bracket's
+        series below ``x = 0.1``: the bracket is ``5 x^3 / 162 + ...``, and its
+        closed form would lose every digit to cancellation at small ``x``.
         """
         Ta = _checks.positive_array("T_amplitude", T_amplitude, allow_zero=True)
         N = _checks.positive_array("N", N)
@@ -178,8 +190,8 @@ class Sphere:
                              f"got T_amplitude/(mu N) up to {np.max(x):.6g}")
         x = np.minimum(x, 1.0)
         a = self.contact_radius(N)
-        return (9.0 * self.mu**2 * N**2 / (10.0 * a * self.G_star)
-                * (1.0 - (1.0 - x) ** (5.0 / 3.0) - (5.0 * x / 6.0) * (1.0 + (1.0 - x) ** (2.0 / 3.0))))
+        W = 9.0 * Ta**2 / (10.0 * a * self.G_star) * _mindlin_bracket_over_x2(x)
+        return _checks.finite_result("T_amplitude", Ta, W)
 
     # -- Mindlin--Deresiewicz (normal load raised at constant T) ----------
     def raised_load_path(self, T, N, dN, T_A):
@@ -204,3 +216,27 @@ class Sphere:
             ``T_B = T_A + mu dN`` (N) and its displacement (m).
         """
         return mindlin.join_point(self, N, dN, T_A)
+
+
+def _binomial(p: float, k: int) -> float:
+    """Generalised binomial coefficient ``C(p, k)``."""
+    out = 1.0
+    for i in range(k):
+        out *= (p - i) / (i + 1)
+    return out
+
+
+#: the bracket of Mindlin's energy, 1 - (1-x)^(5/3) - (5x/6) (1 + (1-x)^(2/3)) = sum_k c_k x^k (k >= 3):
+#: c_k = -C(5/3, k) (-1)^k - (5/6) C(2/3, k-1) (-1)^(k-1); below x = 0.1, 24 terms reach round-off (x^22 < 1e-22)
+_BRACKET_SERIES = np.array([-_binomial(5 / 3, k) * (-1) ** k - 5 / 6 * _binomial(2 / 3, k - 1) * (-1) ** (k - 1)
+                            for k in range(3, 27)])
+
+
+def _mindlin_bracket_over_x2(x):
+    """Mindlin's bracket divided by ``x^2`` (0 at ``x = 0``), to round-off for every ``x`` in ``[0, 1]``."""
+    x = np.asarray(x, dtype=float)
+    small = x < 0.1
+    with np.errstate(invalid="ignore", divide="ignore"):
+        closed = (1.0 - (1.0 - x) ** (5.0 / 3.0) - (5.0 * x / 6.0) * (1.0 + (1.0 - x) ** (2.0 / 3.0))) / x**2
+    series = np.polynomial.polynomial.polyval(x, np.concatenate([[0.0], _BRACKET_SERIES]))
+    return np.where(small, series, closed)

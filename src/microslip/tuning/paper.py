@@ -215,15 +215,15 @@ def tuning_points(reference, normal_load, *, forces=None, displacements=None,
     limit = reference.mu * N_tot
     t_gs = float(reference.gross_slip_displacement(N_tot))
     if elements is not None:
-        J = _checks.positive_int("elements", elements)
+        J = _checks.size("elements", elements)
         forces = limit * np.arange(1, J + 1) / J
     if forces is not None:
-        T = _ends_at_gross_slip("forces", forces, limit, "N", f"mu*N_tot = {limit:.6g} N")
+        T = _ends_at_gross_slip("forces", forces, limit, "N", f"mu*normal_load = {limit:.6g} N")
         t = np.asarray(reference.backbone_displacement(T, N_tot), dtype=float)
         t[-1] = t_gs
     else:
         t = _ends_at_gross_slip("displacements", displacements, t_gs, "m",
-                                f"t_gs = {t_gs:.6g} m at N_tot = {N_tot:g} N")
+                                f"t_gs = {t_gs:.6g} m at normal_load = {N_tot:g} N")
         T = np.asarray(reference.backbone(t, N_tot), dtype=float)
         T[-1] = limit
     return TuningPoints(t=t, T=T, normal_load=N_tot, approach=float(reference.approach(N_tot)))
@@ -286,10 +286,27 @@ def normal_parameters(reference, kt, slip_displacements, normal_load):
         Normal stiffnesses (N/m).
     gaps : ndarray, shape (J,)
         Gaps (m), ``gaps[0] = 0``, increasing.
+
+    Raises
+    ------
+    TuningError
+        Eq. (9) has no solution for some element with these arguments
+        (the message names the element and the condition that fails).
     """
-    kt = np.asarray(kt, dtype=float)
-    s = np.asarray(slip_displacements, dtype=float)
-    N_tot = float(normal_load)
+    _check_reference(reference)
+    kt = _checks.positive_array("kt", kt, ndim=1, min_size=1)
+    s = _checks.positive_array("slip_displacements", slip_displacements, ndim=1, min_size=1)
+    if s.size != kt.size:
+        raise ValueError(f"slip_displacements must have one value per element of kt ({kt.size}), got {s.size}")
+    N_tot = _checks.positive_scalar("normal_load", normal_load)
+    try:
+        return _normal_parameters(reference, kt, s, N_tot)
+    except TuningError as exc:
+        raise TuningError(f"kt, slip_displacements and normal_load = {N_tot:g} N: {exc}") from None
+
+
+def _normal_parameters(reference, kt, s, N_tot):
+    """:func:`normal_parameters` on checked arguments."""
     alpha = kt * s / (reference.mu * N_tot)  # eq. (5)
     n_tot = float(reference.approach(N_tot))
     J = kt.size
@@ -351,11 +368,12 @@ def model_from_points(reference, points: TuningPoints) -> MicroslipModel:
     MicroslipModel
         As :func:`tune` returns it.
     """
+    _check_reference(reference)
     if not isinstance(points, TuningPoints):
         raise TypeError(f"points must be TuningPoints (from tuning_points), got {type(points).__name__}")
     kt = tangential_stiffnesses(points.t, points.T)
     s = points.t[::-1]  # element e slips at t_{J+1-e}
-    kn, gaps = normal_parameters(reference, kt, s, points.normal_load)
+    kn, gaps = _normal_parameters(reference, kt, s, points.normal_load)
     return MicroslipModel(kt=kt, kn=kn, gaps=gaps, mu=reference.mu)
 
 

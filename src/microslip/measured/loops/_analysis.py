@@ -365,6 +365,7 @@ def analyse(record: Record, *, threshold: float = 0.1, stick_fraction: float = 0
     stick_fraction = _checks.in_range("stick_fraction", stick_fraction, 0.0, 1.0, lo_open=True)
     slip_fraction = _checks.in_range("slip_fraction", slip_fraction, 0.0, 1.0, lo_open=True)
     steady_tolerance = _checks.positive_scalar("steady_tolerance", steady_tolerance)
+    noise_correction = _checks.flag("noise_correction", noise_correction)
     t, T = record.t, record.T
     lo, hi = np.percentile(t, [0.5, 99.5])
     if not hi > lo:

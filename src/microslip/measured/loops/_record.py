@@ -185,7 +185,7 @@ def read_with_options(path, option, *, columns=None, units=None, normal_load=Non
     ``option(kind, role)`` returns ``(name, example)`` or None: see
     :func:`python_option`.
     """
-    path = Path(path)
+    path = _checks.file_path("path", path)
     columns = _role_map("columns", columns)
     units = _role_map("units", units)
     if not path.is_file():

@@ -142,6 +142,8 @@ class TargetProblem:
                  steps_per_cycle: int = 180, reference_elements: int = REFERENCE_ELEMENTS, family_options=None,
                  dense: bool = False):
         lo, hi = _load_range(load_range)
+        reference_elements = _checks.size("reference_elements", reference_elements)
+        family_options = _checks.mapping("family_options", {} if family_options is None else family_options)
         self.reference = reference
         self.load_range = (lo, hi)
         self.energy_target = _checks.positive_scalar("energy_target", energy_target)
@@ -150,7 +152,7 @@ class TargetProblem:
         if not isinstance(dense, (bool, np.bool_)):
             raise TypeError(f"dense must be True or False, got {dense!r}")
         self.dense = bool(dense)
-        options = {**(dense_options(self.min_amplitude) if dense else {}), **dict(family_options or {})}
+        options = {**(dense_options(self.min_amplitude) if dense else {}), **family_options}
         family = default_family(reference, hi, steps_per_cycle=steps_per_cycle, **options)
         self.full_family = family
         keep = [p for p, k in zip(family, restriction_mask(family, lo, self.min_amplitude)) if k]
@@ -192,6 +194,8 @@ class TargetProblem:
 
     def normalised(self, energy_error: float, force_difference: float) -> float:
         """The larger of ``energy_error / energy_target`` and ``force_difference / force_target`` (-)."""
+        energy_error = _checks.positive_scalar("energy_error", energy_error, allow_zero=True)
+        force_difference = _checks.positive_scalar("force_difference", force_difference, allow_zero=True)
         return max(energy_error / self.energy_target, force_difference / self.force_target)
 
     def result(self, model, points, spacing, evaluations=1) -> TargetTuning:
@@ -214,6 +218,10 @@ class TargetProblem:
             With the worst ``|energy error|`` and force difference over the
             family (fractions) and whether both meet the targets.
         """
+        if not isinstance(points, TuningPoints):
+            raise TypeError(f"points must be TuningPoints (from tuning_points), got {type(points).__name__}")
+        spacing = _checks.one_of("spacing", spacing, SPACINGS)
+        evaluations = _checks.positive_int("evaluations", evaluations)
         e, f = self.worst(model)
         return TargetTuning(model=model, points=points, spacing=spacing, energy_error=e, force_difference=f,
                             meets=bool(e <= self.energy_target and f <= self.force_target),
@@ -221,14 +229,21 @@ class TargetProblem:
 
     # -- models -------------------------------------------------------------
     def tune_fractions(self, fractions):
-        """Tune at ``N_hi`` on the points ``t_j = fractions[j] * t_gs(N_hi)``; returns ``(model, points)``."""
-        t = np.asarray(fractions, dtype=float) * float(self.reference.gross_slip_displacement(self.normal_load))
+        """Tune at ``N_hi`` on the points ``t_j = fractions[j] * t_gs(N_hi)``; returns ``(model, points)``.
+
+        ``fractions`` (-): strictly increasing in ``(0, 1]``, the last 1 (gross slip).
+        """
+        fractions = _checks.positive_array("fractions", fractions, ndim=1, min_size=1)
+        if np.any(np.diff(fractions) <= 0) or abs(fractions[-1] - 1.0) > 1e-6:
+            raise ValueError("fractions must increase strictly up to 1 (gross slip), got "
+                             f"{np.array2string(fractions, precision=6, threshold=8)}")
+        t = fractions * float(self.reference.gross_slip_displacement(self.normal_load))
         pts = tuning_points(self.reference, self.normal_load, displacements=t)
         return model_from_points(self.reference, pts), pts
 
     def tune_spacing(self, spacing: str, elements: int) -> TargetTuning:
         """The model with ``elements`` points spaced evenly in ``'force'`` or ``'displacement'``."""
-        J = _checks.positive_int("elements", elements, minimum=1)
+        J = _checks.size("elements", elements, minimum=1)
         if spacing == "force":
             pts = tuning_points(self.reference, self.normal_load, elements=J)
             model = model_from_points(self.reference, pts)

@@ -36,6 +36,7 @@ class ElementSweep:
 
     def smallest(self, spacing: str) -> int | None:
         """Smallest ``J`` of the sweep meeting both targets with ``spacing``, or None."""
+        _checks.one_of("spacing", spacing, tuple(self.energy_error))
         ok = (self.energy_error[spacing] <= self.energy_target) & (self.force_difference[spacing] <= self.force_target)
         return int(self.elements[np.argmax(ok)]) if ok.any() else None
 
@@ -92,7 +93,13 @@ def element_sweep(problem: TargetProblem, elements=range(2, 33), *, spacings=SPA
     **options
         Passed to :func:`optimal_points`.
     """
-    Js = np.array([_checks.positive_int("elements", int(J)) for J in elements])
+    if not isinstance(problem, TargetProblem):
+        raise TypeError(f"problem must be a TargetProblem, got {type(problem).__name__}")
+    if isinstance(elements, (str, bytes)) or not hasattr(elements, "__iter__"):
+        raise TypeError(f"elements must be a sequence of integers (numbers of elements), got {elements!r}")
+    Js = np.array([_checks.size("elements[i]", J) for J in elements], dtype=int)
+    if isinstance(spacings, (str, bytes)) or not hasattr(spacings, "__iter__"):
+        raise TypeError(f"spacings must be a sequence of spacing names, got {spacings!r}")
     for s in spacings:
         if s not in SPACINGS:
             raise ValueError(f"spacings must be among {', '.join(SPACINGS)}, got {s!r}")
