@@ -86,3 +86,10 @@ def test_csv_errors_name_the_file_and_line(tmp_path, text, message):
     with pytest.raises(ValueError, match=message) as err:
         DofMap.from_csv(f)
     assert str(f) in str(err.value)
+
+
+def test_a_file_that_is_not_utf8_is_named(tmp_path):
+    f = tmp_path / "dofs.csv"
+    f.write_text("node,component\n1,x\n", encoding="utf-16")
+    with pytest.raises(ValueError, match=r"dofs.csv: not a UTF-8 text file \(invalid start byte at byte 0\)"):
+        DofMap.from_csv(f)

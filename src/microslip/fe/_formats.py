@@ -91,7 +91,7 @@ def _matrix_market(path: Path, wanted: list[str]) -> dict:
 def _mat(path: Path, wanted: list[str]) -> dict:
     try:
         major, _ = scipy.io.matlab.matfile_version(str(path))
-    except Exception:  # not a v4/v5 header: maybe HDF5 without MATLAB's text header
+    except (ValueError, IndexError, scipy.io.matlab.MatReadError):  # no v4/v5 header: HDF5 (v7.3) or not MATLAB
         major = 2
     if major == 2:
         return _mat73(path, wanted)

@@ -133,12 +133,16 @@ class DofMap:
         ValueError
             No header with ``node`` and ``component``, a row with a missing
             cell, an invalid node id or component (with the file and line),
-            duplicate rows, or no data row.
+            duplicate rows, no data row, or a file that is not UTF-8.
         """
         path = Path(path)
-        with open(path, newline="", encoding="utf-8-sig") as fh:
-            lines = [(no, line) for no, line in enumerate(fh, start=1)
-                     if line.strip() and not line.lstrip().startswith("#")]
+        try:
+            with open(path, newline="", encoding="utf-8-sig") as fh:
+                lines = [(no, line) for no, line in enumerate(fh, start=1)
+                         if line.strip() and not line.lstrip().startswith("#")]
+        except UnicodeDecodeError as err:
+            raise ValueError(f"{path}: not a UTF-8 text file ({err.reason} at byte {err.start}); save the DOF "
+                             f"map as UTF-8 CSV") from None
         if not lines:
             raise ValueError(f"{path}: no header; the first line must name the columns 'node,component'")
         rows = list(csv.reader(line for _, line in lines))
