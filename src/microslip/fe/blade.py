@@ -87,17 +87,22 @@ class FEBlade:
 
 
 # -- mesh ------------------------------------------------------------------------------------------
+def _divisions(keys, h: float) -> tuple[np.ndarray, np.ndarray]:
+    """The sorted key coordinates and how many divisions of at most ``h`` each gap between them gets (floats)."""
+    keys = np.unique(np.asarray(keys, dtype=float))
+    return keys, np.maximum(1.0, np.ceil(np.diff(keys) / h - 1e-9))
+
+
 def _lines(keys, h: float) -> np.ndarray:
     """Grid lines through every key coordinate, spaced at most ``h`` apart."""
-    keys = np.unique(np.asarray(keys, dtype=float))
-    parts = [np.linspace(a, b, max(1, int(np.ceil((b - a) / h - 1e-9))) + 1)[:-1] for a, b in zip(keys, keys[1:])]
+    keys, n = _divisions(keys, h)
+    parts = [np.linspace(a, b, int(k) + 1)[:-1] for a, b, k in zip(keys, keys[1:], n)]
     return np.concatenate(parts + [keys[-1:]])
 
 
 def _line_count(keys, h: float) -> float:
     """How many grid lines :func:`_lines` would draw (a float: it may be astronomically large)."""
-    gaps = np.diff(np.unique(np.asarray(keys, dtype=float)))
-    return float(np.sum(np.maximum(1.0, np.ceil(gaps / h)))) + 1.0
+    return float(_divisions(keys, h)[1].sum()) + 1.0
 
 
 def _cells(rectangles, xkeys, ykeys, h):
