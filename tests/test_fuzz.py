@@ -341,6 +341,11 @@ def reduced_file() -> str:
     return reduced().save("reduced.npz")
 
 
+def matrices_file() -> str:
+    np.savez("matrices.npz", M=np.eye(2), K=np.array([[2e4, -1e4], [-1e4, 1e4]]))
+    return "matrices.npz"
+
+
 N_APP = float(SPHERE.approach(N_TOT))
 NO_RISE = ("negative", "zero", "1e300", "1e-300")  # data values that make a curve flat or falling
 UNCHECKED = ("nan", "inf", "string", "dict")
@@ -624,6 +629,8 @@ CASES += [
     case("frequency.craig_bampton", lambda: microslip.frequency.craig_bampton, structure=L(three_dofs), keep=[0],
          modes=1),
     case("CraigBampton.expand", lambda: reduced().expand, u=[1e-6, 0.0]),
+    case("Structure.from_files", lambda: Structure.from_files, kinds=PATH, path=L(matrices_file)),
+    case("Structure.dof_index", lambda: jenkins_structure().dof_index, dof=0),
     case("frequency.damper_design_curve", lambda: microslip.frequency.damper_design_curve, refused_only=True,
          kinds={"damper": "object", "force": "array"}, structure=L(lambda: Structure(np.eye(2), None, np.eye(2) * 1e4)),
          damper=L(damper_with_interface), loads=[100.0, 300.0], force=[1.0, 0.0], omega=(50.0, 150.0), dof=0),

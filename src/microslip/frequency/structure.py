@@ -29,6 +29,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..common import _checks
+from ..fe.dof_map import DofMap
+from ..fe.files import read_matrices
 from ..model import MicroslipModel
 from .aft import pack_models
 
@@ -78,29 +80,46 @@ def _positive_definite(name: str, A) -> None:
                          f"diagonal but singular or indefinite")
 
 
-def direction(name: str, spec, ndof: int, *, allow_none: bool = False) -> np.ndarray:
+def dof_index(name: str, key, ndof: int, dof_map=None) -> int:
+    """The row of one DOF: an integer index, or a name such as ``"1204:x"`` looked up in ``dof_map``.
+
+    Every DOF given by name (contacts, forces, outputs) goes through here.
+    """
+    if isinstance(key, str):
+        if dof_map is None:
+            raise TypeError(f"{name}: DOF keys must be integers, got {key!r} (names such as '1204:x' need a "
+                            f"DOF map: Structure(..., dof_map=...) or Structure.from_files(..., dof_map=...))")
+        try:
+            return dof_map.index(key)
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+    if isinstance(key, (bool, np.bool_)) or not isinstance(key, (int, np.integer)):
+        raise TypeError(f"{name}: DOF keys must be integers, got {key!r}")
+    i = int(key)
+    if not 0 <= i < ndof:
+        raise ValueError(f"{name}: DOF {i} is out of range for a structure with {ndof} DOFs")
+    return i
+
+
+def direction(name: str, spec, ndof: int, *, allow_none: bool = False, dof_map=None) -> np.ndarray:
     """A contact direction as a dense vector of length ``ndof``.
 
     ``spec`` is a DOF index (relative to ground), a mapping ``{dof: coefficient}``,
     a sequence of ``ndof`` coefficients, or (with ``allow_none``) ``None`` for
-    "not coupled to the structure" (the zero vector).
+    "not coupled to the structure" (the zero vector). With a ``dof_map``
+    (:class:`microslip.fe.DofMap`), a DOF may also be a name ``"node:component"``.
     """
     if spec is None:
         if allow_none:
             return np.zeros(ndof)
         raise ValueError(f"{name} must name the DOF(s) of the contact, got None")
-    if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool):
-        spec = {int(spec): 1.0}
+    if isinstance(spec, (int, np.integer, str)) and not isinstance(spec, bool):
+        spec = {spec: 1.0}
     if isinstance(spec, Mapping):
         b = np.zeros(ndof)
         for dof, coef in spec.items():
-            try:
-                i = int(dof)
-            except (TypeError, ValueError):
-                raise TypeError(f"{name}: DOF keys must be integers, got {dof!r}") from None
-            if not 0 <= i < ndof:
-                raise ValueError(f"{name}: DOF {i} is out of range for a structure with {ndof} DOFs")
-            b[i] += _checks.real_scalar(f"{name}[{i}]", coef)
+            i = dof_index(name, dof, ndof, dof_map)
+            b[i] += _checks.real_scalar(f"{name}[{dof!r}]" if isinstance(dof, str) else f"{name}[{i}]", coef)
     else:
         b = _checks.real_array(name, spec, ndim=1)
         if b.size != ndof:
@@ -166,16 +185,56 @@ class Structure:
     (2, 1)
     """
 
-    def __init__(self, M, C, K):
+    def __init__(self, M, C, K, *, dof_map=None):
         self.M = _matrix("M", M, None)
         _positive_definite("M", self.M)
         ndof = self.M.shape[0]
         self.K = _matrix("K", K, ndof)
         self.C = sp.csr_matrix((ndof, ndof)) if C is None and sp.issparse(self.M) else (
             np.zeros((ndof, ndof)) if C is None else _matrix("C", C, ndof))
+        if dof_map is not None and not isinstance(dof_map, DofMap):
+            raise TypeError(f"dof_map must be a microslip.fe.DofMap, got {type(dof_map).__name__}")
+        if dof_map is not None and len(dof_map) != ndof:
+            raise ValueError(f"dof_map must have one row per DOF ({ndof}), got {len(dof_map)}")
+        self.dof_map = dof_map
         self.contacts: list[Contact] = []
         #: external static forces on the structure (N), ``(ndof,)``, e.g. a damper's centrifugal load
         self.static_force = np.zeros(ndof)
+
+    @classmethod
+    def from_files(cls, path=None, *, M=None, K=None, C=None, dof_map=None, names=None) -> Structure:
+        """A structure from finite-element matrix files (see :func:`microslip.fe.read_matrices`).
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            One ``.mat``, ``.npz`` or ``.op4`` file holding ``M``, ``K`` and
+            optionally ``C``.
+        M, K, C : str or Path, optional
+            One file per matrix instead (``.mtx``, ``.mat``, ``.npz``,
+            ``.op4``); ``C`` may be omitted (no viscous damping).
+        dof_map : str, Path or microslip.fe.DofMap, optional
+            A ``node,component`` CSV file or a map: DOFs may then be named
+            ``"node:component"`` in contacts and forces.
+        names : mapping, optional
+            Variable names when they are not ``M``, ``K``, ``C``, e.g.
+            ``{"M": "MGG", "K": "KGG"}``.
+
+        Returns
+        -------
+        Structure
+
+        Examples
+        --------
+        >>> s = Structure.from_files("blade.mat", dof_map="blade_dofs.csv")  # doctest: +SKIP
+        >>> s.add_contact(model, tangential={"1204:x": 1.0}, normal={"1204:y": -1.0}, preload=40.0)  # doctest: +SKIP
+        """
+        m = read_matrices(path, M=M, K=K, C=C, dof_map=dof_map, names=names)
+        return cls(m.M, m.C, m.K, dof_map=m.dof_map)
+
+    def dof_index(self, dof) -> int:
+        """The row of a DOF given as an index or, with a DOF map, as ``"node:component"``."""
+        return dof_index("dof", dof, self.ndof, self.dof_map)
 
     @property
     def ndof(self) -> int:
@@ -199,10 +258,11 @@ class Structure:
         ----------
         model : MicroslipModel
             The contact law (e.g. from :func:`microslip.tune`).
-        tangential : int, mapping or array_like
+        tangential : int, str, mapping or array_like
             ``t = b_t . q``: a DOF index (relative to ground), ``{dof: coef}``
-            or ``ndof`` coefficients.
-        normal : int, mapping, array_like or None
+            or ``ndof`` coefficients; with a DOF map a DOF may be named
+            ``"node:component"``.
+        normal : int, str, mapping, array_like or None
             ``n = b_n . q + approach``, same forms; ``None``: the normal
             approach is not coupled to the structure (it is ``approach``).
         preload : float, optional
@@ -230,8 +290,8 @@ class Structure:
         """
         if not isinstance(model, MicroslipModel):
             raise TypeError(f"model must be a microslip MicroslipModel, got {type(model).__name__}")
-        bt = direction("tangential", tangential, self.ndof)
-        bn = direction("normal", normal, self.ndof, allow_none=True)
+        bt = direction("tangential", tangential, self.ndof, dof_map=self.dof_map)
+        bn = direction("normal", normal, self.ndof, allow_none=True, dof_map=self.dof_map)
         P = 0.0 if preload is None else _checks.positive_scalar("preload", preload, allow_zero=True)
         n0 = 0.0 if approach is None else _checks.real_scalar("approach", approach)
         if normal is None:
@@ -300,8 +360,22 @@ class Structure:
         return K
 
     def force_vector(self, force, name: str = "force") -> np.ndarray:
-        """A real or complex force vector of length ``ndof`` (N), checked; ``name`` names it in messages."""
+        """A real or complex force vector of length ``ndof`` (N), checked; ``name`` names it in messages.
+
+        ``force`` is ``ndof`` amplitudes or a mapping ``{dof: amplitude}``
+        (DOF indices, or names ``"node:component"`` with a DOF map).
+        """
         name = _checks.text("name", name)
+        if isinstance(force, Mapping):
+            f = np.zeros(self.ndof, dtype=complex)
+            for dof, value in force.items():
+                i = dof_index(name, dof, self.ndof, self.dof_map)
+                part = f"{name}[{dof!r}]"
+                if isinstance(value, (complex, np.complexfloating)):
+                    f[i] += _checks.real_scalar(part, value.real) + 1j * _checks.real_scalar(part, value.imag)
+                else:
+                    f[i] += _checks.real_scalar(part, value)
+            return f if f.imag.any() else f.real
         f = np.asarray(force)
         if np.iscomplexobj(f):
             re = _checks.real_array(name, f.real, ndim=1)

@@ -1,0 +1,46 @@
+"""Natural frequencies of a finite-element model ``M q'' + K q = 0``."""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ..common import _checks
+
+
+def natural_frequencies(M, K, count: int = 6) -> np.ndarray:
+    """The ``count`` lowest natural frequencies (Hz) of ``M q'' + K q = 0``.
+
+    Parameters
+    ----------
+    M, K : ndarray or scipy.sparse matrix, shape (ndof, ndof)
+        Mass (kg) and stiffness (N/m), symmetric; ``M`` positive definite,
+        ``K`` positive semi-definite (rigid-body modes give 0 Hz).
+    count : int
+        How many, ``1 <= count < ndof``.
+
+    Returns
+    -------
+    ndarray, shape (count,)
+        Frequencies ``sqrt(lambda) / (2 pi)`` in Hz, ascending.
+
+    Notes
+    -----
+    Sparse matrices are solved by shift-invert Lanczos (``scipy.sparse.linalg.eigsh``) about
+    ``-1 (rad/s)^2``: ``K + M`` is positive definite even when ``K`` is singular (a free body).
+    """
+    if M.shape != K.shape or M.ndim != 2 or M.shape[0] != M.shape[1]:
+        raise ValueError(f"M and K must be square matrices of one size, got shapes {M.shape} and {K.shape}")
+    n = M.shape[0]
+    count = _checks.positive_int("count", count)
+    if count >= n:
+        raise ValueError(f"count must be below the number of DOFs ({n}), got {count}")
+    if sp.issparse(M) or sp.issparse(K):
+        lam = spla.eigsh(sp.csc_matrix(K), k=count, M=sp.csc_matrix(M), sigma=-1.0, which="LM",
+                         return_eigenvectors=False)
+    else:
+        lam = scipy.linalg.eigh(np.asarray(K, float), np.asarray(M, float), eigvals_only=True,
+                                subset_by_index=[0, count - 1])
+    return np.sqrt(np.clip(np.sort(lam), 0.0, None)) / (2 * np.pi)
