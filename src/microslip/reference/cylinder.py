@@ -9,7 +9,8 @@ Analysis*, as used by the paper's Sect. 3):
 * **Lundberg--Sjövall**: ``delta = 2 Q (1 - nu^2) / (pi E l) * ln(pi l^2 E / (Q (1 - nu^2)))``
   (SI). Its inverse ``Q(delta)`` has no elementary form; writing
   ``u = Q (1 - nu^2) / (pi l^2 E)`` it reads ``-u ln u = delta / (2 l)``, solved
-  with the ``k = -1`` branch of Lambert's W (``u = exp(W_{-1}(-delta/(2l)))``),
+  with the ``k = -1`` branch of Lambert's W (``u = exp(W_{-1}(-delta/(2l)))``);
+  for two materials ``E / (1 - nu^2)`` becomes the pair's ``2 E*`` (:mod:`.materials`),
   valid while ``delta < 2 l / e`` (far beyond any elastic load);
 * a **table** of measured (approach, load) pairs, interpolated with a
   monotone cubic (PCHIP), inverted by bisection on the same interpolant so
@@ -29,6 +30,7 @@ from scipy import interpolate, special
 
 from ..common import _checks
 from ..common._numeric import invert_increasing
+from .materials import check_second_body, contact_moduli
 
 LAWS = ("palmgren", "lundberg")
 _PALMGREN = 3.84e-5  # mm N^-0.9 mm^0.8 (Harris)
@@ -45,7 +47,8 @@ class Cylinder:
     radius : float
         Cylinder radius R (m). The paper: 5e-3 (d = 10 mm).
     E : float
-        Young's modulus of both bodies (Pa). Steel: 200e9.
+        Young's modulus of the cylinder (Pa), and of the flat unless ``E2`` is
+        given. Steel: 200e9.
     nu : float
         Poisson's ratio, in (-1, 0.5].
     mu : float, optional
@@ -55,6 +58,10 @@ class Cylinder:
         The approach--load law: Palmgren's (Harris), Lundberg--Sjövall's, or
         a table of ``(approach m, load N)`` rows, both strictly increasing
         (a row ``(0, 0)`` is added when the table does not start at zero load).
+    E2, nu2 : float, optional
+        Young's modulus (Pa) and Poisson's ratio of the flat when it is of
+        another material; both or neither (identical bodies, the default).
+        Lundberg--Sjövall's law and the contact half-width use the pair's ``E*``.
 
     Examples
     --------
@@ -72,6 +79,8 @@ class Cylinder:
     nu: float
     mu: float | None = None
     law: object = "palmgren"
+    E2: float | None = None
+    nu2: float | None = None
     _table: object = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self):
@@ -81,6 +90,10 @@ class Cylinder:
         object.__setattr__(self, "nu", _checks.in_range("nu", self.nu, -1.0, 0.5, lo_open=True))
         if self.mu is not None:
             object.__setattr__(self, "mu", _checks.positive_scalar("mu", self.mu))
+        if self.E2 is not None or self.nu2 is not None:
+            E2, nu2 = check_second_body(self.E, self.nu, self.E2, self.nu2)
+            object.__setattr__(self, "E2", E2)
+            object.__setattr__(self, "nu2", nu2)
         if isinstance(self.law, str):
             if self.law not in LAWS:
                 raise ValueError(f"law must be one of {list(LAWS)} or a table of (approach, load) rows, "
@@ -90,7 +103,7 @@ class Cylinder:
             object.__setattr__(self, "law", "table")
 
     @classmethod
-    def from_file(cls, path, length, radius, E, nu, mu=None) -> "Cylinder":
+    def from_file(cls, path, length, radius, E, nu, mu=None, *, E2=None, nu2=None) -> "Cylinder":
         """A cylinder whose normal law is the table in ``path``.
 
         The file is CSV/text with a header naming the columns ``n`` (approach)
@@ -103,7 +116,7 @@ class Cylinder:
         columns, units = read_table(path)
         rows = np.column_stack([column_si(columns, units, "n", "length", path=path),
                                 column_si(columns, units, "N", "force", path=path)])
-        return cls(length, radius, E, nu, mu, rows)
+        return cls(length, radius, E, nu, mu, rows, E2, nu2)
 
     @property
     def law_name(self) -> str:
@@ -112,13 +125,13 @@ class Cylinder:
 
     @property
     def E_star(self) -> float:
-        """Contact modulus of two identical bodies ``E / (2 (1 - nu^2))`` (Pa)."""
-        return self.E / (2.0 * (1.0 - self.nu**2))
+        """Contact modulus ``E*`` (Pa): ``E / (2 (1 - nu^2))`` for identical bodies, see :mod:`.materials`."""
+        return contact_moduli(self.E, self.nu, *check_second_body(self.E, self.nu, self.E2, self.nu2))[0]
 
     def with_mu(self, mu) -> "Cylinder":
         """The same cylinder with friction coefficient ``mu``."""
         law = self.law if self._table is None else self._table.rows
-        return Cylinder(self.length, self.radius, self.E, self.nu, mu, law)
+        return Cylinder(self.length, self.radius, self.E, self.nu, mu, law, self.E2, self.nu2)
 
     # -- normal law ---------------------------------------------------------
     def approach(self, N):
@@ -128,10 +141,10 @@ class Cylinder:
             l_mm = self.length * 1e3
             return 1e-3 * _PALMGREN * N**0.9 / l_mm**0.8
         if self.law == "lundberg":
-            k = 1.0 - self.nu**2
-            A = np.pi * self.length**2 * self.E / k
+            Ep = 2.0 * self.E_star  # E / (1 - nu^2) for identical bodies
+            A = np.pi * self.length**2 * Ep
             with np.errstate(divide="ignore", invalid="ignore"):
-                out = 2.0 * N * k / (np.pi * self.E * self.length) * np.log(A / np.where(N > 0, N, 1.0))
+                out = 2.0 * N / (np.pi * Ep * self.length) * np.log(A / np.where(N > 0, N, 1.0))
             return np.where(N > 0, out, 0.0)
         return self._table.approach(N)
 
@@ -149,7 +162,7 @@ class Cylinder:
                 raise ValueError(f"n must stay below 2 l / e = {2 * self.length / np.e:.6g} m for the "
                                  f"Lundberg-Sjövall law, got up to {float(np.max(m)):.6g} m")
             u = np.exp(np.real(special.lambertw(-np.where(y > 0, y, 1e-300), k=-1)))
-            return np.where(y > 0, u * np.pi * self.length**2 * self.E / (1.0 - self.nu**2), 0.0)
+            return np.where(y > 0, u * np.pi * self.length**2 * 2.0 * self.E_star, 0.0)
         return self._table.normal_force(m)
 
     def normal_stiffness(self, N):
@@ -158,9 +171,9 @@ class Cylinder:
         if self.law == "palmgren":
             return N / (0.9 * self.approach(N))
         if self.law == "lundberg":
-            k = 1.0 - self.nu**2
-            A = np.pi * self.length**2 * self.E / k
-            return np.pi * self.E * self.length / (2.0 * k * (np.log(A / N) - 1.0))
+            Ep = 2.0 * self.E_star
+            A = np.pi * self.length**2 * Ep
+            return np.pi * Ep * self.length / (2.0 * (np.log(A / N) - 1.0))
         return self._table.stiffness(self.approach(N))
 
     def contact_half_width(self, N):

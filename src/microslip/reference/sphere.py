@@ -22,11 +22,12 @@ import numpy as np
 
 from ..common import _checks
 from . import masing, mindlin
+from .materials import check_second_body, contact_moduli
 
 
 @dataclass(frozen=True)
 class Sphere:
-    """A sphere of radius ``radius`` pressed on a plane of the same material.
+    """A sphere of radius ``radius`` pressed on a plane (the same material, or another).
 
     Parameters
     ----------
@@ -38,6 +39,10 @@ class Sphere:
         Poisson's ratio, in (-1, 0.5].
     mu : float
         Friction coefficient, positive.
+    E2, nu2 : float, optional
+        Young's modulus (Pa) and Poisson's ratio of the plane when it is of
+        another material (e.g. a nickel-alloy blade platform under a cobalt-alloy
+        damper); both or neither (identical bodies, the default).
 
     Examples
     --------
@@ -51,12 +56,18 @@ class Sphere:
     E: float
     nu: float
     mu: float
+    E2: float | None = None
+    nu2: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "radius", _checks.positive_scalar("radius", self.radius))
         object.__setattr__(self, "E", _checks.positive_scalar("E", self.E))
         object.__setattr__(self, "nu", _checks.in_range("nu", self.nu, -1.0, 0.5, lo_open=True))
         object.__setattr__(self, "mu", _checks.positive_scalar("mu", self.mu))
+        if self.E2 is not None or self.nu2 is not None:
+            E2, nu2 = check_second_body(self.E, self.nu, self.E2, self.nu2)
+            object.__setattr__(self, "E2", E2)
+            object.__setattr__(self, "nu2", nu2)
 
     @classmethod
     def paper(cls) -> "Sphere":
@@ -66,8 +77,8 @@ class Sphere:
     # -- elastic constants -------------------------------------------------
     @property
     def E_star(self) -> float:
-        """Contact modulus ``E* = E / (2 (1 - nu^2))`` (Pa)."""
-        return self.E / (2.0 * (1.0 - self.nu**2))
+        """Contact modulus ``E*`` (Pa): ``E / (2 (1 - nu^2))`` for identical bodies, see :mod:`.materials`."""
+        return contact_moduli(self.E, self.nu, *check_second_body(self.E, self.nu, self.E2, self.nu2))[0]
 
     @property
     def G(self) -> float:
@@ -76,8 +87,9 @@ class Sphere:
 
     @property
     def G_star(self) -> float:
-        """Tangential contact modulus ``G* = G / (2 (2 - nu))`` (Pa); initial stiffness is ``8 G* a``."""
-        return self.G / (2.0 * (2.0 - self.nu))
+        """Tangential contact modulus ``G*`` (Pa), ``G / (2 (2 - nu))`` for identical bodies; initial stiffness
+        is ``8 G* a``."""
+        return contact_moduli(self.E, self.nu, *check_second_body(self.E, self.nu, self.E2, self.nu2))[1]
 
     # -- Hertz ------------------------------------------------------------
     def _load(self, N):
