@@ -1,5 +1,6 @@
 """``microslip frf``: a TOML configuration to a curve, plots and a report; configuration errors."""
 
+import re
 import shutil
 
 import numpy as np
@@ -29,16 +30,22 @@ def test_frf_writes_curve_plots_and_report(config_dir, capsys):
     cfg = config_dir / "block.toml"
     _edit(cfg, "omega = [12000, 18000]", "omega = [13000, 16000]")
     out = config_dir / "out"
-    assert main(["frf", str(cfg), "-o", str(out)]) == 0
+    assert main(["frf", str(cfg), "--out", str(out)]) == 0
     for name in ("frf.csv", "frf.png", "contacts.png", "report.html", "report.md"):
         assert (out / name).stat().st_size > 0
     printed = capsys.readouterr()
     assert "[10/10] omega =" in printed.err  # progress along the curve
     columns, units = read_table(out / "frf.csv")
-    assert units["omega"] == "rad/s" and units["q0 max"] == "m"
+    # columns named after the configured DOFs (x, y), frequencies in rad/s and Hz
+    assert units["omega"] == "rad/s" and units["x max"] == "m" and units["y a1"] == "m" and units["f"] == "Hz"
     assert columns["omega"][0] == 13000 and columns["omega"][-1] == 16000
+    np.testing.assert_allclose(columns["f"], columns["omega"] / (2 * np.pi), rtol=1e-12)
     report = (out / "report.md").read_text()
     assert "| x |" in report and "mean normal load" in report
+    assert "excitation frequency from 2069.01 to 2546.48 Hz" in report  # Hz by default, as engineers read it
+    assert "| 1 | x | 0.6 | 0 |" in report  # the excitation: harmonic, DOF, amplitude (N), phase
+    # energies in a unit chosen by magnitude (0.48 µJ is written 484.1 nJ, not 4.841e-07 J)
+    assert re.search(r"largest energy dissipated per cycle \d{1,3}(\.\d+)? nJ\.", report)
     # the static state: the 37.5 N preload is shared with the springs (see the configuration's comment)
     static = "static state: normal force N0 = 21.36"
     assert static in printed.out and static in report and "3 of 4 elements closed" in report
@@ -48,7 +55,7 @@ def test_frf_exits_non_zero_on_a_curve_cut_short_by_max_points(config_dir, capsy
     cfg = config_dir / "block.toml"
     _edit(cfg, "harmonics = 7", "harmonics = 3\n[continuation]\nmax_points = 5")
     out = config_dir / "out"
-    assert main(["frf", str(cfg), "-o", str(out), "--quiet"]) == 1
+    assert main(["frf", str(cfg), "--out", str(out), "--quiet"]) == 1
     err = capsys.readouterr().err
     assert "microslip frf: error: incomplete curve: the continuation stopped at max_points = 5 points at " \
            "omega = 1" in err and "before the end of the range (18000 rad/s)" in err
@@ -84,17 +91,30 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
 
 
 @pytest.mark.parametrize("old, new, message", [
-    ("[sweep]", "[swep]", "unknown top-level key\\(s\\) \\['swep'\\]"),
+    ("[sweep]", "[swep]", "the file has an unknown key 'swep'; did you mean 'sweep'\\? \\(it accepts title, "
+     "structure, contact, excitation, sweep, continuation, output\\)"),
+    # a misspelled key used to be ignored: the contact carried 0 N, H fell back to 5, the damping vanished
+    ('preload = "37.5N"', 'pre_load = "37.5N"', "\\[\\[contact\\]\\] has an unknown key 'pre_load'; did you mean "
+     "'preload'\\? \\(it accepts model, tangential, normal, preload, approach, name\\)"),
+    ("harmonics = 7", "harmonicz = 7", "\\[sweep\\] has an unknown key 'harmonicz'; did you mean 'harmonics'"),
+    ("C = [[17.32, 0.0], [0.0, 17.32]]", "Cx = [[17.32, 0.0], [0.0, 17.32]]",
+     "\\[structure\\] has an unknown key 'Cx'; did you mean 'C'"),
+    ("plot = [0, 1]", "plot = [0, 1]\nplots = [0]", "\\[output\\] has an unknown key 'plots'; did you mean 'plot'"),
+    ('h1 = ["0.6N", "0N"]', 'h1 = ["0.6N"]', "block.toml: \\[excitation\\] h1 has 1 value\\(s\\); the structure has 2 "
+     "DOFs"),
+    ("harmonics = 7", 'harmonics = 7\nreduction = "fast"', "\\[sweep\\] reduction must be one of 'auto', 'none', "
+     "'exact', 'modal', got 'fast'"),
     ('h1 = ["0.6N", "0N"]', 'h1 = ["0.6m", "0N"]', "unknown force unit 'm'"),
     ('h1 = ["0.6N", "0N"]', 'first = [0.6, 0.0]', "key 'first' is neither 'static' nor 'h<harmonic>'"),
     ('model = "sphere_4_elements.json"', 'model = "nope.json"', "model file .*nope.json.* does not exist"),
-    ('preload = "37.5N"', 'preload = "37.5N"\napproach = "1um"\nbogus = 1', None),
+    ('preload = "37.5N"', 'preload = "37.5N"\napproach = "1um"\nbogus = 1', "has an unknown key 'bogus' \\(it"),
     ("omega = [12000, 18000]", "omega = [12000]", "the range must have 2 values"),
     ("tangential = [0.8660254, 0.5]", "tangential = [1.0]", "tangential must have one coefficient per DOF"),
     ('dofs = ["x", "y"]', 'dofs = ["x"]', "dofs names 1 DOFs, the matrices have 2"),
     ("plot = [0, 1]", "plot = [4]", "plot names DOF 4; the structure has 2"),
-    ("harmonics = 7", "harmonics = 7\n[continuation]\nstep = 1", "\\[continuation\\] unknown key"),
-    ("M = [[0.1, 0.0], [0.0, 0.1]]", 'M = "heavy"', "\\[structure\\] M must be a matrix|M must be"),
+    ("harmonics = 7", "harmonics = 7\n[continuation]\nstep = 1", "\\[continuation\\] has an unknown key 'step'"),
+    ("M = [[0.1, 0.0], [0.0, 0.1]]", 'M = "heavy"', "\\[structure\\] M is a file name \\('heavy'\\) but K is written "
+     "inline"),
     ("M = [[0.1, 0.0], [0.0, 0.1]]", "M = [[0.1, 0.0], [0.0, -0.1]]",
      "\\[structure\\] M must be positive definite: its diagonal entry 1 is -0.1"),
     ("omega = [12000, 18000]", 'omega = [12000, "18kN"]',
@@ -143,5 +163,5 @@ def test_frf_help_documents_every_option(capsys):
     with pytest.raises(SystemExit):
         main(["frf", "--help"])
     text = capsys.readouterr().out
-    for option in ("config", "--output", "--quiet", "microslip.frequency.config"):
+    for option in ("config", "--out", "--quiet", "microslip.frequency.config"):
         assert option in text

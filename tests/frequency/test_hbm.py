@@ -189,7 +189,7 @@ def test_result_object(tmp_path, inclined_curve):
     path = r.to_csv(tmp_path / "curve.csv")
     lines = path.read_text().splitlines()
     assert lines[0].startswith("# microslip frequency response: H = 7")
-    assert lines[1].split(",")[:2] == ["omega [rad/s]", "q0 max [m]"]
+    assert lines[1].split(",")[:3] == ["omega [rad/s]", "f [Hz]", "q0 max [m]"]
     assert len(lines) == r.points + 2
 
 

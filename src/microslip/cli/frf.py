@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
+from ..common.units import display_unit
 from ._args import add_output_folder
 
 
@@ -20,10 +23,18 @@ def add_parser(sub) -> None:
                     "each contact's static state (normal and tangential force, elements closed). Exit status: "
                     "0 on success, 1 when the solution fails or the curve stops at [continuation] max_points "
                     "before the end of the range (the results up to there are written), 2 for an invalid "
-                    "configuration.")
+                    "configuration. Plots and the report give frequencies in Hz unless [output] "
+                    "frequency_unit = \"rad/s\"; frf.csv has both.")
     p.add_argument("config", help="TOML configuration file")
-    add_output_folder(p, "microslip-frf", "-o", "--output")
+    add_output_folder(p, "microslip-frf")
     p.set_defaults(func=run)
+
+
+def _frequency(cfg, omega):
+    """Frequencies in the configured unit, and the axis label."""
+    if cfg.frequency_unit == "Hz":
+        return omega / (2 * np.pi), "excitation frequency f (Hz)"
+    return omega, "excitation frequency ω (rad/s)"
 
 
 def _plots(result, cfg):
@@ -31,19 +42,21 @@ def _plots(result, cfg):
 
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     for d in cfg.plot_dofs:
-        result.plot(d, cfg.harmonic, ax=ax, label=cfg.dof_names[d])
+        result.plot(d, cfg.harmonic, ax=ax, label=cfg.dof_names[d], frequency_unit=cfg.frequency_unit)
     what = "max |q - q0| over a period" if cfg.harmonic is None else f"harmonic {cfg.harmonic} amplitude"
     ax.set_ylabel(f"{what} (µm)")
     ax.set_title(cfg.title)
     figs = [("frf", fig, f"Forced response: {what} of each DOF against the excitation frequency.")]
     if result.structure.contacts:
         fig2, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6), sharex=True)
+        x, label = _frequency(cfg, result.omega)
+        unit, factor = display_unit(result.contact_dissipation, "energy")
         for c, contact in enumerate(result.structure.contacts):
-            a1.plot(result.omega, result.contact_dissipation[:, c] * 1e3, label=contact.name)
-            a2.plot(result.omega, result.contact_N[:, c, 0], label=contact.name)
-        a1.set_ylabel("energy dissipated per cycle (mJ)")
+            a1.plot(x, result.contact_dissipation[:, c] * factor, label=contact.name)
+            a2.plot(x, result.contact_N[:, c, 0], label=contact.name)
+        a1.set_ylabel(f"energy dissipated per cycle ({unit})")
         a2.set_ylabel("static normal load (N)")
-        a2.set_xlabel("excitation frequency ω (rad/s)")
+        a2.set_xlabel(label)
         for a in (a1, a2):
             a.grid(True, alpha=0.3)
             a.legend()
@@ -66,30 +79,41 @@ def run(args) -> int:
         with warnings.catch_warnings():  # an incomplete curve is reported below, as an error
             warnings.simplefilter("ignore", IncompleteCurveWarning)
             result = frequency_response(cfg.structure, cfg.force, cfg.omega, harmonics=cfg.harmonics,
-                                        samples=cfg.samples, control=cfg.control, progress=not args.quiet)
+                                        samples=cfg.samples, control=cfg.control, progress=not args.quiet,
+                                        reduction=cfg.reduction, modes=cfg.modes)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip frf: error: {exc}", file=sys.stderr)
         return 1
     csv = result.to_csv(out / "frf.csv", dofs=range(cfg.structure.ndof) if cfg.structure.ndof <= 20
-                        else cfg.plot_dofs)
+                        else cfg.plot_dofs, names=cfg.dof_names)
     report = Report(f"microslip frf: {cfg.title}")
+    lo, hi = _frequency(cfg, np.array(cfg.omega))[0]
+    reduced = (f"the linear structure condensed onto the {result.dofs.size} DOFs the contacts and the excitation "
+               f"use ({result.reduction}" + (f", {result.modes} modes, estimated error "
+                                             f"{result.reduction_error:.2g}" if result.modes else "") + ")"
+               if result.reduction != "none" else "every DOF solved")
     report.text(f"Configuration `{args.config}`: {cfg.structure.ndof} DOFs, {len(cfg.structure.contacts)} "
                 f"contact(s), H = {result.harmonics} harmonics, {result.samples} AFT samples per period, "
-                f"omega from {cfg.omega[0]:.6g} to {cfg.omega[1]:.6g} rad/s.")
+                f"excitation frequency from {lo:.6g} to {hi:.6g} {cfg.frequency_unit}; {reduced}.")
+    report.table(["harmonic", "DOF", "amplitude (N)", "phase (°)"], _excitation_rows(cfg),
+                 caption="Excitation: force amplitude on each DOF (static: a constant force)")
     report.text(f"{result.points} points in {result.elapsed:.3g} s "
-                f"({result.iterations.sum()} Newton iterations). Curve: `frf.csv` (SI units).")
+                f"({result.iterations.sum()} Newton iterations). Curve: `frf.csv` (SI units, ω in rad/s and f in "
+                f"Hz).")
     rows = []
     for d in cfg.plot_dofs:
         w, a = result.peak(d, cfg.harmonic)
-        rows.append([cfg.dof_names[d], f"{w:.6g}", f"{w / (2 * 3.141592653589793):.6g}", f"{a * 1e6:.6g}"])
-    report.table(["DOF", "peak ω (rad/s)", "peak f (Hz)", "peak amplitude (µm)"], rows,
+        rows.append([cfg.dof_names[d], f"{w / (2 * np.pi):.6g}", f"{w:.6g}", f"{a * 1e6:.6g}"])
+    report.table(["DOF", "peak f (Hz)", "peak ω (rad/s)", "peak amplitude (µm)"], rows,
                  caption="Highest point of each plotted DOF's curve")
     if not result.complete:
         report.text(f"**Incomplete curve**: {incomplete_message(result, cfg.omega[1], cfg.control)}.")
+    unit, factor = display_unit(result.contact_dissipation, "energy")
     for c, contact in enumerate(result.structure.contacts):
         report.text(_static_text(result, c) + f" Along the curve: mean normal load "
                     f"{result.contact_N[:, c, 0].min():.6g} to {result.contact_N[:, c, 0].max():.6g} N; "
-                    f"largest energy dissipated per cycle {result.contact_dissipation[:, c].max():.6g} J.")
+                    f"largest energy dissipated per cycle {result.contact_dissipation[:, c].max() * factor:.4g} "
+                    f"{unit}.")
         print(_static_text(result, c))
     for name, fig, caption in _plots(result, cfg):
         report.figure(fig, name, caption, out)
@@ -101,6 +125,17 @@ def run(args) -> int:
               f"(set max_points in [continuation]); the results written stop there", file=sys.stderr)
         return 1
     return 0
+
+
+def _excitation_rows(cfg) -> list:
+    """Rows ``(harmonic, DOF name, amplitude N, phase deg)`` of every non-zero force amplitude."""
+    rows = []
+    for h in sorted(cfg.force):
+        for d, F in enumerate(np.asarray(cfg.force[h])):
+            if F != 0:
+                rows.append(["static" if h == 0 else str(h), cfg.dof_names[d], f"{abs(F):.6g}",
+                             f"{np.degrees(np.angle(F)):.4g}"])
+    return rows
 
 
 def _static_text(result, c: int) -> str:

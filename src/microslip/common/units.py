@@ -85,3 +85,25 @@ def parse_quantity(text, kind: str, *, name: str = "value", default_unit: str | 
         return float(number) * unit_factor(unit, kind)
     except ValueError as exc:
         raise ValueError(f"{name}: {exc}") from None
+
+
+#: units a report may choose from, smallest first, per kind
+_DISPLAY = {"energy": ("nJ", "µJ", "mJ", "J"), "length": ("nm", "µm", "mm", "m"), "force": ("mN", "N", "kN")}
+_UNITS["energy"]["nJ"] = 1e-9
+
+
+def display_unit(values, kind: str) -> tuple[str, float]:
+    """``(unit, factor)`` to show SI ``values`` in: the unit in which the largest magnitude lies in [1, 1000).
+
+    ``values * factor`` are then in ``unit``; one unit serves a whole table or plot.
+    """
+    import numpy as np
+
+    if kind not in _DISPLAY:
+        raise ValueError(f"kind must be one of {sorted(_DISPLAY)}, got {kind!r}")
+    big = float(np.max(np.abs(np.asarray(values, dtype=float)), initial=0.0))
+    choice = _DISPLAY[kind][0]
+    for unit in _DISPLAY[kind]:
+        if big >= _UNITS[kind][unit]:
+            choice = unit
+    return choice, 1.0 / _UNITS[kind][choice]

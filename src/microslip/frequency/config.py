@@ -6,7 +6,11 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     title = "Block on an inclined plane"
 
     [structure]
-    M = [[0.1, 0.0], [0.0, 0.1]]        # kg; or matrices = "model.npz" (arrays M, K, optional C)
+    M = [[0.1, 0.0], [0.0, 0.1]]        # kg; or matrices = "model.npz" (arrays M, K, optional C), or
+                                        # file = "blade.mat" (.mat v5/v7.3, .npz, .op4: M, K, optional C;
+                                        # names = {M = "MGG", K = "KGG"} for other names), or M = "M.mtx",
+                                        # K = "K.mtx" (one file per matrix); dof_map = "dofs.csv" (node,
+                                        # component per row) lets contacts and forces name DOFs "1204:x"
     K = [[1e7, 0.0], [0.0, 1e7]]        # N/m
     C = [[17.3, 0.0], [0.0, 17.3]]      # N s/m (optional), or rayleigh = [alpha, beta]: C = alpha M + beta K
     dofs = ["x", "y"]                   # optional names of the DOFs
@@ -31,6 +35,8 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
                                         # "60Hz" and "2kHz" mean 2 pi 60 and 2 pi 2000 rad/s wherever written
     harmonics = 7
     # samples = 128                     # AFT samples per period (default 16 H rounded up to 2^k)
+    # reduction = "exact"               # "auto" (default), "exact", "modal" or "none": harmonic balance on the
+    # modes = 60                        # contact DOFs (see frequency_response); modes for "modal"
 
     [continuation]                      # optional step control (see StepControl)
     # ds_max = 0.05
@@ -39,6 +45,10 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     [output]
     # plot = [0]                        # DOFs to plot (default: all, up to 6)
     # harmonic = 1                      # plotted amplitude: a harmonic, or omit for max |q - q0|
+    # frequency_unit = "Hz"             # of the plots and the report: "Hz" (default) or "rad/s"
+
+Every table refuses a key it does not know, naming the table and the keys it
+accepts (with the closest one when a key looks misspelled).
 """
 
 from __future__ import annotations
@@ -64,6 +74,16 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
         _toml = None
 
 _CONTROL_KEYS = {f.name for f in fields(StepControl)}
+#: the keys each table accepts
+KEYS = {
+    "the file": ("title", "structure", "contact", "excitation", "sweep", "continuation", "output"),
+    "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names"),
+    "[[contact]]": ("model", "tangential", "normal", "preload", "approach", "name"),
+    "[sweep]": ("omega", "frequency", "harmonics", "samples", "reduction", "modes"),
+    "[continuation]": tuple(sorted(_CONTROL_KEYS)),
+    "[output]": ("plot", "harmonic", "frequency_unit"),
+}
+FREQUENCY_UNITS = ("Hz", "rad/s")
 
 
 class ConfigError(ValueError):
@@ -84,6 +104,22 @@ class FrfConfig:
     plot_dofs: list[int]
     harmonic: int | None
     dof_names: list[str] = field(default_factory=list)
+    reduction: str = "auto"
+    modes: int | None = None
+    frequency_unit: str = "Hz"
+
+
+def _known(table: dict, where: str, path) -> None:
+    """Refuse a key ``where`` does not accept, naming it, the table and the accepted keys (the closest first)."""
+    import difflib
+
+    accepted = KEYS[where]
+    for key in table:
+        if key not in accepted:
+            close = difflib.get_close_matches(key, accepted, n=1, cutoff=0.6)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise ConfigError(f"{path}: {where} has an unknown key {key!r}{hint} (it accepts "
+                              f"{', '.join(accepted)})")
 
 
 def _checked(path, where: str, check, *args, **kwargs):
@@ -154,10 +190,11 @@ def _matrix(value, what: str, path) -> np.ndarray:
 
 def _direction(value, what: str, path):
     if isinstance(value, dict):
-        try:
-            return {int(k): float(v) for k, v in value.items()}
-        except ValueError:
-            raise ConfigError(f"{path}: {what} keys must be DOF indices and values numbers, got {value!r}") from None
+        try:  # keys: DOF indices ("0") or names with a DOF map ("1204:x")
+            return {(int(k) if k.strip().lstrip("-").isdigit() else k): float(v) for k, v in value.items()}
+        except (ValueError, TypeError):
+            raise ConfigError(f"{path}: {what} keys must be DOF indices or names and values numbers, "
+                              f"got {value!r}") from None
     return value
 
 
@@ -181,13 +218,14 @@ def load_config(path) -> FrfConfig:
     except _toml.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
     base = path.parent
-    unknown = set(data) - {"title", "structure", "contact", "excitation", "sweep", "continuation", "output"}
-    if unknown:
-        raise ConfigError(f"{path}: unknown top-level key(s) {sorted(unknown)}")
+    _known(data, "the file", path)
 
     # -- structure -------------------------------------------------------------------
-    st = _get(data, "structure", "the file", path)
-    if "matrices" in st:
+    st = _table(_get(data, "structure", "the file", path), "[structure]", path)
+    files = _structure_files(st, base, path)
+    if files is not None:
+        mats = {"M": files.M, "K": files.K, **({"C": files.C} if files.C is not None else {})}
+    elif "matrices" in st:
         npz = base / st["matrices"]
         if not npz.is_file():
             raise FileNotFoundError(f"{path}: [structure] matrices file {str(npz)!r} does not exist")
@@ -211,17 +249,20 @@ def load_config(path) -> FrfConfig:
                        for i, v in enumerate(rayleigh))
         mats["C"] = alpha * mats["M"] + beta * mats["K"]
     try:
-        structure = Structure(mats["M"], mats.get("C"), mats["K"])
+        structure = Structure(mats["M"], mats.get("C"), mats["K"],
+                              dof_map=files.dof_map if files is not None else None)
     except (ValueError, TypeError) as exc:
         raise ConfigError(f"{path}: [structure] {exc}") from None
     ndof = structure.ndof
-    names = [str(n) for n in st.get("dofs", [])] or [f"q{i}" for i in range(ndof)]
+    names = [str(n) for n in st.get("dofs", [])] or (
+        structure.dof_map.names if structure.dof_map is not None else [f"q{i}" for i in range(ndof)])
     if len(names) != ndof:
         raise ConfigError(f"{path}: [structure] dofs names {len(names)} DOFs, the matrices have {ndof}")
 
     # -- contacts ----------------------------------------------------------------------
     for i, c in enumerate(data.get("contact", [])):
         where = f"[[contact]] {i + 1}"
+        _table(c, "[[contact]]", path, where)
         model_path = base / _get(c, "model", where, path)
         try:
             model = MicroslipModel.load(model_path)
@@ -251,6 +292,9 @@ def load_config(path) -> FrfConfig:
         else:
             raise ConfigError(f"{path}: [excitation] key {key!r} is neither 'static' nor 'h<harmonic>' (e.g. h1)")
         amp = _array(value, f"[excitation] {key}", path).astype(complex)
+        if amp.size != ndof:
+            raise ConfigError(f"{path}: [excitation] {key} has {amp.size} value(s); the structure has {ndof} DOFs "
+                              f"(one amplitude per DOF, N)")
         if f"phase_{key}" in ex:
             amp = amp * np.exp(1j * np.radians(_array(ex[f"phase_{key}"], f"[excitation] phase_{key}", path,
                                                       "dimensionless")))
@@ -260,7 +304,7 @@ def load_config(path) -> FrfConfig:
             raise ConfigError(f"{path}: [excitation] {key} has no amplitude {key[6:]!r}")
 
     # -- sweep ---------------------------------------------------------------------------
-    sw = _get(data, "sweep", "the file", path)
+    sw = _table(_get(data, "sweep", "the file", path), "[sweep]", path)
     if ("omega" in sw) == ("frequency" in sw):
         raise ConfigError(f"{path}: [sweep] needs exactly one of omega (rad/s) or frequency (Hz)")
     if "omega" in sw:
@@ -272,13 +316,20 @@ def load_config(path) -> FrfConfig:
     if samples is not None:
         samples = _checked(path, "[sweep] ", check_samples, samples, harmonics)
 
+    reduction = sw.get("reduction", "auto")
+    modes = sw.get("modes")
+    from .reduced import choose_reduction
+
+    _checked(path, "[sweep] ", choose_reduction, structure, harmonics, reduction, modes)
+
     # -- continuation and output -----------------------------------------------------------
-    cont = data.get("continuation", {})
-    bad = set(cont) - _CONTROL_KEYS
-    if bad:
-        raise ConfigError(f"{path}: [continuation] unknown key(s) {sorted(bad)}; known: {sorted(_CONTROL_KEYS)}")
+    cont = _table(data.get("continuation", {}), "[continuation]", path)
     control = _checked(path, "[continuation] ", StepControl, **cont)
-    out = data.get("output", {})
+    out = _table(data.get("output", {}), "[output]", path)
+    frequency_unit = out.get("frequency_unit", "Hz")
+    if frequency_unit not in FREQUENCY_UNITS:
+        raise ConfigError(f"{path}: [output] frequency_unit must be one of {', '.join(FREQUENCY_UNITS)}, "
+                          f"got {frequency_unit!r}")
     plot_dofs = [int(d) for d in out.get("plot", range(min(ndof, 6)))]
     for d in plot_dofs:
         if not 0 <= d < ndof:
@@ -290,4 +341,40 @@ def load_config(path) -> FrfConfig:
             raise ConfigError(f"{path}: [output] harmonic must be at most [sweep] harmonics = {harmonics} "
                               f"(or omitted for max |q - q0|), got {harmonic}")
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
-                     plot_dofs, harmonic, names)
+                     plot_dofs, harmonic, names, reduction, modes, frequency_unit)
+
+
+def _table(value, where: str, path, label: str | None = None) -> dict:
+    """A TOML table checked: a table, with known keys only."""
+    if not isinstance(value, dict):
+        raise ConfigError(f"{path}: {label or where} must be a table, got {value!r}")
+    _known(value, where, path)
+    return value
+
+
+def _structure_files(st: dict, base: Path, path):
+    """The matrices read from ``file = ...`` or ``M = "M.mtx"``-style file names (FEMatrices), or None."""
+    from ..fe import read_matrices
+
+    by_file = "file" in st
+    by_name = any(isinstance(st.get(k), str) for k in ("M", "K", "C"))
+    if not (by_file or by_name):
+        if "dof_map" in st:
+            raise ConfigError(f"{path}: [structure] dof_map goes with matrices read from files (file = ... or "
+                              f"M = \"M.mtx\", ...)")
+        return None
+    if by_file and by_name:
+        raise ConfigError(f"{path}: [structure] give either file = ... or one file per matrix, not both")
+    inline = [k for k in ("M", "K") if k in st and not isinstance(st[k], str)]
+    if by_name and inline:
+        named = [k for k in ("M", "K", "C") if isinstance(st.get(k), str)]
+        raise ConfigError(f"{path}: [structure] {named[0]} is a file name ({st[named[0]]!r}) but {inline[0]} is "
+                          f"written inline: give M and K both as files (M = \"M.mtx\", K = \"K.mtx\") or both "
+                          f"as matrices")
+    kwargs = {k: base / st[k] for k in ("M", "K", "C") if isinstance(st.get(k), str)}
+    dof_map = base / st["dof_map"] if "dof_map" in st else None
+    try:
+        return read_matrices(base / st["file"] if by_file else None, dof_map=dof_map, names=st.get("names"),
+                             **kwargs)
+    except (ValueError, TypeError) as exc:
+        raise ConfigError(f"{path}: [structure] {exc}") from None

@@ -226,7 +226,7 @@ class FrequencyResponse:
         return 2 * np.pi / self.omega[point] * np.arange(Ns) / Ns, synthesise(c, Ns)
 
     def plot(self, dof=0, harmonic: int | None = None, ax=None, *, label: str | None = None, unit: str = "µm",
-             **kwargs):
+             frequency_unit: str = "rad/s", **kwargs):
         """Plot the amplitude of a DOF against the excitation frequency.
 
         Parameters
@@ -240,6 +240,8 @@ class FrequencyResponse:
         unit : str, default "µm"
             Displacement unit of the plot: a length unit of :mod:`microslip.common.units`
             ("µm", "mm", "m", "nm", "in", ...).
+        frequency_unit : {"rad/s", "Hz"}, default "rad/s"
+            Unit of the excitation frequency on the horizontal axis.
         **kwargs
             Passed to ``Axes.plot``.
 
@@ -255,29 +257,43 @@ class FrequencyResponse:
             raise ValueError(f"unit must be one of the length units, got {unit!r} ({exc})") from None
         if ax is None:
             _, ax = plt.subplots(figsize=(6, 4))
-        ax.plot(self.omega, self.amplitude(dof, harmonic) * factor, label=label, **kwargs)
+        if frequency_unit not in ("rad/s", "Hz"):
+            raise ValueError(f"frequency_unit must be 'rad/s' or 'Hz', got {frequency_unit!r}")
+        x = self.omega if frequency_unit == "rad/s" else self.omega / (2 * np.pi)
+        ax.plot(x, self.amplitude(dof, harmonic) * factor, label=label, **kwargs)
         what = "max |q - q0| over a period" if harmonic is None else f"harmonic {harmonic} amplitude"
-        ax.set_xlabel("excitation frequency ω (rad/s)")
+        ax.set_xlabel("excitation frequency ω (rad/s)" if frequency_unit == "rad/s" else "excitation frequency f (Hz)")
         ax.set_ylabel(f"{self.labels.get('dof', 'response')}: {what} ({unit})")
         ax.grid(True, alpha=0.3)
         if label:
             ax.legend()
         return ax
 
-    def columns(self, dofs=None) -> dict:
-        """The curve as named columns with units (for CSV): frequency, amplitudes, contact loads, energies."""
+    def columns(self, dofs=None, names=None) -> dict:
+        """The curve as named columns with units (for CSV): frequency, amplitudes, contact loads, energies.
+
+        ``dofs``: the DOFs written (default :attr:`dofs`); ``names``: a name
+        for every DOF of the structure (default ``q0``, ``q1``, ... or the DOF
+        map's ``node:component``).
+        """
         ndof = self.structure.ndof
         dofs = self.dofs if dofs is None else [_checks.positive_int("dofs[i]", d, minimum=0) for d in dofs]
-        cols = {"omega [rad/s]": self.omega}
+        if names is None:
+            dof_map = getattr(self.structure, "dof_map", None)
+            names = dof_map.names if dof_map is not None else [f"q{i}" for i in range(ndof)]
+        elif len(names) != ndof or not all(isinstance(n, str) and n for n in names):
+            raise ValueError(f"names must give a non-empty name to each of the {ndof} DOFs, got {names!r}")
+        cols = {"omega [rad/s]": self.omega, "f [Hz]": self.omega / (2 * np.pi)}
         for d in dofs:
             if d >= ndof:
                 raise ValueError(f"dofs: DOF {d} is out of range for a structure with {ndof} DOFs")
             c = self.dof_coefficients(int(d))
-            cols[f"q{d} max [m]"] = self.amplitude(int(d))
-            cols[f"q{d} static [m]"] = c[:, 0]
+            q = names[int(d)]
+            cols[f"{q} max [m]"] = self.amplitude(int(d))
+            cols[f"{q} static [m]"] = c[:, 0]
             for h in range(1, self.harmonics + 1):
-                cols[f"q{d} a{h} [m]"] = c[:, 2 * h - 1]
-                cols[f"q{d} b{h} [m]"] = c[:, 2 * h]
+                cols[f"{q} a{h} [m]"] = c[:, 2 * h - 1]
+                cols[f"{q} b{h} [m]"] = c[:, 2 * h]
         for c, contact in enumerate(self.structure.contacts):
             cols[f"{contact.name} N static [N]"] = self.contact_N[:, c, 0]
             cols[f"{contact.name} T h1 [N]"] = np.hypot(self.contact_T[:, c, 1], self.contact_T[:, c, 2])
@@ -286,10 +302,10 @@ class FrequencyResponse:
         cols["excitation work [J]"] = self.excitation_work
         return cols
 
-    def to_csv(self, path, dofs=None):
+    def to_csv(self, path, dofs=None, names=None):
         """Write :meth:`columns` to ``path`` as CSV (atomically). Returns the path."""
         path = _checks.file_path("path", path)
-        return write_csv(path, self.columns(dofs),
+        return write_csv(path, self.columns(dofs, names),
                          header_comment=f"microslip frequency response: H = {self.harmonics}, "
                                         f"{self.samples} samples per period, {self.points} points")
 
