@@ -83,8 +83,11 @@ def test_the_energy_balances_on_a_sliding_damper(omega):
     r = frequency_point(s, tip_force(s, 5.0), omega, harmonics=5, reduction="none")
     assert r.contact_dissipation.sum() > 1e-3 * r.excitation_work[0]  # the damper dissipates
     # harmonic balance conserves the energy of the harmonics kept: to the solver's tolerance
-    assert abs(r.viscous_dissipation[0] + r.contact_dissipation.sum() - r.excitation_work[0]) \
+    assert abs(r.viscous_dissipation[0] + r.contact_harmonic_work.sum() - r.excitation_work[0]) \
         < 1e-6 * r.excitation_work[0]
+    # the physical dissipation (friction work) differs from it by the AFT's sampling error: measured
+    # below 1.3e-4 of the excitation's work at these points
+    assert abs(r.contact_dissipation.sum() - r.contact_harmonic_work.sum()) < 3e-4 * r.excitation_work[0]
 
 
 @pytest.mark.parametrize("kwargs, error, message", [

@@ -14,7 +14,7 @@ from scipy.optimize import brentq
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import (FrequencyResponse, HarmonicBalance, Structure, frequency_point,
                                  frequency_response, static_solution)
-from microslip.frequency import _transient
+from microslip.frequency import UnderResolvedWarning, _transient
 
 from _paths import EXAMPLES
 
@@ -145,12 +145,26 @@ def test_time_integration_kernel_matches_twin():
 
 def test_energy_balance_per_cycle(inclined_curve):
     r = inclined_curve
-    balance = r.excitation_work - r.viscous_dissipation - r.contact_dissipation.sum(axis=1)
+    balance = r.excitation_work - r.viscous_dissipation - r.contact_harmonic_work.sum(axis=1)
     # exact for the harmonics kept; Newton stops at a relative residual of 1e-9
     assert np.max(np.abs(balance)) < 1e-6 * np.max(r.excitation_work)
     assert np.all(r.viscous_dissipation > 0)
-    assert np.all(r.contact_dissipation > -1e-12 * np.max(r.excitation_work))  # zero while stuck
+    assert np.all(r.contact_dissipation >= 0.0)  # friction work: never negative, zero while stuck
     assert np.max(r.contact_dissipation) > 0.1 * np.max(r.excitation_work)  # slipping near the peak
+    # the friction work of the sampled period and the harmonics' work differ by the AFT's sampling
+    # error (1/samples^2): measured below 1e-3 of the excitation's work at 128 samples on this curve
+    gap = np.abs(r.contact_dissipation - r.contact_harmonic_work).max(axis=1)
+    assert np.max(gap / r.excitation_work) < 2e-3
+
+
+def test_contact_dissipation_is_never_negative_when_the_contact_only_opens():
+    """Shaken along its normal only, the inclined block's contact opens and closes but never slides."""
+    s = inclined_block()
+    normal = s.contacts[0].normal
+    with pytest.warns(UnderResolvedWarning, match="samples=1024 resolves it"):  # the opening is under-resolved
+        r = frequency_response(s, 5.0 * normal, (12000.0, 18000.0), harmonics=7)
+    assert np.all(np.abs(r.contact_t[:, 0, :]) < 1e-12 * np.abs(r.contact_n[:, 0, 1:]).max())  # no sliding
+    assert r.points > 100 and np.all(r.contact_dissipation == 0.0)  # was negative at 414 of 762 points
 
 
 # -- statics, folds, the result object ---------------------------------------------------------------

@@ -23,7 +23,8 @@
   to the periodic steady state (an independent check).
 """
 
-from .aft import AFTResult, NotPeriodicError, aft, aft_batch, cycle_work, default_samples, synthesise
+from .aft import (AFTResult, NotPeriodicError, UnderResolvedWarning, aft, aft_batch, cycle_work, default_samples,
+                  synthesise)
 from .continuation import ConvergenceError, StepControl
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import CyclicStructure
@@ -51,6 +52,7 @@ __all__ = [
     "StepControl",
     "SteadyState",
     "UnderPlatformDamper",
+    "UnderResolvedWarning",
     "Structure",
     "aft",
     "aft_batch",

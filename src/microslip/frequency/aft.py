@@ -294,3 +294,59 @@ def pack_models(models: Sequence[MicroslipModel]) -> tuple[np.ndarray, ...]:
         return np.ones(0), np.ones(0), np.zeros(0), offsets, np.ones(0)
     return (np.concatenate([m.kt for m in models]), np.concatenate([m.kn for m in models]),
             np.concatenate([m.gaps for m in models]), offsets, np.array([m.mu for m in models]))
+
+
+class UnderResolvedWarning(RuntimeWarning):
+    """The AFT samples too few points per period to resolve a contact opening and closing during the cycle."""
+
+
+def friction_work(packed, xt, xn, synthesis, max_periods: int = MAX_PERIODS) -> tuple[np.ndarray, np.ndarray]:
+    """Energy each contact dissipates per cycle by friction (J), never negative, and whether it opens.
+
+    Every element is marched over the sampled period (the convention of the
+    AFT: closed at ``t = 0`` with no force, loaded statically to the mean, then
+    period after period until its state repeats) and the friction work of its
+    slider's travel is summed over the last period (each step's work is
+    non-negative by construction, :func:`microslip._kernels.friction_work`).
+
+    Parameters
+    ----------
+    packed : tuple
+        The contacts' laws, :func:`pack_models`.
+    xt, xn : ndarray, shape (nc, 2H+1)
+        Fourier coefficients of each contact's ``t`` and ``n`` (m).
+    synthesis : ndarray, shape (Ns, 2H+1)
+        The AFT's synthesis table (samples of the basis over a period).
+    max_periods : int
+        Periods marched at most.
+
+    Returns
+    -------
+    work : ndarray, shape (nc,)
+        J per cycle.
+    opens : ndarray of bool, shape (nc,)
+        Whether some element opens and closes during the cycle.
+    """
+    from .._kernels import NO_CONDITIONS, NO_ELEMENTS, march
+
+    kt, kn, gaps, offsets, mu = packed
+    nc = offsets.size - 1
+    work, opens = np.zeros(nc), np.zeros(nc, dtype=bool)
+    T1, N1, W1 = np.empty(1), np.empty(1), np.empty(1)
+    for c in range(nc):
+        lo, hi = offsets[c], offsets[c + 1]
+        t = np.ascontiguousarray(synthesis @ xt[c])
+        n = np.ascontiguousarray(synthesis @ xn[c])
+        g = gaps[lo:hi]
+        opens[c] = bool(np.any((n.min() <= g) & (n.max() > g)))
+        s = np.zeros(hi - lo)
+        march(kt[lo:hi], kn[lo:hi], g, mu[c], np.array([xt[c, 0]]), np.array([xn[c, 0]]), s, T1, N1, W1,
+              NO_ELEMENTS, NO_CONDITIONS)
+        T, N, W = np.empty(t.size), np.empty(t.size), np.empty(t.size)
+        for _ in range(max_periods):
+            before = s.copy()
+            march(kt[lo:hi], kn[lo:hi], g, mu[c], t, n, s, T, N, W, NO_ELEMENTS, NO_CONDITIONS)
+            if np.array_equal(before, s):
+                break
+        work[c] = W.sum()
+    return work, opens

@@ -27,7 +27,7 @@ import scipy.sparse.linalg as spla
 
 from ..common import _checks
 from . import _aft, _hbm
-from .aft import MAX_PERIODS, check_periodic, check_samples, cycle_work
+from .aft import MAX_PERIODS, check_periodic, check_samples, cycle_work, friction_work
 from .structure import Structure
 
 DENSE_LIMIT = 600  # unknowns up to which dense linear algebra is used
@@ -376,8 +376,11 @@ class HarmonicBalance:
         Returns a dict of arrays: ``t, n, T, N`` (m, N), shape ``(points, nc, 2H+1)``;
         ``excitation``, ``viscous`` (J, ``(points,)``): work of the excitation and energy
         dissipated by ``C`` per cycle; ``contacts`` (J, ``(points, nc)``): energy dissipated by
-        each contact. With harmonic balance these balance exactly at a solution (the work
-        of the harmonics kept).
+        each contact, the friction work of its elements over the sampled period (never
+        negative); ``contacts_harmonic``: the same from the force harmonics kept, which
+        balances the other two exactly at a solution but carries the AFT's sampling error
+        (of either sign where a contact opens); ``opens`` (bool, ``(points, nc)``): a contact
+        opening and closing during the cycle.
         """
         xs = np.asarray(xs, dtype=float)
         P = xs.shape[0]
@@ -393,11 +396,15 @@ class HarmonicBalance:
             viscous = None
         out = {"t": np.zeros((P, self.nc, self.nb)), "n": np.zeros((P, self.nc, self.nb)),
                "T": np.zeros((P, self.nc, self.nb)), "N": np.zeros((P, self.nc, self.nb))}
+        out["contacts"] = np.zeros((P, self.nc))
+        out["opens"] = np.zeros((P, self.nc), dtype=bool)
         for k in range(P):
             if self.nc:
                 out["t"][k], out["n"][k] = self._local(xs[k])
                 self._aft(xs[k])
                 out["T"][k], out["N"][k] = self.FT, self.FN
-        out["contacts"] = cycle_work(out["T"], out["t"]) + cycle_work(out["N"], out["n"])
+                out["contacts"][k], out["opens"][k] = friction_work(self.packed, out["t"][k], out["n"][k],
+                                                                    self.tables[0], self.max_periods)
+        out["contacts_harmonic"] = cycle_work(out["T"], out["t"]) + cycle_work(out["N"], out["n"])
         out["excitation"], out["viscous"] = excitation, viscous
         return out

@@ -150,7 +150,7 @@ class ReducedHarmonicBalance(HarmonicBalance):
         contacts', which holds exactly at a harmonic balance solution.
         """
         out = super().curve_quantities(xs, omegas, viscous=False)
-        out["viscous"] = out["excitation"] - out["contacts"].sum(axis=-1)
+        out["viscous"] = out["excitation"] - out["contacts_harmonic"].sum(axis=-1)
         return out
 
 

@@ -20,7 +20,7 @@ from ..common import _checks
 from ..common._io import write_csv
 from ..common._progress import Progress
 from ..common.units import unit_factor
-from .aft import MAX_PERIODS, synthesise
+from .aft import MAX_PERIODS, UnderResolvedWarning, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance, excitation
 from .cyclic import CyclicStructure
@@ -62,7 +62,10 @@ class FrequencyResponse:
     excitation_work, viscous_dissipation : ndarray, shape (points,)
         Work of the excitation and energy dissipated by ``C`` per cycle (J).
     contact_dissipation : ndarray, shape (points, nc)
-        Energy dissipated per cycle by each contact (J).
+        Energy dissipated per cycle by each contact (J): the friction work of its
+        elements over the sampled period, never negative (a contact that opens
+        and closes during the cycle is checked for resolution:
+        :class:`~microslip.frequency.aft.UnderResolvedWarning`).
     iterations : ndarray of int, shape (points,)
         Newton iterations of each point.
     static_normal_force, static_tangential_force : ndarray, shape (nc,)
@@ -98,6 +101,12 @@ class FrequencyResponse:
     engine_order : int or None
         For a cyclic structure: the engine order solved; the DOFs are this
         sector's (:meth:`sector_coefficients` gives any other sector).
+    contact_harmonic_work : ndarray, shape (points, nc)
+        The contacts' energy per cycle from the force harmonics kept (J): with
+        the excitation's and the viscous work it balances exactly at a
+        solution (harmonic balance conserves the energy of the harmonics
+        kept), but it carries the AFT's sampling error, of either sign where a
+        contact opens; :attr:`contact_dissipation` is the physical one.
     """
 
     structure: Structure
@@ -124,6 +133,7 @@ class FrequencyResponse:
     modes: int | None = None
     reduction_error: float | None = None
     engine_order: int | None = None
+    contact_harmonic_work: np.ndarray | None = field(default=None, repr=False)
     recovery: object = field(default=None, repr=False)
 
     def __post_init__(self):
@@ -561,14 +571,40 @@ def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> fl
     return best if best > 0 else max(float(np.max(np.abs(x_static))), 1e-12)
 
 
+#: the sampling error of a contact's energy (harmonic estimate against the friction work) that is
+#: reported, as a fraction of the excitation's work per cycle
+RESOLUTION = 1e-3
+
+
+def _check_resolution(q: dict, samples: int) -> None:
+    """Warn when a contact opens and closes during the cycle faster than the AFT's samples resolve it.
+
+    The energy it dissipates then differs, from the force harmonics and from the
+    friction work of the same samples, by more than :data:`RESOLUTION` of the
+    excitation's work; the difference falls like ``1/samples^2``.
+    """
+    if not q["opens"].any():
+        return
+    gap = np.abs(q["contacts_harmonic"] - q["contacts"]).max(axis=1)
+    scale = np.maximum(np.abs(q["excitation"]), 1e-300)
+    worst = float(np.max(np.where(q["opens"].any(axis=1), gap / scale, 0.0)))
+    if worst > RESOLUTION:
+        need = samples * int(2 ** np.ceil(np.log2(np.sqrt(worst / RESOLUTION))))
+        warnings.warn(f"a contact opens and closes during the cycle faster than {samples} samples per period "
+                      f"resolve: its energy per cycle is uncertain by {worst:.2g} of the excitation's work; "
+                      f"samples={need} resolves it to {RESOLUTION:g} (the error falls like 1/samples^2)",
+                      UnderResolvedWarning, stacklevel=3)
+
+
 def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> FrequencyResponse:
     """The result object from the solutions ``xs`` and the static state ``(N0, T0, closed)``."""
     q = hb.curve_quantities(xs, omegas)
+    _check_resolution(q, hb.samples)
     reduced = isinstance(hb, ReducedHarmonicBalance)
-    extra = {}
+    extra = {"contact_harmonic_work": q["contacts_harmonic"]}
     if reduced:
         linear = hb.linear
-        extra = dict(dofs=hb.retained, reduction="modal" if hasattr(linear, "modes") else "exact",
+        extra.update(dofs=hb.retained, reduction="modal" if hasattr(linear, "modes") else "exact",
                      engine_order=getattr(hb, "engine_order", None),
                      modes=getattr(linear, "modes", None),
                      recovery=lambda k: hb._full(xs[k], float(omegas[k])))
