@@ -42,7 +42,7 @@ def test_the_curve_writes_csv_and_plots(curve, tmp_path):
 @pytest.mark.parametrize("kwargs, message", [
     ({"loads": [-1.0]}, "loads"),
     ({"dof": 99}, "dof: DOF 99 is out of range for a structure with 6 DOFs"),
-    ({"force": np.zeros(9)}, "force must be a vector of the structure's 6 DOFs"),
+    ({"force": np.zeros(9)}, "force must have one entry per DOF \\(6\\), got 9"),
 ])
 def test_design_curve_arguments_are_checked(kwargs, message):
     f = np.zeros(6)

@@ -8,7 +8,7 @@ import pytest
 
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import (HarmonicBalance, IncompleteCurveWarning, StepControl, Structure, frequency_point,
-                                 frequency_response)
+                                 frequency_response, static_solution)
 
 from _paths import EXAMPLES
 
@@ -137,3 +137,40 @@ def test_blade_example_damper_carries_its_load_stuck_with_every_element_closed()
     assert r.static_tangential_force[0] == 0.0
     assert r.static_closed_elements[0] == 4
     assert blade_with_damper(elements=16).contacts[0].model.elements == 16
+
+
+def test_static_solution_takes_a_force_vector():
+    s = Structure([[1.0]], None, [[2e4]])
+    np.testing.assert_allclose(static_solution(s, [0.5]), [0.5 / 2e4], rtol=1e-12)  # was 0: the vector ignored
+    np.testing.assert_allclose(static_solution(s, {0: [0.5], 1: [3.0]}), [0.5 / 2e4], rtol=1e-12)
+    with pytest.raises(ValueError, match="force"):
+        static_solution(s, [np.nan])
+    with pytest.raises((ValueError, TypeError), match="force"):
+        static_solution(s, "abc")
+
+
+def test_a_dof_held_only_by_friction_is_named_with_the_fix():
+    # a free mass on a Jenkins contact: its mean position is undetermined (it used to end in "did not converge
+    # (relative residual 1.3e-11 after 50 iterations)" or "continuation stalled")
+    s = Structure([[1.0]], [[1.0]], [[0.0]])
+    s.add_contact(MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0), tangential=0, approach=1e-6)
+    message = ("structure: the motion of DOF\\(s\\) \\[0\\] has no stiffness from K or from the contacts' normal "
+               "springs, so it is held only by the friction of a contact: its mean position is undetermined")
+    with pytest.raises(ValueError, match=message):
+        frequency_response(s, [2.0], (60.0, 160.0), harmonics=3)
+    with pytest.raises(ValueError, match="Ground it with a spring"):
+        static_solution(s)
+    grounded = Structure([[1.0]], [[1.0]], [[1e-3]])  # a spring 1e7 times softer than the contact is enough
+    grounded.add_contact(MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0), tangential=0, approach=1e-6)
+    assert frequency_point(grounded, [2.0], 100.0, harmonics=3).points == 1
+
+
+def test_cycle_work_checks_its_coefficients():
+    from microslip.frequency import cycle_work
+
+    with pytest.raises(ValueError, match="force and displacement must have the same shape"):
+        cycle_work(np.ones(5), np.ones(3))
+    with pytest.raises(ValueError, match="2H\\+1"):
+        cycle_work(np.ones(4), np.ones(4))
+    with pytest.raises(ValueError, match="force"):
+        cycle_work([np.nan, 0, 0], [0, 0, 0])

@@ -160,8 +160,19 @@ def cycle_work(force, displacement) -> np.ndarray:
     ndarray, shape (...)
         ``pi sum_h h (F_a,h x_b,h - F_b,h x_a,h)``.
     """
-    F = np.asarray(force, dtype=float)
-    x = np.asarray(displacement, dtype=float)
+    F = _checks.real_array("force", force)
+    x = _checks.real_array("displacement", displacement)
+    try:
+        np.broadcast_shapes(F.shape, x.shape)
+        same = F.shape[-1:] == x.shape[-1:]
+    except ValueError:
+        same = False
+    if not same:
+        raise ValueError(f"force and displacement must have the same shape (..., 2H+1) (or shapes that "
+                         f"broadcast), got {F.shape} and {x.shape}")
+    if F.ndim == 0 or F.shape[-1] % 2 == 0:
+        raise ValueError(f"force and displacement must hold 2H+1 coefficients [c0, a1, b1, ...] in their last axis "
+                         f"(an odd number), got shape {F.shape}")
     H = (F.shape[-1] - 1) // 2
     h = np.arange(1, H + 1)
     return np.pi * np.sum(h * (F[..., 1::2] * x[..., 2::2] - F[..., 2::2] * x[..., 1::2]), axis=-1)

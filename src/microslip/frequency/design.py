@@ -124,6 +124,10 @@ def damper_design_curve(structure: Structure, damper: UnderPlatformDamper, loads
     dof = _checks.positive_int("dof", dof, minimum=0)
     if dof >= structure.ndof:
         raise ValueError(f"dof: DOF {dof} is out of range for a structure with {structure.ndof} DOFs")
+    if isinstance(force, dict):
+        force = {h: structure.force_vector(v, f"force[{h}]") for h, v in force.items()}
+    else:
+        force = structure.force_vector(force, "force")
     report = Progress(loads.size, enabled=progress)
     responses: list[FrequencyResponse] = []
     peaks, where = np.empty(loads.size), np.empty(loads.size)

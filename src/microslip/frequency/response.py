@@ -341,7 +341,8 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
     ----------
     structure : Structure
     force : array_like or mapping, optional
-        Only its static part (key ``0`` of a mapping) is used.
+        The static force (N): a vector of ``ndof`` values, or the static part
+        (key ``0``) of a mapping ``{h: vector}`` as :func:`frequency_response` takes.
     tolerance : float
         Relative residual of Newton's method.
     reduction, modes
@@ -349,8 +350,13 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
         retained DOFs, then every DOF is recovered).
     """
     tolerance = _checks.in_range("tolerance", tolerance, 0.0, 1.0, lo_open=True, hi_open=True)
-    static, _, _ = _equations(structure, _static_force(force) if force is not None else {}, 0, None,
-                              MAX_PERIODS, reduction, modes)
+    if force is None:
+        static_force = {}
+    elif isinstance(force, Mapping):
+        static_force = _static_force(force)
+    else:
+        static_force = {0: force}
+    static, _, _ = _equations(structure, static_force, 0, None, MAX_PERIODS, reduction, modes)
     x = _static_state(static, tolerance=tolerance)[0]
     return static._full(x, 1.0)[0]
 
@@ -364,6 +370,7 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
     H = _checks.size("harmonics", harmonics, minimum=0)
     engine_order = check_engine_order(structure, engine_order)
+    _check_determined(structure)
     static_force = _static_force(force) if force is not None else {}
     if isinstance(structure, CyclicStructure):
         if reduction not in ("auto", "exact") or modes is not None:
@@ -383,6 +390,39 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     return (ReducedHarmonicBalance(structure, static_force, 0, linear),
             ReducedHarmonicBalance(structure, force, H, linear, samples=samples, max_periods=max_periods),
             (reduction, modes))
+
+
+#: DOFs up to which the structure is checked for directions held by friction alone (a dense eigensolution)
+DETERMINED_CHECK = 2000
+
+
+def _check_determined(structure: Structure) -> None:
+    """Refuse a structure with a direction that nothing but friction holds: its mean position is undetermined.
+
+    Such a direction has no stiffness in ``K`` and none from the contacts' normal
+    springs; a friction contact holds it wherever it stops sliding, so the
+    static (mean) term of the response has no unique value and Newton's method
+    wanders along it.
+    """
+    if structure.ndof > DETERMINED_CHECK or isinstance(structure, CyclicStructure):
+        return
+    K = structure.K.toarray() if sp.issparse(structure.K) else np.array(structure.K, dtype=float)
+    Bt, Bn, _ = structure.contact_directions()
+    for c, contact in enumerate(structure.contacts):
+        K = K + contact.model.kn.sum() * np.outer(Bn[:, c], Bn[:, c])
+    K = 0.5 * (K + K.T)
+    lam, vec = np.linalg.eigh(K)
+    scale = max(float(np.max(np.abs(lam))), 1e-300)
+    free = vec[:, lam <= 1e-12 * scale]
+    if free.shape[1] == 0:
+        return
+    v = free[:, 0]
+    dofs = np.flatnonzero(np.abs(v) > 1e-6 * np.abs(v).max())
+    held = "only by the friction of a contact" if np.any(np.abs(Bt.T @ free) > 1e-9) else "by nothing"
+    raise ValueError(f"structure: the motion of DOF(s) {dofs[:8].tolist()} has no stiffness from K or from the "
+                     f"contacts' normal springs, so it is held {held}: its mean position is undetermined (friction "
+                     f"holds it wherever it stops sliding). Ground it with a spring (even one much softer than the "
+                     f"contact) or fix the DOF")
 
 
 def _static_state(hb, *, tolerance: float = 1e-10):
