@@ -106,7 +106,9 @@ def test_harmonic_balance_matches_time_integration(inclined_curve):
     w_peak, _ = r.peak(0, 1)
     rows = compare(r, [12500.0, 14500.0, w_peak, 15900.0, 16400.0])
     for w, hb, ti, diff in rows:
-        assert abs(diff) < 0.01, (w, hb, ti)  # the brief's bar: 1 %
+        # measured up to 1.3e-4 (python examples/inclined_block.py); twice that allows for the explicit
+        # integration's own error (2048 steps per period, steady to 1e-8), which is not zero
+        assert abs(diff) < 2.6e-4, (w, hb, ti)
     # the peak of the curve is the peak of the steady states (not a point picked off the curve)
     assert rows[2][2] > max(rows[1][2], rows[3][2])
 
@@ -116,7 +118,9 @@ def test_truncation_error_falls_as_harmonics_grow(inclined_curve):
     errors = dict(truncation(inclined_curve.structure, w_peak, harmonics=(1, 3, 7, 11)))
     errors = {H: abs(e) for H, e in errors.items()}
     assert errors[1] > errors[7] and errors[3] > errors[11]
-    assert errors[7] < 0.01 and errors[11] < 0.005
+    # measured at the peak (python examples/inclined_block.py): 9.0e-5 (H = 7) and 1.1e-5 (H = 11), about twice
+    # allowed for the time integration's own error
+    assert errors[7] < 2e-4 and errors[11] < 2.5e-5
 
 
 def test_time_integration_kernel_matches_twin():
@@ -267,7 +271,9 @@ def test_linear_structure_without_contacts():
     w = r.omega
     exact = 1.0 / np.abs(1e4 - w**2 + 2j * w)
     np.testing.assert_allclose(r.amplitude(0, 1), exact, rtol=1e-9)
-    assert np.allclose(r.amplitude(0, 2), 0.0)
+    # no second harmonic in a linear response: relative to the first (amplitudes are ~1e-4 m, so an absolute
+    # tolerance of 1e-8 would have passed anything)
+    assert np.max(r.amplitude(0, 2)) < 1e-12 * np.max(r.amplitude(0, 1))
 
 
 def test_descending_sweep_and_progress(capsys):

@@ -92,8 +92,14 @@ def test_mass_matrix_must_be_symmetric_positive_definite(M, message):
 
 def test_positive_definite_masses_are_accepted_dense_and_sparse():
     M = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]])  # consistent-mass-like, eigenvalues > 0
-    Structure(M, None, np.eye(3))
-    Structure(sp.csr_matrix(M), None, sp.identity(3))
+    dense = Structure(M, None, np.eye(3))
+    sparse = Structure(sp.csr_matrix(M), None, sp.identity(3))
+    assert not dense.sparse and sparse.sparse and dense.ndof == sparse.ndof == 3
+    np.testing.assert_array_equal(dense.M, M)
+    np.testing.assert_array_equal(sparse.M.toarray(), M)
+    # an indefinite one with the same (positive) diagonal is refused: the check is more than the diagonal
+    with pytest.raises(ValueError, match="M must be positive definite"):
+        Structure(np.array([[2.0, 3.0, 0.0], [3.0, 2.0, 0.0], [0.0, 0.0, 2.0]]), None, np.eye(3))
 
 
 def test_assembled_contact_data():
