@@ -26,6 +26,7 @@ from .hbm import HarmonicBalance, excitation
 from .cyclic import CyclicStructure
 from .cyclic_balance import check_engine_order, cyclic_equations, phase_operator
 from .reduced import (ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs)
+from .stability import HILL_LIMIT, bifurcations, stable_points
 from .structure import Structure, direction
 
 _CURVE_SAMPLES = 256  # samples per period when reporting the maximum of a time signal
@@ -101,6 +102,14 @@ class FrequencyResponse:
     engine_order : int or None
         For a cyclic structure: the engine order solved; the DOFs are this
         sector's (:meth:`sector_coefficients` gives any other sector).
+    stable : ndarray of bool, shape (points,), or None
+        Stability of each point by Hill's method (:mod:`~microslip.frequency.stability`);
+        None where it was not computed (reduced equations, or more than
+        ``HILL_LIMIT`` unknowns).
+    bifurcations : list of (str, float, float)
+        ``(kind, omega rad/s, amplitude m)`` where stability changes along the
+        curve: ``"fold"`` (the frequency turns back) or ``"neimark-sacker"``;
+        the amplitude is the first harmonic of the first DOF.
     contact_harmonic_work : ndarray, shape (points, nc)
         The contacts' energy per cycle from the force harmonics kept (J): with
         the excitation's and the viscous work it balances exactly at a
@@ -134,6 +143,8 @@ class FrequencyResponse:
     reduction_error: float | None = None
     engine_order: int | None = None
     contact_harmonic_work: np.ndarray | None = field(default=None, repr=False)
+    stable: np.ndarray | None = field(default=None, repr=False)
+    bifurcations: list = field(default_factory=list)
     recovery: object = field(default=None, repr=False)
 
     def __post_init__(self):
@@ -270,7 +281,12 @@ class FrequencyResponse:
         if frequency_unit not in ("rad/s", "Hz"):
             raise ValueError(f"frequency_unit must be 'rad/s' or 'Hz', got {frequency_unit!r}")
         x = self.omega if frequency_unit == "rad/s" else self.omega / (2 * np.pi)
-        ax.plot(x, self.amplitude(dof, harmonic) * factor, label=label, **kwargs)
+        y = self.amplitude(dof, harmonic) * factor
+        line, = ax.plot(x, y if self.stable is None else np.where(self.stable, y, np.nan), label=label, **kwargs)
+        if self.stable is not None and not self.stable.all():  # unstable stretches dashed, same colour
+            unstable = ~self.stable
+            edge = unstable | np.r_[unstable[1:], False] | np.r_[False, unstable[:-1]]
+            ax.plot(x, np.where(edge, y, np.nan), "--", color=line.get_color())
         what = "max |q - q0| over a period" if harmonic is None else f"harmonic {harmonic} amplitude"
         ax.set_xlabel("excitation frequency ω (rad/s)" if frequency_unit == "rad/s" else "excitation frequency f (Hz)")
         ax.set_ylabel(f"{self.labels.get('dof', 'response')}: {what} ({unit})")
@@ -308,6 +324,8 @@ class FrequencyResponse:
             cols[f"{contact.name} N static [N]"] = self.contact_N[:, c, 0]
             cols[f"{contact.name} T h1 [N]"] = np.hypot(self.contact_T[:, c, 1], self.contact_T[:, c, 2])
             cols[f"{contact.name} dissipation [J]"] = self.contact_dissipation[:, c]
+        if self.stable is not None:
+            cols["stable [-]"] = self.stable.astype(int)
         cols["viscous dissipation [J]"] = self.viscous_dissipation
         cols["excitation work [J]"] = self.excitation_work
         return cols
@@ -452,7 +470,8 @@ def _static_state(hb, *, tolerance: float = 1e-10):
 def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5, samples: int | None = None,
                        control: StepControl | None = None, progress: bool = False,
                        max_periods: int = MAX_PERIODS, reduction: str = "auto",
-                       modes: int | None = None, engine_order: int | None = None) -> FrequencyResponse:
+                       modes: int | None = None, engine_order: int | None = None,
+                       stability: bool = True) -> FrequencyResponse:
     """Forced response of a structure with microslip contacts over a frequency range.
 
     Harmonic balance with ``harmonics`` harmonics plus the static term (the
@@ -494,6 +513,10 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     modes : int, optional
         Normal modes of a modal reduction (default 60); implies ``"modal"``
         with ``reduction="auto"``.
+    stability : bool, default True
+        Mark each point stable or unstable (Hill's method) and locate folds and
+        Neimark--Sacker points, when every DOF is an unknown and there are at
+        most ``stability.HILL_LIMIT`` unknowns (else :attr:`FrequencyResponse.stable` is None).
     engine_order : int, optional
         For a :class:`~microslip.frequency.CyclicStructure` (required there):
         the engine order ``EO`` of the travelling-wave excitation; ``force``
@@ -522,6 +545,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     if control is not None and not isinstance(control, StepControl):
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
     progress = _checks.flag("progress", progress)
+    stability = _checks.flag("stability", stability)
     hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
                                                    reduction, modes, engine_order)
     report = Progress(10, enabled=progress)
@@ -536,6 +560,10 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
                                                control=control, callback=tick)
     result = _collect(hb, xs, omegas, iters, static, complete)
+    if stability and not isinstance(hb, ReducedHarmonicBalance) and hb.n <= HILL_LIMIT:
+        stable, leading = stable_points(hb, xs, omegas)
+        result = replace(result, stable=stable,
+                         bifurcations=bifurcations(omegas, result.amplitude(0, 1), leading, stable))
     report.done(f"frequency response: {omegas.size} points")
     if not complete:
         warnings.warn(incomplete_message(result, hi, control or StepControl()), IncompleteCurveWarning,
