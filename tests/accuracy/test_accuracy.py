@@ -133,7 +133,7 @@ def test_csv_and_figures(reference, small_family, tmp_path):
     rep = accuracy(J4, reference, small_family)
     out = rep.to_csv(tmp_path / "acc.csv")
     lines = out.read_text().splitlines()
-    assert lines[0].startswith("#") and "energy_error [%]" in lines[1] and len(lines) == 2 + len(small_family)
+    assert lines[0].startswith("path,") and "energy_error [%]" in lines[0] and len(lines) == 1 + len(small_family)
     fig = rep.plot()
     assert len(fig.axes) >= 4 and "t_a / t_gs" in fig.axes[0].get_xlabel()
     ax = rep.plot_amplitude(label="J = 4")

@@ -19,8 +19,8 @@ def test_reproduce_writes_every_figure_csv_and_a_self_contained_report(tmp_path)
     assert main(["reproduce", "--out", str(out), "--quiet"]) == 0
     for name in ("fig2a", "fig2b", "fig3a", "fig3b", "fig4a", "fig4b"):
         assert (out / f"{name}.png").stat().st_size > 10_000
-        header = (out / f"{name}.csv").read_text().splitlines()
-        assert header[0].startswith("# Fig.")
+        header = (out / f"{name}.csv").read_text().splitlines()[0]
+        assert header.split(",")[0].endswith("[m]")  # a plain CSV: the header row first (SI units in the names)
     html = (out / "report.html").read_text()
     assert html.count("data:image/png;base64,") >= 6
     assert not re.search(r"<img[^>]+src='(?!data:)", html)  # nothing linked from outside

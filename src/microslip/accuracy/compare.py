@@ -447,8 +447,7 @@ class AccuracyReport:
 
     def to_csv(self, path):
         """Write :meth:`columns` as CSV (atomically). Returns the path."""
-        return write_csv(path, self.columns(), header_comment="microslip accuracy: one row per path; "
-                                                              "metrics relative to the reference model")
+        return write_csv(path, self.columns())
 
     def threshold_amplitude(self, limit: float = 0.10) -> float:
         """Smallest amplitude factor at and above which every path has ``|energy_error| <= limit``.

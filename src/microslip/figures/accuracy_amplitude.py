@@ -23,7 +23,7 @@ CAPTION = ("Energy error against tangential amplitude (beyond the paper): worst 
 
 def _models(case):
     pb: TargetProblem = problem(case)
-    out = [("J = 4, force points (paper)", case.model)]
+    out = [("J = 4 with force points (paper)", case.model)]
     s = sweep(case)
     known = stored_points(case)
     for spacing in s.energy_error:
@@ -34,7 +34,7 @@ def _models(case):
             model, _ = pb.tune_fractions(known[J])
         else:
             model = pb.tune_spacing(spacing, J).model
-        out.append((f"J = {J}, {spacing} points{note}", model))
+        out.append((f"J = {J} with {spacing} points{note}", model))  # no comma: also a CSV name
     return out
 
 

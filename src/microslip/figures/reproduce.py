@@ -56,7 +56,7 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
         report.heading(section.CAPTION.split(":")[0])
         report.figure(fig, section.NAME, section.CAPTION, out_dir)
         plt.close(fig)
-        write_csv(out_dir / f"{section.NAME}.csv", section.columns(data), header_comment=section.CAPTION)
+        write_csv(out_dir / f"{section.NAME}.csv", section.columns(data))
         for caption, headers, rows in getattr(section, "tables", lambda _: [])(data):
             report.table(headers, rows, caption=caption)
         errors += section.error_rows(data)

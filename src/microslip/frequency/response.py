@@ -232,9 +232,7 @@ class FrequencyResponse:
 
     def to_csv(self, path, dofs=None):
         """Write :meth:`columns` to ``path`` as CSV (atomically). Returns the path."""
-        return write_csv(path, self.columns(dofs),
-                         header_comment=f"microslip frequency response: H = {self.harmonics}, "
-                                        f"{self.samples} samples per period, {self.points} points")
+        return write_csv(path, self.columns(dofs))
 
 
 def _omega_range(omega) -> tuple[float, float]:
