@@ -33,6 +33,7 @@ import numpy as np
 from ..common import _checks
 from ..common._io import write_csv
 from ..common._progress import Progress
+from ..common.report import plural
 from .paths import Path
 from ..reference.mdr import LoadLimitError
 
@@ -419,12 +420,14 @@ class AccuracyReport:
         lines = [f"{'metric':<44} {'worst %':>9} {'median abs %':>13}  where the worst occurs"]
         for label, w, med, where in self.summary():
             lines.append(f"{label:<44} {100 * w:>9.3f} {100 * med:>13.3f}  {where}")
-        lines.append(f"{len(self)} paths")
+        lines.append(plural(len(self), "path"))
         sd = self.shakedown
         if sd.any():
             own = np.max(np.abs(self.energy[sd]) / self.work_scale[sd])
-            lines.append(f"{int(sd.sum())} of them shake down in the reference (no dissipation after the first "
-                         f"cycle): energy error undefined there; the model's W there is at most "
+            down = int(sd.sum())
+            lines.append(f"{down} of them {'shakes' if down == 1 else 'shake'} down in the reference (no "
+                         f"dissipation after the first cycle): energy error undefined there; the model's W there is "
+                         f"at most "
                          f"{own:.2g} of max|T_ref| * (max t - min t)")
         return "\n".join(lines)
 
