@@ -28,6 +28,10 @@ from ._version import __version__
 #: written in headings, text, captions, headers or cells, stands for the report's energy unit
 ENERGY_UNIT = "{energy unit}"
 
+#: resolution of the report's figures (dpi) and the width (in) the HTML shows them at: 60em of 16 px
+DPI = 150
+REPORT_WIDTH = 960 / DPI
+
 #: (unit, value of one unit in J), largest first: the report uses the largest unit its largest energy reaches
 _ENERGY_UNITS = (("J", 1.0), ("mJ", 1e-3), ("µJ", 1e-6), ("nJ", 1e-9))
 
@@ -96,7 +100,7 @@ class Report:
     def figure(self, fig, name: str, caption: str, out_dir) -> Path:
         """Save ``fig`` as ``out_dir/name.png`` (atomically) and add it to the report."""
         buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=150, bbox_inches="tight")
+        fig.savefig(buf, format="png", dpi=DPI, bbox_inches="tight")
         png = buf.getvalue()
         path = atomic_write(Path(out_dir) / f"{name}.png", png)
         self._blocks.append(("figure", name, caption, png))
@@ -162,7 +166,7 @@ class Report:
         parts = [
             "<!DOCTYPE html><html><head><meta charset='utf-8'>",
             f"<title>{html.escape(self.title)}</title>",
-            "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}"
+            "<style>body{font-family:sans-serif;font-size:16px;max-width:60em;margin:2em auto;line-height:1.4}"
             "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:.25em .6em;"
             "text-align:left;vertical-align:top}th{background:#eee}.num{text-align:right;white-space:nowrap}"
             "img{max-width:100%}figcaption{font-style:italic}code{background:#f4f4f4}</style></head><body>",
