@@ -181,6 +181,13 @@ def test_cli_accuracy(tmp_path, capsys):
     for name in ("accuracy.csv", "summary.txt", "accuracy-maps.png", "accuracy-amplitude.png"):
         assert (out / name).stat().st_size > 0
     assert (out / "summary.txt").read_text().strip().splitlines()[-1] == printed.strip().splitlines()[-1]
+    # the summary states the version, the date and every parameter of the run first
+    from microslip.common._version import __version__
+
+    head = (out / "summary.txt").read_text().split("\n\n")[0].splitlines()
+    assert head[0] == f"microslip version: {__version__}" and head[1].startswith("date: 20")
+    assert {"model: " + str(model), "reference: sphere", "tuning load: 37.5 N", "MDR elements: 200",
+            "samples per cycle: 16", "min load: 7.5 N", "min amplitude: 0.5 t_gs(N_min)", "mu: 0.4"} <= set(head)
 
 
 @pytest.mark.parametrize("args, message", [

@@ -66,6 +66,16 @@ def energy_unit(values) -> tuple[str, float]:
     return _ENERGY_UNITS[-1] if largest > 0 else _ENERGY_UNITS[0]
 
 
+def _now() -> str:
+    return datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+
+
+def run_lines(parameters=None, date: str | None = None) -> list[str]:
+    """The header of a plain-text report: package version, date, then ``name: value`` per parameter."""
+    lines = [f"microslip version: {__version__}", f"date: {date or _now()}"]
+    return lines + [f"{name}: {_cell(value, 1.0)}" for name, value in (parameters or {}).items()]
+
+
 @dataclass
 class Report:
     """A document to be written as ``report.html`` and ``report.md``.
@@ -83,7 +93,7 @@ class Report:
     title: str
     parameters: dict | None = None
     _blocks: list = field(default_factory=list)
-    _date: str = field(default_factory=lambda: datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"))
+    _date: str = field(default_factory=_now)
 
     def heading(self, text: str, level: int = 2) -> None:
         """Add a heading (level 2 = section)."""
