@@ -94,7 +94,7 @@ def test_shakedown_paths_have_no_energy_error(reference):
     rep = accuracy(J4, reference, [p])
     assert rep.shakedown[0] and np.isnan(rep.energy_error[0])
     assert abs(rep.energy_reference[0]) < 1e-12 * rep.work_scale[0]
-    assert "shake down" in rep.summary_text()
+    assert "1 of them shakes down in the reference" in rep.summary_text()
 
 
 def test_summary_names_the_worst_path(reference, small_family):
@@ -133,7 +133,7 @@ def test_csv_and_figures(reference, small_family, tmp_path):
     rep = accuracy(J4, reference, small_family)
     out = rep.to_csv(tmp_path / "acc.csv")
     lines = out.read_text().splitlines()
-    assert lines[0].startswith("#") and "energy_error [%]" in lines[1] and len(lines) == 2 + len(small_family)
+    assert lines[0].startswith("path,") and "energy_error [%]" in lines[0] and len(lines) == 1 + len(small_family)
     fig = rep.plot()
     assert len(fig.axes) >= 4 and "t_a / t_gs" in fig.axes[0].get_xlabel()
     ax = rep.plot_amplitude(label="J = 4")
@@ -189,6 +189,13 @@ def test_cli_accuracy(tmp_path, capsys):
     for name in ("accuracy.csv", "summary.txt", "accuracy-maps.png", "accuracy-amplitude.png"):
         assert (out / name).stat().st_size > 0
     assert (out / "summary.txt").read_text().strip().splitlines()[-1] == printed.strip().splitlines()[-1]
+    # the summary states the version, the date and every parameter of the run first
+    from microslip.common._version import __version__
+
+    head = (out / "summary.txt").read_text().split("\n\n")[0].splitlines()
+    assert head[0] == f"microslip version: {__version__}" and head[1].startswith("date: 20")
+    assert {"model: " + str(model), "reference: sphere", "tuning load: 37.5 N", "MDR elements: 200",
+            "samples per cycle: 16", "min load: 7.5 N", "min amplitude: 0.5 t_gs(N_min)", "mu: 0.4"} <= set(head)
 
 
 @pytest.mark.parametrize("args, message", [
@@ -215,15 +222,16 @@ def test_reproduce_sections(tmp_path):
     for name in ("accuracy", "accuracy_sweep", "accuracy_amplitude"):
         assert (tmp_path / f"{name}.png").exists() and (tmp_path / f"{name}.csv").exists()
     assert "smallest J with both worst errors <= 2 %, optimal points | 11 |" in md  # README, "Accuracy"
-    table = [line for line in md.splitlines() if line.startswith("|")]
-    header_cells = {}
-    for line in table:  # every row of a table has as many cells as its header
-        if line.startswith("|---"):
-            continue
-        cells = line.count("|")
-        header_cells.setdefault(cells, 0)
-        header_cells[cells] += 1
-    assert set(header_cells) <= {3, 5, 6}, header_cells
+    tables, previous = [], False
+    for line in md.splitlines():  # consecutive '|' lines form a table
+        if line.startswith("|"):
+            if not previous:
+                tables.append([])
+            tables[-1].append(line)
+        previous = line.startswith("|")
+    assert len(tables) == 6  # run parameters, two accuracy summaries, the sweep, the amplitudes, the errors
+    for t in tables:  # every row of a table has as many cells as its header (no '|' inside a cell)
+        assert {line.count("|") for line in t} == {t[0].count("|")}, t[0]
 
 
 def test_an_open_path_is_measured_by_the_energy_dissipated_not_the_work():

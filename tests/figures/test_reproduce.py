@@ -6,7 +6,9 @@ import numpy as np
 import pytest
 
 from microslip.cli import main
-from microslip.figures import PaperCase, fig2a, fig2b, fig3a, fig3b, fig4a
+from microslip.common._version import __version__
+from microslip.common.report import energy_unit
+from microslip.figures import SECTIONS, PaperCase, fig2a, fig2b, fig3a, fig3b, fig4a
 
 
 @pytest.fixture(scope="module")
@@ -14,19 +16,51 @@ def case():
     return PaperCase()
 
 
-def test_reproduce_writes_every_figure_csv_and_a_self_contained_report(tmp_path):
-    out = tmp_path / "results"
+@pytest.fixture(scope="module")
+def reproduced(tmp_path_factory):
+    out = tmp_path_factory.mktemp("reproduce") / "results"
     assert main(["reproduce", "--out", str(out), "--quiet"]) == 0
+    return out
+
+
+def test_reproduce_writes_every_figure_csv_and_a_self_contained_report(reproduced):
+    out = reproduced
     for name in ("fig2a", "fig2b", "fig3a", "fig3b", "fig4a", "fig4b"):
         assert (out / f"{name}.png").stat().st_size > 10_000
-        header = (out / f"{name}.csv").read_text().splitlines()
-        assert header[0].startswith("# Fig.")
+        header = (out / f"{name}.csv").read_text().splitlines()[0]
+        assert header.split(",")[0].endswith("[m]")  # a plain CSV: the header row first (SI units in the names)
     html = (out / "report.html").read_text()
     assert html.count("data:image/png;base64,") >= 6
     assert not re.search(r"<img[^>]+src='(?!data:)", html)  # nothing linked from outside
     md = (out / "report.md").read_text()
     assert "Differences between discrete and continuous" in md
     assert not list(out.glob(".*.tmp"))  # no temporary file left behind
+
+
+def test_report_states_version_date_and_every_parameter(reproduced, case):
+    md = (reproduced / "report.md").read_text(encoding="utf-8")
+    run = md[:md.index("## ")]  # the table under the title, before the first section
+    assert f"| microslip version | {__version__} |" in run
+    assert re.search(r"\| date \| \d{4}-\d\d-\d\d \d\d:\d\d", run)
+    for section in SECTIONS:
+        for name, value in getattr(section, "parameters", lambda _: {})(case).items():
+            assert f"| {name} | {value} |" in run
+    assert f"| tuning load N_tot | {case.normal_load:g} N |" in run and f"| elements J | {case.elements} |" in run
+
+
+def test_report_reads_as_an_engineering_document(reproduced):
+    md = (reproduced / "report.md").read_text(encoding="utf-8")
+    html = (reproduced / "report.html").read_text(encoding="utf-8")
+    assert not re.search(r"\bissues?\b", md, re.IGNORECASE)
+    assert not re.search(r"\b1 (element|path|point|record|load|cycle)s\b", md)
+    assert "(1 element in contact)" in md  # Fig. 3b at 7.5 N: one element touches
+    # one unit for every energy: the report's energies run from 0.1 to 18 µJ, so µJ
+    units = set(re.findall(r"energy per cycle[^|]*?\((\w?J)\)", md))
+    assert units == {energy_unit([1.8e-5, 1.1e-7])[0]} == {"µJ"}
+    # numbers right-aligned and kept on one line, text left-aligned
+    error_table = md[md.index("| quantity | discrete |"):].splitlines()
+    assert error_table[1] == "|:---|---:|---:|---:|:---|"
+    assert "<td class='num'>" in html and "white-space:nowrap" in html
 
 
 def test_slip_load_error_is_positive_and_below_the_papers_8_percent(case):

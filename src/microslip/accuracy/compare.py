@@ -33,6 +33,7 @@ import numpy as np
 from ..common import _checks
 from ..common._io import write_csv
 from ..common._progress import Progress
+from ..common.report import plural
 from .paths import Path
 from ..reference.mdr import LoadLimitError
 
@@ -439,12 +440,14 @@ class AccuracyReport:
         lines = [f"{'metric':<44} {'worst %':>9} {'median abs %':>13}  where the worst occurs"]
         for label, w, med, where in self.summary():
             lines.append(f"{label:<44} {100 * w:>9.3f} {100 * med:>13.3f}  {where}")
-        lines.append(f"{len(self)} paths")
+        lines.append(plural(len(self), "path"))
         sd = self.shakedown
         if sd.any():
             own = np.max(np.abs(self.energy[sd]) / self.work_scale[sd])
-            lines.append(f"{int(sd.sum())} of them shake down in the reference (no dissipation after the first "
-                         f"cycle): energy error undefined there; the model's W there is at most "
+            down = int(sd.sum())
+            lines.append(f"{down} of them {'shakes' if down == 1 else 'shake'} down in the reference (no "
+                         f"dissipation after the first cycle): energy error undefined there; the model's W there is "
+                         f"at most "
                          f"{own:.2g} of max|T_ref| * (max t - min t)")
         return "\n".join(lines)
 
@@ -468,8 +471,7 @@ class AccuracyReport:
     def to_csv(self, path):
         """Write :meth:`columns` as CSV (atomically). Returns the path."""
         path = _checks.file_path("path", path)
-        return write_csv(path, self.columns(), header_comment="microslip accuracy: one row per path; "
-                                                              "metrics relative to the reference model")
+        return write_csv(path, self.columns())
 
     def threshold_amplitude(self, limit: float = 0.10) -> float:
         """Smallest amplitude factor at and above which every path has ``|energy_error| <= limit``.
@@ -491,49 +493,92 @@ class AccuracyReport:
         return answer
 
     # -- figures ------------------------------------------------------------
-    def plot(self, metrics=("energy_error", "force_difference")):
-        """Error maps: for each metric (row) and phase (column), the worst ``|metric|`` (%) over the load
-        levels, against the amplitude factor (x) and ``N_a/N_m`` (y). Needs the default family's parameters.
+    def error_maps(self, metrics=("energy_error", "force_difference")):
+        """The data of :meth:`plot`: worst ``|metric|`` (%) over the load levels per amplitude and ``N_a/N_m``.
+
+        Phases whose maps are equal for every metric (to round-off: relative 1e-9) share one panel: for a
+        tangential motion symmetric in sign, phi = 0° and 180° give mirror-image cycles (t -> -t half a
+        cycle later) and the same errors.
 
         Returns
         -------
-        matplotlib.figure.Figure
+        amplitudes : ndarray, shape (A,)
+            Amplitude factors (multiples of the gross-slip displacement at the path's lowest load).
+        ratios : ndarray, shape (R,)
+            Load ratios ``N_a / N_m``.
+        panels : list of (tuple of float, dict)
+            Per group of phases (degrees): ``{metric: grid}``, each grid of shape (R, A) in %, NaN where no
+            path has a value (the reference shakes down).
         """
-        import matplotlib.pyplot as plt
-
         amp, ratio, phase = self.param("amplitude"), self.param("ratio"), self.param("phase_deg")
         if np.any(np.isnan(amp)) or np.any(np.isnan(ratio)):
             raise ValueError("plot() needs paths from default_family (with amplitude and ratio parameters); "
                              "use plot_amplitude() or the table for other paths")
         amps, ratios = np.unique(amp), np.unique(ratio)
         phases = np.unique(phase[ratio > 0]) if np.any(ratio > 0) else np.array([0.0])
-        fig, axes = plt.subplots(len(metrics), len(phases), figsize=(3.6 * len(phases) + 1, 2.9 * len(metrics)),
-                                 squeeze=False, constrained_layout=True)
-        for i, name in enumerate(metrics):
-            v = np.abs(self.metric(name)) * 100
-            for j, ph in enumerate(phases):
+        values = {name: np.abs(self.metric(name)) * 100 for name in metrics}
+        panels = []
+        for ph in phases:
+            grids = {}
+            for name, v in values.items():
                 grid = np.full((ratios.size, amps.size), np.nan)
                 for a_i, a in enumerate(amps):
                     for r_i, r in enumerate(ratios):
-                        sel = (amp == a) & (ratio == r) & ((phase == ph) | (r == 0))
-                        if np.any(sel & ~np.isnan(v)):
-                            grid[r_i, a_i] = np.nanmax(v[sel])
-                ax = axes[i, j]
-                im = ax.imshow(grid, origin="lower", aspect="auto", cmap="magma_r",
-                               norm=_log_norm(grid))
+                        sel = (amp == a) & (ratio == r) & ((phase == ph) | (r == 0)) & ~np.isnan(v)
+                        if np.any(sel):
+                            grid[r_i, a_i] = np.max(v[sel])
+                grids[name] = grid
+            same = next((p for p in panels if all(np.allclose(p[1][n], grids[n], rtol=1e-9, atol=1e-12,
+                                                              equal_nan=True) for n in metrics)), None)
+            if same is None:
+                panels.append(((float(ph),), grids))
+            else:
+                panels[panels.index(same)] = (same[0] + (float(ph),), same[1])
+        return amps, ratios, panels
+
+    def plot(self, metrics=("energy_error", "force_difference")):
+        """Error maps: for each metric and group of phases (one panel each, stacked), the worst ``|metric|`` (%)
+        over the load levels against the amplitude factor (x) and ``N_a/N_m`` (y); phases with equal maps
+        share a panel (:meth:`error_maps`). Sized to be read at the width of a report page; the panels of
+        one metric share a colour scale. Needs the default family.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        import matplotlib.pyplot as plt
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+        amps, ratios, panels = self.error_maps(metrics)
+        rows = [(name, phases, grids[name]) for name in metrics for phases, grids in panels]
+        fig, axes = plt.subplots(len(rows), 1, figsize=(MAP_WIDTH, 0.5 + MAP_PANEL_HEIGHT * len(rows)),
+                                 squeeze=False, constrained_layout=True)
+        for name in metrics:
+            mine = [k for k, row in enumerate(rows) if row[0] == name]
+            norm = _log_norm(np.concatenate([rows[k][2].ravel() for k in mine]))
+            for k in mine:
+                _, phases, grid = rows[k]
+                ax = axes[k, 0]
+                im = ax.imshow(grid, origin="lower", aspect="auto", cmap="magma_r", norm=norm)
                 for (r_i, a_i), val in np.ndenumerate(grid):
                     if np.isfinite(val):
-                        ax.text(a_i, r_i, f"{val:.0f}" if val >= 9.5 else f"{val:.2g}", ha="center", va="center",
-                                fontsize=6.5,
-                                color="white" if val > np.nanpercentile(grid, 60) else "black")
-                ax.set_xticks(range(amps.size), [f"{a:g}" for a in amps], fontsize=7)
-                ax.set_yticks(range(ratios.size), [f"{r:g}" for r in ratios], fontsize=7)
-                ax.set_xlabel("t_a / t_gs(N_min) (-)")
-                ax.set_ylabel("N_a / N_m (-)")
-                ax.set_title(f"worst |{name}| (%), φ = {ph:g}°", fontsize=9)
-                fig.colorbar(im, ax=ax, shrink=0.85)
+                        ax.text(a_i, r_i, _cell_text(val), ha="center", va="center", fontsize=MAP_FONT,
+                                color=_text_colour(im.cmap(im.norm(val))))
+                ax.set_xticks(range(amps.size), [f"{a:g}" for a in amps], fontsize=MAP_FONT)
+                ax.set_yticks(range(ratios.size), [f"{r:g}" for r in ratios], fontsize=MAP_FONT)
+                ax.set_xlabel("tangential amplitude / gross-slip displacement at the lowest load, t_a / t_gs(N_min)",
+                              fontsize=MAP_FONT)
+                ax.set_ylabel("load amplitude\nratio N_a / N_m", fontsize=MAP_FONT)
+                ax.set_title(f"{MAP_TITLES.get(name, name)} (%), φ = {_phases_text(phases)}", fontsize=MAP_FONT + 1)
+            bar = fig.colorbar(im, ax=[axes[k, 0] for k in mine], shrink=0.9, aspect=25, pad=0.02)
+            bar.set_label(f"{MAP_TITLES.get(name, name)} (%)", fontsize=MAP_FONT)
+            if norm is not None:  # 1, 2, 5 x 10^k written plainly, not as 2 x 10^1
+                bar.ax.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            bar.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            bar.ax.yaxis.set_minor_formatter(NullFormatter())
+            bar.ax.tick_params(labelsize=MAP_FONT)
         fig.suptitle("worst over the load levels; blank: the reference shakes down (no energy error defined)",
-                     fontsize=9)
+                     fontsize=MAP_FONT + 1)
         return fig
 
     def plot_amplitude(self, ax=None, *, label: str | None = None, **kwargs):
@@ -559,6 +604,36 @@ class AccuracyReport:
         if label:
             ax.legend(fontsize=8)
         return ax
+
+
+#: width of the error maps (in): the width of a report page (:data:`microslip.common.report.REPORT_WIDTH`)
+MAP_WIDTH = 6.4
+#: height of one panel of the error maps (in)
+MAP_PANEL_HEIGHT = 2.1
+#: font size of the maps' numbers and labels (pt), as printed at the report's width
+MAP_FONT = 8.0
+#: panel titles of the metrics, in words
+MAP_TITLES = {"energy_error": "worst energy error", "force_difference": "worst force difference",
+              "peak_error": "worst peak-force error", "normal_difference": "worst mean normal-force difference"}
+
+
+def _cell_text(val: float) -> str:
+    """A percentage in at most three significant characters: 364, 48, 7.2, 0.5."""
+    return f"{val:.0f}" if val >= 9.5 else f"{val:.1f}" if val >= 0.95 else f"{val:.1g}"
+
+
+def _text_colour(rgba) -> str:
+    """Black or white, whichever contrasts more with the cell's colour (WCAG contrast ratio; on magma at
+    least 4.6, above the 4.5 asked of body text)."""
+    r, g, b = (c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in rgba[:3])
+    luminance = 0.2126 * r + 0.7152 * g + 0.0722 * b
+    return "black" if (luminance + 0.05) / 0.05 >= 1.05 / (luminance + 0.05) else "white"
+
+
+def _phases_text(phases) -> str:
+    """``0°``, ``0° and 180°``, ``0°, 90° and 180°``."""
+    names = [f"{p:g}°" for p in phases]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _log_norm(grid):

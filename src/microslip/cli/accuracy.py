@@ -81,7 +81,18 @@ def run(args) -> int:
     report = accuracy(model, exact, family, progress=not args.quiet)
     bar.step("writing")
     report.to_csv(out / "accuracy.csv")
-    text = [f"model {args.model} (J = {model.elements}) against the exact contact (MDR, "
+    from ..common.report import run_lines
+
+    punch = args.reference == "punch"
+    text = run_lines({"model": args.model, "reference": args.reference, "sphere radius": f"{args.radius * 1e3:g} mm",
+                      "E": f"{args.E / 1e9:g} GPa", "nu": f"{args.nu:g}", "mu": f"{args.mu:g}",
+                      **({"flat radius": f"{args.flat_radius * 1e3:g} mm",
+                          "edge radius": f"{args.edge_radius * 1e3:g} mm"} if punch else {}),
+                      "tuning load": f"{args.load:g} N", "MDR elements": f"{args.mdr_elements}",
+                      "samples per cycle": f"{args.steps_per_cycle}",
+                      "min load": "none" if args.min_load is None else f"{args.min_load:g} N",
+                      "min amplitude": f"{args.min_amplitude:g} t_gs(N_min)"}) + [""]
+    text += [f"model {args.model} (J = {model.elements}) against the exact contact (MDR, "
             f"{args.mdr_elements} elements), tuning load {args.load:g} N", "", "all paths:", report.summary_text()]
     if args.min_load is not None:
         mask = restriction_mask(report.paths, args.min_load, args.min_amplitude)

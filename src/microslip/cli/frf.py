@@ -86,7 +86,11 @@ def run(args) -> int:
         return 1
     csv = result.to_csv(out / "frf.csv", dofs=range(cfg.structure.ndof) if cfg.structure.ndof <= 20
                         else cfg.plot_dofs, names=cfg.dof_names)
-    report = Report(f"microslip frf: {cfg.title}")
+    report = Report(f"microslip frf: {cfg.title}", parameters={
+        "configuration": str(args.config), "DOFs": cfg.structure.ndof, "contacts": len(cfg.structure.contacts),
+        "harmonics H": cfg.harmonics, "AFT samples per period": result.samples,
+        "frequency range (rad/s)": f"{cfg.omega[0]:.6g} to {cfg.omega[1]:.6g}", "reduction": result.reduction,
+        "modes": result.modes if result.modes else "-", "output": str(out)})
     lo, hi = _frequency(cfg, np.array(cfg.omega))[0]
     reduced = (f"the linear structure condensed onto the {result.dofs.size} DOFs the contacts and the excitation "
                f"use ({result.reduction}" + (f", {result.modes} modes, estimated error "

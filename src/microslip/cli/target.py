@@ -156,16 +156,16 @@ def _sweep(args, problem) -> int:
     sweep = element_sweep(problem, args.sweep, fractions=stored if args.reuse_points else None,
                           starts=stored if args.start_from_stored else None, progress=not args.quiet, **_search(args))
     out = Path(args.out)
-    write_csv(out / "sweep.csv", sweep.columns(),
-              header_comment=f"worst errors over the family within {problem.load_range} N, amplitude >= "
-                             f"{problem.min_amplitude:g} t_gs(N_min), {len(problem.family)} paths"
-                             f"{' (dense sampling)' if problem.dense else ''}, against the exact contact (MDR)")
+    write_csv(out / "sweep.csv", sweep.columns())
     fig = sweep.plot()
     save_figure(fig, out / "sweep.png", dpi=130, bbox_inches="tight")
     plt.close(fig)
     if args.save_points:
         atomic_write(args.save_points, json.dumps(points_record(problem, sweep), indent=1) + "\n")
-    lines = ["J    energy / force (%):  " + " | ".join(sweep.energy_error)]
+    lines = [f"worst errors over the family within {problem.load_range} N, amplitude >= "
+             f"{problem.min_amplitude:g} t_gs(N_min), {len(problem.family)} paths"
+             f"{' (dense sampling)' if problem.dense else ''}, against the exact contact (MDR); data: sweep.csv",
+             "J    energy / force (%):  " + " | ".join(sweep.energy_error)]
     lines += [f"{row[0]:<4} " + " | ".join(row[1:]) for row in sweep.rows()]
     for s in sweep.energy_error:
         lines.append(f"smallest J meeting the target with {s} points: {sweep.smallest(s)}")

@@ -41,20 +41,44 @@ def save_figure(fig, path, **kwargs) -> Path:
     return atomic_write(path, buf.getvalue())
 
 
-def write_csv(path, columns: dict, *, header_comment: str | None = None) -> Path:
-    """Write equal-length columns (name -> 1-D sequence) as CSV, atomically.
+#: characters a CSV name or text cell must not hold: the separator, the quote, the comment mark of
+#: ``numpy.genfromtxt`` and line breaks (naive parsers split on them; quoting helps only some parsers)
+_CSV_FORBIDDEN = (",", '"', "#", "\n", "\r")
 
-    Columns shorter than the longest are padded with empty cells.
+
+def write_csv(path, columns: dict) -> Path:
+    """Write equal-length columns (name -> 1-D sequence) as a plain CSV, atomically.
+
+    The file holds one header row of names and then the data, nothing else
+    (no comment lines), so ``csv.reader``, ``numpy.genfromtxt(names=True,
+    delimiter=',')`` and ``pandas.read_csv`` read it without options. Floats
+    are written with ``repr`` (they read back exactly). Columns shorter
+    than the longest are padded with empty cells.
+
+    Raises
+    ------
+    ValueError
+        A name or a text cell holds a comma, a double quote, ``#`` or a line
+        break (the column is named).
     """
+    import csv
+    import io
+
     import numpy as np
 
     names = list(columns)
     arrays = [np.asarray(columns[k]).ravel() for k in names]
+    for name, a in zip(names, arrays):
+        cells = [str(name)] + ([str(v) for v in a] if a.dtype.kind in "USO" else [])
+        bad = next((c for c in cells if any(ch in c for ch in _CSV_FORBIDDEN)), None)
+        if bad is not None:
+            where = "the column name" if bad == str(name) else f"a cell {bad!r} of column"
+            raise ValueError(f"write_csv: {where} {str(name)!r} holds one of , \" # or a line break; "
+                             "CSV names and text cells must be free of them")
     rows = max((a.size for a in arrays), default=0)
-    lines = []
-    if header_comment:
-        lines += [f"# {line}" for line in header_comment.splitlines()]
-    lines.append(",".join(names))
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(names)
     for r in range(rows):
         cells = []
         for a in arrays:
@@ -63,5 +87,5 @@ def write_csv(path, columns: dict, *, header_comment: str | None = None) -> Path
                 cells.append(repr(float(v)) if isinstance(v, (float, np.floating)) else str(v))
             else:
                 cells.append("")
-        lines.append(",".join(cells))
-    return atomic_write(path, "\n".join(lines) + "\n")
+        writer.writerow(cells)
+    return atomic_write(path, buf.getvalue())

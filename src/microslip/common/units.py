@@ -102,6 +102,8 @@ def display_unit(values, kind: str) -> tuple[str, float]:
     if kind not in _DISPLAY:
         raise ValueError(f"kind must be one of {sorted(_DISPLAY)}, got {kind!r}")
     big = float(np.max(np.abs(np.asarray(values, dtype=float)), initial=0.0))
+    if big == 0.0:  # nothing to scale: the SI unit
+        return next(u for u in _DISPLAY[kind] if _UNITS[kind][u] == 1.0), 1.0
     choice = _DISPLAY[kind][0]
     for unit in _DISPLAY[kind]:
         if big >= _UNITS[kind][unit]:

@@ -14,9 +14,15 @@ Every module in :data:`SECTIONS` follows one contract:
     the plotted data, written as CSV;
 ``error_rows(data) -> list``
     rows ``(quantity, discrete, continuous, error %, bound)`` of the
-    report's error table (may be empty).
+    report's error table (may be empty); energies as
+    :class:`~microslip.common.report.Energy` (J), their unit written
+    :data:`~microslip.common.report.ENERGY_UNIT` in the quantity.
 
 Optional:
+
+``parameters(case) -> dict``
+    the section's own run parameters (name -> value with its unit), shown
+    under the report's title with the case's;
 
 ``tables(data) -> list``
     further tables ``(caption, headers, rows)`` of the section, written in

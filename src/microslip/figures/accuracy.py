@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..accuracy import paths
 from ..accuracy.compare import accuracy
-from .accuracy_common import LOW_LOAD, family_run
+from ..common.report import ENERGY_UNIT, Energy, plural
+from .accuracy_common import LOW_LOAD, MDR_ELEMENTS, MIN_AMPLITUDE, family_run
 
 NAME = "accuracy"
 CAPTION = ("Accuracy under variable normal load (beyond the paper): the paper's J = 4 model against the exact "
@@ -21,9 +23,20 @@ CAPTION = ("Accuracy under variable normal load (beyond the paper): the paper's 
 SUMMARY_HEADERS = ["metric", "worst (%)", "median of abs (%)", "where the worst occurs"]
 
 
+def parameters(case) -> dict:
+    join = lambda values: ", ".join(f"{v:g}" for v in values)  # noqa: E731
+    return {"exact reference": f"method of dimensionality reduction, {MDR_ELEMENTS} elements",
+            "family: load ratios N_a/N_m": join(paths.RATIOS),
+            "family: phases phi": join(paths.PHASES_DEG) + " deg",
+            "family: peak loads N_m + N_a": join(paths.LEVELS) + " x N_tot",
+            "family: tangential amplitudes t_a": join(paths.AMPLITUDES) + " x t_gs(N_min)",
+            "family: cycles per path, samples per cycle": "2 (the last measured), 360",
+            "restricted family": f"N >= {LOW_LOAD:g} N_tot, t_a >= {MIN_AMPLITUDE:g} t_gs(N_min)"}
+
+
 def compute(case) -> dict:
     report = accuracy(case.model, family_run(case))
-    return {"report": report, "restricted": report.restrict(LOW_LOAD * case.normal_load, 0.5),
+    return {"report": report, "restricted": report.restrict(LOW_LOAD * case.normal_load, MIN_AMPLITUDE),
             "normal_load": case.normal_load}
 
 
@@ -42,17 +55,20 @@ def _rows(report):
 def tables(data) -> list:
     r, s = data["report"], data["restricted"]
     low = LOW_LOAD * data["normal_load"]
-    return [(f"J = 4, all {len(r)} paths ({int(r.shakedown.sum())} shake down in the reference: no energy error)",
-             SUMMARY_HEADERS, _rows(r)),
-            (f"J = 4, the {len(s)} paths with N >= {low:g} N and t_a >= 0.5 t_gs(N_min)", SUMMARY_HEADERS, _rows(s))]
+    down = int(r.shakedown.sum())
+    return [(f"J = 4, all {plural(len(r), 'path')} ({down} {'shakes' if down == 1 else 'shake'} down in the "
+             "reference: no energy error)", SUMMARY_HEADERS, _rows(r)),
+            (f"J = 4, the {plural(len(s), 'path')} with N >= {low:g} N and t_a >= {MIN_AMPLITUDE:g} t_gs(N_min)",
+             SUMMARY_HEADERS, _rows(s))]
 
 
 def error_rows(data) -> list:
     s = data["restricted"]
     rows = []
     w, k = s.worst("energy_error")
-    rows.append((f"J = 4, variable N (N >= {LOW_LOAD:g} N_tot, t_a >= 0.5 t_gs): worst energy per cycle (J)",
-                 s.energy[k], s.energy_reference[k], 100 * w, "no closed form: exact reference by MDR"))
+    rows.append((f"J = 4, variable N (N >= {LOW_LOAD:g} N_tot, t_a >= {MIN_AMPLITUDE:g} t_gs): worst energy per "
+                 f"cycle ({ENERGY_UNIT})", Energy(s.energy[k]), Energy(s.energy_reference[k]), 100 * w,
+                 "no closed form: exact reference by MDR"))
     w, k = s.worst("force_difference")
     rows.append(("J = 4, same paths: worst force difference (N)", s.peak_reference[k] * w, None, 100 * w,
                  "% of the reference's peak force"))

@@ -9,8 +9,12 @@ from ..accuracy.paths import default_family
 from ..reference.mdr import mdr
 from ..tuning.target import TargetProblem, element_sweep, stored_fractions
 
-#: lowest load of the target family, as a fraction of the tuning load (the issue's N >= 0.2 N_tot)
+#: lowest load of the target family, as a fraction of the tuning load (N >= 0.2 N_tot)
 LOW_LOAD = 0.2
+#: smallest tangential amplitude of the target family, a multiple of the gross-slip displacement at N_min
+MIN_AMPLITUDE = 0.5
+#: elements of the exact reference (MDR): its metrics are then within 1e-4 of the converged ones
+MDR_ELEMENTS = 2000
 #: J of the sweep (the stored optimised points cover these)
 SWEEP = tuple(range(2, 17)) + (20, 24, 28, 32)
 
@@ -19,7 +23,7 @@ SWEEP = tuple(range(2, 17)) + (20, 24, 28, 32)
 def family_run(case):
     """The default family at the case's tuning load and the exact reference (MDR, 2000 elements) run on it."""
     family = default_family(case.sphere, case.normal_load)
-    return reference_run(mdr(case.sphere, max_load=case.normal_load, elements=2000), family)
+    return reference_run(mdr(case.sphere, max_load=case.normal_load, elements=MDR_ELEMENTS), family)
 
 
 @lru_cache(maxsize=2)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..common.report import ENERGY_UNIT, Energy, plural
 from ._loops import array_loop, loop_energy
 
 NAME = "fig3b"
@@ -55,13 +56,19 @@ def columns(data) -> dict:
     return cols
 
 
+def parameters(case) -> dict:
+    return {"Fig. 3b loads": ", ".join(f"{N:g}" for N in case.lower_loads) + " N",
+            "Fig. 3b amplitude": f"the gross-slip displacement at {case.normal_load:g} N"}
+
+
 def error_rows(data) -> list:
     rows = []
     for lp in data["loops"]:
         sd, sc = lp["slip_discrete"], lp["slip_continuous"]
-        rows.append((f"Fig. 3b: slip load at N = {lp['N']:g} N ({lp['active']} elements in contact) (N)",
+        rows.append((f"Fig. 3b: slip load at N = {lp['N']:g} N ({plural(lp['active'], 'element')} in contact) (N)",
                      sd, sc, 100 * (sd - sc) / sc, "paper: below 8 %"))
     for lp in data["loops"]:
         ed, ec = lp["energy_discrete"], lp["energy_continuous"]
-        rows.append((f"Fig. 3b: energy per cycle at N = {lp['N']:g} N (J)", ed, ec, 100 * (ed - ec) / ec, ""))
+        rows.append((f"Fig. 3b: energy per cycle at N = {lp['N']:g} N ({ENERGY_UNIT})", Energy(ed), Energy(ec),
+                     100 * (ed - ec) / ec, ""))
     return rows

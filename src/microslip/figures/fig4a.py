@@ -20,6 +20,11 @@ CAPTION = ("Fig. 4a: normal load raised from N = 25 N to N + dN = 37.5 N at A wh
            "and discrete (tuned array)")
 
 
+def parameters(case) -> dict:
+    return {"Fig. 4 load before the step N": f"{case.raised_from:g} N", "Fig. 4 load step dN": f"{case.raised_by:g} N",
+            "Fig. 4 load raised at T": f"{case.raised_at:g} mu N"}
+
+
 @lru_cache(maxsize=2)  # Fig. 4b plots the same computation
 def compute(case) -> dict:
     sphere, model = case.sphere, case.model

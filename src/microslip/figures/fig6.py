@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..common.report import ENERGY_UNIT, Energy
+
 NAME = "fig6"
 CAPTION = ("Fig. 6: cylinder l = d = 10 mm on a plane tuned at 36.6 N with 6 elements on the SYNTHETIC loops "
            "shipped in microslip/data: (a) per-element loops at 36.6 N, (b) predicted at 16.4 N, (c) normal "
@@ -94,6 +96,15 @@ TABLE_HEADERS = ["N (N)", "role", "quantity", "measured", "model", "difference (
                  "reason for the bound"]
 
 
+def parameters(case=None) -> dict:
+    """The cylinder's run (``case``, the sphere benchmark, is not used)."""
+    g = GEOMETRY
+    return {"Fig. 6 data set": "the SYNTHETIC cylinder loops shipped in microslip/data (5 loads)",
+            "Fig. 6 cylinder": f"length {g['length'] * 1e3:g} mm, radius {g['radius'] * 1e3:g} mm, "
+                               f"E = {g['E'] / 1e9:g} GPa, nu = {g['nu']:g}",
+            "Fig. 6 elements": f"{ELEMENTS}, tuned at the highest load; mu fitted from the slip forces"}
+
+
 def error_rows(data) -> list:
     """Empty: the cylinder is compared with its measured loops in its own table (:func:`tables`)."""
     return []
@@ -108,12 +119,12 @@ def tables(data) -> list:
         m, p = v.measured.summary(), v.predicted.summary()
         role = ("tuning load (fitted, not a prediction)" if abs(v.normal_load - tuned) <= 1e-9 * tuned
                 else f"predicted (tuned at {tuned:.4g} N)")
-        for key, label, scale, error in (("energy", "energy per cycle (µJ)", 1e6, v.energy_error),
-                                         ("slip_force", "slip force (N)", 1.0, v.slip_force_error),
-                                         ("stick_stiffness", "stick stiffness (N/µm)", 1e-6, v.stiffness_error)):
+        for key, label, cell, error in (("energy", f"energy per cycle ({ENERGY_UNIT})", Energy, v.energy_error),
+                                        ("slip_force", "slip force (N)", float, v.slip_force_error),
+                                        ("stick_stiffness", "stick stiffness (N/µm)", lambda k: k * 1e-6,
+                                         v.stiffness_error)):
             bound, why = BOUNDS["stiffness" if key == "stick_stiffness" else key]
-            rows.append([f"{v.normal_load:.4g}", role, label, m[key] * scale, p[key] * scale, 100 * error,
-                         bound, why])
+            rows.append([f"{v.normal_load:.4g}", role, label, cell(m[key]), cell(p[key]), 100 * error, bound, why])
     caption = (f"Fig. 6, cylinder on the SYNTHETIC data set: measured loops against the {result.model.elements}-"
                f"element model tuned at {tuned:.4g} N; the tuning-load rows check the fit, the others are "
                f"predictions")

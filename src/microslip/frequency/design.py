@@ -62,7 +62,7 @@ class DesignCurve:
     def to_csv(self, path):
         """Write :meth:`columns` to ``path`` as CSV (atomically). Returns the path."""
         path = _checks.file_path("path", path)
-        return write_csv(path, self.columns(), header_comment=f"damper design curve: response of DOF {self.dof}")
+        return write_csv(path, self.columns())
 
     def plot(self, ax=None, *, unit: str = "µm"):
         """Plot the peak response against the centrifugal load, the optimum marked; returns the Axes."""

@@ -333,9 +333,7 @@ class FrequencyResponse:
     def to_csv(self, path, dofs=None, names=None):
         """Write :meth:`columns` to ``path`` as CSV (atomically). Returns the path."""
         path = _checks.file_path("path", path)
-        return write_csv(path, self.columns(dofs, names),
-                         header_comment=f"microslip frequency response: H = {self.harmonics}, "
-                                        f"{self.samples} samples per period, {self.points} points")
+        return write_csv(path, self.columns(dofs, names))
 
 
 def _omega_range(omega) -> tuple[float, float]:
