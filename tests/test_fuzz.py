@@ -448,6 +448,8 @@ CASES = [
          W=L(lambda: np.ones(batch().t.size))),
     case("PathBatch.split", lambda: batch().split, kinds=ARRAY, values=L(lambda: np.ones(batch().t.size))),
     case("AccuracyReport.metric", lambda: report().metric, name="energy_error"),
+    case("AccuracyReport.error_maps", lambda: report().error_maps, kinds={"metrics": "object"},
+         metrics=("energy_error", "force_difference")),
     case("AccuracyReport.param", lambda: report().param, name="amplitude"),
     case("AccuracyReport.where", lambda: report().where, kinds={"mask": "array"}, mask=[True, False, True, False]),
     case("AccuracyReport.restrict", lambda: report().restrict, min_load=1.0, min_amplitude=0.0),

@@ -510,6 +510,10 @@ class AccuracyReport:
             Per group of phases (degrees): ``{metric: grid}``, each grid of shape (R, A) in %, NaN where no
             path has a value (the reference shakes down).
         """
+        if isinstance(metrics, str) or not hasattr(metrics, "__iter__") or not metrics or \
+                not all(isinstance(m, str) and m in METRICS for m in metrics):
+            raise ValueError(f"metrics must be a non-empty sequence of names among {', '.join(METRICS)}, "
+                             f"got {metrics!r}")
         amp, ratio, phase = self.param("amplitude"), self.param("ratio"), self.param("phase_deg")
         if np.any(np.isnan(amp)) or np.any(np.isnan(ratio)):
             raise ValueError("plot() needs paths from default_family (with amplitude and ratio parameters); "
