@@ -124,7 +124,7 @@ class TargetProblem:
         Sample the amplitudes (40, geometric from ``min_amplitude`` to 3) and
         the peak-load levels (10, from 0.1 to 1) densely instead of the
         default family's 9 amplitudes and 5 levels (:func:`dense_options`;
-        ``family_options`` still override). The issue's target is stated on
+        ``family_options`` still override). The 2 % targets are met on
         the default family's samples; points optimised on those samples place
         element thresholds between them, so the worst error over the
         continuous ranges is larger (README, "Accuracy"): the dense sampling
@@ -132,7 +132,7 @@ class TargetProblem:
 
     Notes
     -----
-    The family is the default one read as the issue states it: loads never
+    The family is the default one, read as follows: loads never
     above the tuning load ``N_hi`` (beyond it the paper's array extrapolates
     linearly: 31.7 % energy error whatever J, ``scripts/target_readings.py``),
     and ``N >= N_lo`` read as the path's lowest load ``N_m - N_a >= N_lo``.
