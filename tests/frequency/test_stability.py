@@ -69,3 +69,12 @@ def test_stability_is_written_and_drawn(fold_curve, tmp_path):
     np.testing.assert_array_equal(cols["stable [-]"], fold_curve.stable.astype(int))
     ax = fold_curve.plot(0, 1)
     assert any(line.get_linestyle() == "--" for line in ax.get_lines())  # the unstable branch dashed
+
+
+def test_a_reduced_curve_gets_the_stability_of_the_full_equations(fold_curve):
+    exact = frequency_response(inclined_block(), FORCE, (16500, 17500), harmonics=5, reduction="exact")
+    assert exact.reduction == "exact" and exact.stable is not None
+    turn = int(np.flatnonzero(np.diff(np.sign(np.diff(exact.omega))) != 0)[0]) + 1
+    assert exact.stable[:turn - 1].all() and not exact.stable[turn + 1:turn + 10].any()
+    assert exact.bifurcations[0][0] == "fold"
+    assert exact.bifurcations[0][1] == pytest.approx(fold_curve.bifurcations[0][1], rel=1e-4)

@@ -512,9 +512,11 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         Normal modes of a modal reduction (default 60); implies ``"modal"``
         with ``reduction="auto"``.
     stability : bool, default True
-        Mark each point stable or unstable (Hill's method) and locate folds and
-        Neimark--Sacker points, when every DOF is an unknown and there are at
-        most ``stability.HILL_LIMIT`` unknowns (else :attr:`FrequencyResponse.stable` is None).
+        Mark each point stable or unstable (Hill's method on the equations of
+        every DOF, recovered from the contact DOFs of a reduced solution) and
+        locate folds and Neimark--Sacker points, while those equations have at
+        most ``stability.HILL_LIMIT`` unknowns (else, and for a cyclic sector,
+        :attr:`FrequencyResponse.stable` is None).
     engine_order : int, optional
         For a :class:`~microslip.frequency.CyclicStructure` (required there):
         the engine order ``EO`` of the travelling-wave excitation; ``force``
@@ -558,8 +560,14 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
                                                control=control, callback=tick)
     result = _collect(hb, xs, omegas, iters, static, complete)
-    if stability and not isinstance(hb, ReducedHarmonicBalance) and hb.n <= HILL_LIMIT:
-        stable, leading = stable_points(hb, xs, omegas)
+    full_size = (2 * hb.H + 1) * structure.ndof
+    if stability and full_size <= HILL_LIMIT and not isinstance(structure, CyclicStructure):
+        if isinstance(hb, ReducedHarmonicBalance):  # Hill's method on every DOF, recovered from the contact DOFs
+            hill = HarmonicBalance(structure, force, hb.H, samples=hb.samples, max_periods=hb.max_periods)
+            xs_hill = np.array([hb._full(x, float(w)).ravel() for x, w in zip(xs, omegas)])
+        else:
+            hill, xs_hill = hb, xs
+        stable, leading = stable_points(hill, xs_hill, omegas)
         result = replace(result, stable=stable,
                          bifurcations=bifurcations(omegas, result.amplitude(0, 1), leading, stable))
     report.done(f"frequency response: {omegas.size} points")
