@@ -10,7 +10,7 @@ import argparse
 import importlib
 import sys
 
-COMMANDS = ["reproduce", "tune", "simulate", "frf", "accuracy", "target"]
+COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "accuracy", "target"]
 
 
 def build_parser() -> argparse.ArgumentParser:

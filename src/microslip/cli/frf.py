@@ -80,7 +80,7 @@ def run(args) -> int:
             warnings.simplefilter("ignore", IncompleteCurveWarning)
             result = frequency_response(cfg.structure, cfg.force, cfg.omega, harmonics=cfg.harmonics,
                                         samples=cfg.samples, control=cfg.control, progress=not args.quiet,
-                                        reduction=cfg.reduction, modes=cfg.modes)
+                                        reduction=cfg.reduction, modes=cfg.modes, engine_order=cfg.engine_order)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip frf: error: {exc}", file=sys.stderr)
         return 1

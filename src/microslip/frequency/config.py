@@ -26,6 +26,25 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
                                         # then fixed, e.g. approach of the tuned contact at the wanted load)
     # name = "damper"
 
+    # [cyclic]                          # one sector of a bladed disk (CyclicStructure)
+    # sectors = 24
+    # left = [0]                        # boundary DOFs: right[j] of a sector is left[j] of the next
+    # right = [1]
+    # engine_order = 3                  # the travelling wave's engine order
+                                        # contacts may then name the next sector's DOFs: {"next:4" = -1}
+
+    # [[damper]]                        # an under-platform damper (UnderPlatformDamper), one table each
+    # mass = 0.01                       # kg
+    # inertia = 5e-7                    # kg m^2
+    # centrifugal_load = "300N"         # or speed = "1000rad/s" with radius = "0.25m"
+    # damping = 50.0                    # 1/s, mass-proportional (optional)
+    # [[damper.interface]]              # one table per interface
+    # model = "flat.json"               # the contacts' law (a list of files: one per point)
+    # points = [[-2e-3, 1.5e-3], [-1e-3, 2.5e-3]]   # m, on the damper from its centre of mass
+    # angle = 120                       # degrees: the normal, from the damper into the platform
+    # platform = {x = 0, y = 1}         # the platform's DOFs at the points (a list: one per point;
+                                        # "next:4" for the next sector's)
+
     [excitation]                        # amplitudes per DOF (N); "static" for the static force
     h1 = [0.6, 0.0]
     # phase_h1 = [0.0, 90.0]            # degrees: F = amplitude * exp(i phase)
@@ -41,6 +60,10 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     [continuation]                      # optional step control (see StepControl)
     # ds_max = 0.05
     # max_angle = 0.1
+
+    # [design]                          # microslip design: the damper's peak-response curve
+    # loads = ["50N", "100N", "200N"]   # centrifugal loads of the (one) damper
+    # dof = 2                           # the DOF whose peak is read
 
     [output]
     # plot = [0]                        # DOFs to plot (default: all, up to 6)
@@ -76,7 +99,12 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 _CONTROL_KEYS = {f.name for f in fields(StepControl)}
 #: the keys each table accepts
 KEYS = {
-    "the file": ("title", "structure", "contact", "excitation", "sweep", "continuation", "output"),
+    "the file": ("title", "structure", "cyclic", "contact", "damper", "excitation", "sweep", "design", "continuation",
+                 "output"),
+    "[cyclic]": ("sectors", "left", "right", "engine_order"),
+    "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "interface"),
+    "[[damper.interface]]": ("model", "points", "angle", "platform", "name"),
+    "[design]": ("loads", "dof"),
     "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names"),
     "[[contact]]": ("model", "tangential", "normal", "preload", "approach", "name"),
     "[sweep]": ("omega", "frequency", "harmonics", "samples", "reduction", "modes"),
@@ -107,6 +135,11 @@ class FrfConfig:
     reduction: str = "auto"
     modes: int | None = None
     frequency_unit: str = "Hz"
+    engine_order: int | None = None
+    bare: Structure | None = None
+    dampers: list = field(default_factory=list)
+    design_loads: np.ndarray | None = None
+    design_dof: int | None = None
 
 
 def _known(table: dict, where: str, path) -> None:
@@ -253,6 +286,9 @@ def load_config(path) -> FrfConfig:
                               dof_map=files.dof_map if files is not None else None)
     except (ValueError, TypeError) as exc:
         raise ConfigError(f"{path}: [structure] {exc}") from None
+    engine_order = None
+    if "cyclic" in data:
+        structure, engine_order = _cyclic(_table(data["cyclic"], "[cyclic]", path), structure, path)
     ndof = structure.ndof
     names = [str(n) for n in st.get("dofs", [])] or (
         structure.dof_map.names if structure.dof_map is not None else [f"q{i}" for i in range(ndof)])
@@ -268,8 +304,10 @@ def load_config(path) -> FrfConfig:
             model = MicroslipModel.load(model_path)
         except (ValueError, TypeError) as exc:
             raise ConfigError(f"{path}: {where}: {exc}") from None
-        kwargs = {"tangential": _direction(_get(c, "tangential", where, path), f"{where} tangential", path),
-                  "normal": _direction(c.get("normal"), f"{where} normal", path), "name": c.get("name")}
+        kwargs = {"tangential": _next_keys(_direction(_get(c, "tangential", where, path), f"{where} tangential",
+                                                      path), structure, f"{where} tangential", path),
+                  "normal": _next_keys(_direction(c.get("normal"), f"{where} normal", path), structure,
+                                       f"{where} normal", path), "name": c.get("name")}
         if "preload" in c:
             kwargs["preload"] = _quantity(c["preload"], "force", f"{where} preload", path)
         if "approach" in c:
@@ -278,6 +316,13 @@ def load_config(path) -> FrfConfig:
             structure.add_contact(model, **kwargs)
         except (ValueError, TypeError) as exc:
             raise ConfigError(f"{path}: {where}: {exc}") from None
+
+    # -- dampers ------------------------------------------------------------------------
+    bare = structure  # without the dampers: what the design curve attaches its damper to
+    dampers = [_damper(d, k, structure, base_dir=base, path=path) for k, d in enumerate(data.get("damper", []))]
+    for d in dampers:
+        structure = d.attach(structure)
+    names = names + [f"damper{k} {axis}" for k in range(len(dampers)) for axis in ("X", "Y", "R")]
 
     # -- excitation ----------------------------------------------------------------------
     ex = _get(data, "excitation", "the file", path)
@@ -295,6 +340,7 @@ def load_config(path) -> FrfConfig:
         if amp.size != ndof:
             raise ConfigError(f"{path}: [excitation] {key} has {amp.size} value(s); the structure has {ndof} DOFs "
                               f"(one amplitude per DOF, N)")
+        amp = np.concatenate([amp, np.zeros(structure.ndof - ndof)])  # the dampers are not excited
         if f"phase_{key}" in ex:
             amp = amp * np.exp(1j * np.radians(_array(ex[f"phase_{key}"], f"[excitation] phase_{key}", path,
                                                       "dimensionless")))
@@ -340,8 +386,103 @@ def load_config(path) -> FrfConfig:
         if harmonic > harmonics:
             raise ConfigError(f"{path}: [output] harmonic must be at most [sweep] harmonics = {harmonics} "
                               f"(or omitted for max |q - q0|), got {harmonic}")
+    design_loads = design_dof = None
+    if "design" in data:
+        design = _table(data["design"], "[design]", path)
+        if len(dampers) != 1:
+            raise ConfigError(f"{path}: [design] needs exactly one [[damper]] (its load is varied), got {len(dampers)}")
+        design_loads = _array(_get(design, "loads", "[design]", path), "[design] loads", path)
+        design_dof = _checked(path, "", _checks.positive_int, "[design] dof", _get(design, "dof", "[design]", path),
+                              minimum=0)
+        if design_dof >= ndof:
+            raise ConfigError(f"{path}: [design] dof names DOF {design_dof}; the structure has {ndof}")
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
-                     plot_dofs, harmonic, names, reduction, modes, frequency_unit)
+                     plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
+                     design_loads, design_dof)
+
+
+def _cyclic(table: dict, structure: Structure, path):
+    """The sector as a :class:`CyclicStructure`, and the engine order."""
+    from .cyclic import CyclicStructure
+
+    def dofs(key):
+        value = _get(table, key, "[cyclic]", path)
+        if isinstance(value, (str, int)):
+            value = [value]
+        return [_checked(path, f"[cyclic] {key}: ", structure.dof_index, v) for v in value]
+
+    sectors = _checked(path, "", _checks.positive_int, "[cyclic] sectors", _get(table, "sectors", "[cyclic]", path),
+                       minimum=3)
+    engine_order = _checked(path, "", _checks.positive_int, "[cyclic] engine_order",
+                            _get(table, "engine_order", "[cyclic]", path), minimum=0)
+    disk = _checked(path, "[cyclic] ", CyclicStructure, structure.M, structure.C, structure.K, sectors=sectors,
+                    left=dofs("left"), right=dofs("right"), dof_map=structure.dof_map)
+    return disk, engine_order
+
+
+def _next_keys(spec, structure: Structure, what: str, path):
+    """A direction whose ``"next:j"`` keys name the next sector's DOF ``j`` (a cyclic structure only)."""
+    if not isinstance(spec, dict) or not any(isinstance(k, str) and k.startswith("next:") for k in spec):
+        return spec
+    if not hasattr(structure, "next"):
+        raise ConfigError(f"{path}: {what} names a next-sector DOF, which needs a [cyclic] table")
+    out = {}
+    for key, value in spec.items():
+        if isinstance(key, str) and key.startswith("next:"):
+            rest = key[5:]
+            rest = int(rest) if rest.strip().isdigit() else rest
+            key = _checked(path, f"{what}: ", lambda r: structure.next(structure.dof_index(r)), rest)
+        out[key] = value
+    return out
+
+
+def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path):
+    """An :class:`UnderPlatformDamper` from a ``[[damper]]`` table and its ``[[damper.interface]]`` tables."""
+    from .damper import UnderPlatformDamper
+
+    where = f"[[damper]] {k + 1}"
+    _table(table, "[[damper]]", path, where)
+    number = lambda key, kind: _quantity(table[key], kind, f"{where} {key}", path)  # noqa: E731
+    kwargs = {}
+    if "centrifugal_load" in table:
+        kwargs["centrifugal_load"] = number("centrifugal_load", "force")
+    if "speed" in table:
+        kwargs["speed"] = _angular_frequency(table["speed"], f"{where} speed", path, "rad/s")
+    if "radius" in table:
+        kwargs["radius"] = number("radius", "length")
+    if "damping" in table:
+        kwargs["damping"] = number("damping", "dimensionless")
+    mass = _quantity(_get(table, "mass", where, path), "dimensionless", f"{where} mass", path)
+    inertia = _quantity(_get(table, "inertia", where, path), "dimensionless", f"{where} inertia", path)
+    d = _checked(path, f"{where}: ", UnderPlatformDamper, mass, inertia, **kwargs)
+    for i, face in enumerate(_get(table, "interface", where, path)):
+        here = f"{where} interface {i + 1}"
+        _table(face, "[[damper.interface]]", path, here)
+        files = _get(face, "model", here, path)
+        files = files if isinstance(files, list) else [files]
+        try:
+            models = [MicroslipModel.load(base_dir / f) for f in files]
+        except (ValueError, TypeError) as exc:
+            raise ConfigError(f"{path}: {here}: {exc}") from None
+        points = np.array([[_quantity(v, "length", f"{here} points", path) for v in row]
+                           for row in _get(face, "points", here, path)])
+        angle = np.radians(_quantity(_get(face, "angle", here, path), "dimensionless", f"{here} angle", path))
+        platform = _get(face, "platform", here, path)
+        platform = [platform] if isinstance(platform, dict) else platform
+        plats = [{axis: _platform_dof(p.get(axis) if isinstance(p, dict) else None, structure, f"{here} platform",
+                                      path) for axis in ("x", "y")} for p in platform]
+        _checked(path, f"{here}: ", d.add_interface, models if len(models) > 1 else models[0], points=points,
+                 angle=angle, platform=plats if len(plats) > 1 else plats[0], name=face.get("name"))
+    return d
+
+
+def _platform_dof(value, structure: Structure, what: str, path):
+    """A platform DOF: an index or name, or ``"next:j"`` for the next sector's."""
+    if value is None:
+        raise ConfigError(f"{path}: {what} must give the DOFs x and y of the platform, e.g. {{x = 0, y = 1}}")
+    if isinstance(value, str) and value.startswith("next:"):
+        return _next_keys({value: 1.0}, structure, what, path).popitem()[0]
+    return _checked(path, f"{what}: ", structure.dof_index, value)
 
 
 def _table(value, where: str, path, label: str | None = None) -> dict:

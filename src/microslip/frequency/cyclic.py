@@ -63,6 +63,8 @@ class CyclicStructure(Structure):
     left, right : array_like of int, shape (k,)
         The boundary DOFs: ``right[j]`` of sector ``s`` is ``left[j]`` of
         sector ``s + 1`` (same direction in the sector's own frame).
+    dof_map : microslip.fe.DofMap, optional
+        Names of the sector's DOFs (``"node:component"``), as for :class:`Structure`.
 
     Notes
     -----
@@ -86,8 +88,8 @@ class CyclicStructure(Structure):
     2
     """
 
-    def __init__(self, M, C, K, *, sectors: int, left, right):
-        super().__init__(M, C, K)
+    def __init__(self, M, C, K, *, sectors: int, left, right, dof_map=None):
+        super().__init__(M, C, K, dof_map=dof_map)
         self.sectors = _checks.positive_int("sectors", sectors, minimum=3)
         self.left = _dof_list("left", left, self.ndof)
         self.right = _dof_list("right", right, self.ndof)
@@ -120,10 +122,10 @@ class CyclicStructure(Structure):
         if isinstance(spec, Mapping):
             for key, coef in spec.items():
                 (nxt if isinstance(key, NextDof) else own)[key.dof if isinstance(key, NextDof) else key] = coef
-            b_own = direction(name, own, self.ndof, allow_none=True)
-            b_next = direction(name, nxt, self.ndof, allow_none=True)
+            b_own = direction(name, own, self.ndof, allow_none=True, dof_map=self.dof_map)
+            b_next = direction(name, nxt, self.ndof, allow_none=True, dof_map=self.dof_map)
         else:
-            b_own = direction(name, spec, self.ndof, allow_none=True)
+            b_own = direction(name, spec, self.ndof, allow_none=True, dof_map=self.dof_map)
             b_next = np.zeros(self.ndof)
         for b, where in ((b_own, ""), (b_next, " of the next sector")):
             on_right = np.intersect1d(np.flatnonzero(b), self.right)

@@ -1,0 +1,115 @@
+"""``microslip design`` and the [cyclic] / [[damper]] tables of the frf configuration."""
+
+import numpy as np
+import pytest
+
+from microslip import Sphere, tune
+from microslip.cli import main
+from microslip.frequency import CyclicStructure, damper_design_curve
+from microslip.frequency.config import ConfigError, load_config
+
+import sys
+from _paths import REPO
+
+sys.path.insert(0, str(REPO / "tests" / "frequency"))
+from test_damper import blade_pair, damper  # noqa: E402  (the same blade pair and damper)
+
+CONFIG = """
+title = "Blade pair with an under-platform damper"
+[structure]
+matrices = "pair.npz"
+dofs = ["px0", "py0", "tip0", "px1", "py1", "tip1"]
+
+[[damper]]
+mass = 0.02
+inertia = 1e-6
+centrifugal_load = "50N"
+damping = 200.0
+[[damper.interface]]
+model = "flat.json"
+points = [[{p0x}, {p0y}], [{p1x}, {p1y}]]
+angle = 135
+platform = {{x = 0, y = 1}}
+name = "flat"
+[[damper.interface]]
+model = "curved.json"
+points = [["3mm", "2mm"]]
+angle = 45
+platform = {{x = 3, y = 4}}
+name = "curved"
+
+[excitation]
+h1 = [0, 0, 0.5, 0, 0, 0]
+
+[sweep]
+omega = [3000, 5000]
+harmonics = 3
+
+[design]
+loads = ["300N", "500N", "1000N"]
+dof = 2
+"""
+
+
+@pytest.fixture
+def config(tmp_path):
+    s = blade_pair()
+    np.savez(tmp_path / "pair.npz", M=s.M, C=s.C, K=s.K)
+    model = tune(Sphere.paper(), 37.5, elements=4)
+    model.save(tmp_path / "flat.json")
+    model.save(tmp_path / "curved.json")
+    a = np.radians(135.0)
+    tau = np.array([-np.sin(a), np.cos(a)])
+    c = np.array([-3e-3, 2e-3])
+    p0, p1 = c - 1.5e-3 * tau, c + 1.5e-3 * tau
+    path = tmp_path / "pair.toml"
+    path.write_text(CONFIG.format(p0x=p0[0], p0y=p0[1], p1x=p1[0], p1y=p1[1]))
+    return path
+
+
+def test_the_damper_table_builds_the_api_damper(config):
+    cfg = load_config(config)
+    assert cfg.structure.ndof == 9 and cfg.bare.ndof == 6 and len(cfg.dampers) == 1
+    assert cfg.dof_names[-3:] == ["damper0 X", "damper0 Y", "damper0 R"]
+    d, ref = cfg.dampers[0], damper(load=50.0)
+    assert d.centrifugal_load == 50.0 and d.damping == ref.damping
+    for a, b in zip(d.contacts, ref.contacts):
+        assert a.platform == b.platform and np.allclose(a.point, b.point) and np.allclose(a.normal, b.normal)
+    np.testing.assert_array_equal(cfg.design_loads, [300.0, 500.0, 1000.0])
+
+
+def test_microslip_design_writes_the_curve_of_the_api(config, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["design", str(config), "--out", str(out), "--quiet"]) == 0
+    for name in ("design.csv", "design.png", "report.html", "report.md"):
+        assert (out / name).stat().st_size > 0
+    f = np.zeros(6)
+    f[2] = 0.5
+    api = damper_design_curve(blade_pair(), damper(), [300.0, 500.0, 1000.0], f, (3000.0, 5000.0), dof=2,
+                              harmonics=3)
+    rows = np.genfromtxt(out / "design.csv", delimiter=",", names=True)
+    np.testing.assert_allclose(rows["peak_amplitude_m"], api.peak_amplitude, rtol=1e-10)
+    assert "lowest peak" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("mass = 0.02", "mas = 0.02", "\\[\\[damper\\]\\] has an unknown key 'mas'; did you mean 'mass'"),
+    ("angle = 45", "angel = 45", "\\[\\[damper.interface\\]\\] has an unknown key 'angel'; did you mean 'angle'"),
+    ("platform = {x = 3, y = 4}", 'platform = {x = "next:3", y = 4}', "names a next-sector DOF, which needs a "
+     "\\[cyclic\\] table"),
+    ("dof = 2", "dof = 7", "\\[design\\] dof names DOF 7; the structure has 6"),
+])
+def test_damper_and_design_tables_are_checked(config, old, new, message):
+    config.write_text(config.read_text().replace(old, new))
+    with pytest.raises(ConfigError, match=message):
+        load_config(config)
+
+
+def test_a_cyclic_table_makes_a_sector(config):
+    text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = [0]\nright = [3]\n'
+                                      'engine_order = 2\n\n[excitation]')
+    text = text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = 4}')
+    config.write_text(text)
+    cfg = load_config(config)
+    assert isinstance(cfg.structure, CyclicStructure) and cfg.engine_order == 2 and cfg.structure.sectors == 12
+    assert cfg.structure.next_directions[-1][0][0] != 0  # the curved contact reaches the next sector's DOF 0
