@@ -19,14 +19,20 @@ F_TIP = 12.0  # N on the tip, first harmonic
 SAMPLES = 16 * SECTORS
 
 
-def sector_matrices():
-    K = np.zeros((4, 4))
-    for i, j, k in SPRINGS:
+def springs_matrix(n, springs):
+    """Stiffness (N/m) of springs ``(i, j, k)`` between DOFs ``i`` and ``j`` (``j`` None: to ground)."""
+    K = np.zeros((n, n))
+    for i, j, k in springs:
         K[i, i] += k
         if j is not None:
             K[j, j] += k
             K[i, j] -= k
             K[j, i] -= k
+    return K
+
+
+def sector_matrices():
+    K = springs_matrix(4, SPRINGS)
     return M_SECTOR.copy(), 1e-6 * K + 2.0 * M_SECTOR, K
 
 
@@ -112,15 +118,8 @@ def test_a_craig_bampton_sector_keeps_its_boundaries_and_equals_the_full_sector(
 
     # a sector whose blade is a chain of 8 DOFs: ring 0 (left), ring 1 (right), blade 2..9 (2 the platform)
     n = 10
-    K = np.zeros((n, n))
     springs = [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (0, None, 1e6), (1, None, 1e6)]
-    springs += [(i, i + 1, 8e6) for i in range(2, n - 1)]
-    for i, j, k in springs:
-        K[i, i] += k
-        if j is not None:
-            K[j, j] += k
-            K[i, j] -= k
-            K[j, i] -= k
+    K = springs_matrix(n, springs + [(i, i + 1, 8e6) for i in range(2, n - 1)])
     M = np.diag([0.05, 0.05] + [0.02] * (n - 2))
     d = CyclicStructure(M, 1e-6 * K + 2.0 * M, K, sectors=SECTORS, left=[0], right=[1])
     d.add_contact(MODEL, tangential={2: 1.0, d.next(2): -1.0}, approach=SPHERE.approach(20.0))

@@ -122,14 +122,10 @@ def test_a_damper_between_sectors_of_a_disk_equals_the_whole_disk_with_its_dampe
     N, EO, omega = 6, 2, 3300.0
     samples = 16 * N  # a whole number of samples per sector's phase lag (see test_cyclic.py)
     # sector DOFs: 0 ring (left), 1 ring (right), 2 platform x, 3 platform y, 4 tip x
-    Ks = np.zeros((5, 5))
-    for i, j, k in [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (2, 4, 1e6), (0, None, 1e6), (1, None, 1e6),
-                    (3, None, 2e7)]:
-        Ks[i, i] += k
-        if j is not None:
-            Ks[j, j] += k
-            Ks[i, j] -= k
-            Ks[j, i] -= k
+    from test_cyclic import springs_matrix
+
+    Ks = springs_matrix(5, [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (2, 4, 1e6), (0, None, 1e6), (1, None, 1e6),
+                            (3, None, 2e7)])
     Ms = np.diag([0.05, 0.05, 0.1, 0.1, 0.05])
     Cs = 1e-6 * Ks + 1.0 * Ms
 

@@ -109,3 +109,11 @@ def display_unit(values, kind: str) -> tuple[str, float]:
         if big >= _UNITS[kind][unit]:
             choice = unit
     return choice, 1.0 / _UNITS[kind][choice]
+
+
+def plot_factor(unit: str) -> float:
+    """The factor that turns metres into ``unit`` (a length unit) for a plot; the error names ``unit``."""
+    try:
+        return 1.0 / unit_factor(unit, "length")
+    except ValueError as exc:
+        raise ValueError(f"unit must be one of the length units, got {unit!r} ({exc})") from None

@@ -68,12 +68,9 @@ class DesignCurve:
         """Plot the peak response against the centrifugal load, the optimum marked; returns the Axes."""
         import matplotlib.pyplot as plt
 
-        from ..common.units import unit_factor
+        from ..common.units import plot_factor
 
-        try:
-            factor = 1.0 / unit_factor(unit, "length")
-        except ValueError as exc:
-            raise ValueError(f"unit must be one of the length units, got {unit!r} ({exc})") from None
+        factor = plot_factor(unit)
         if ax is None:
             _, ax = plt.subplots(figsize=(6, 4))
         ax.plot(self.loads, self.peak_amplitude * factor, "o-", label="peak response")

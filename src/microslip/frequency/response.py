@@ -19,7 +19,7 @@ import scipy.sparse.linalg as spla
 from ..common import _checks
 from ..common._io import write_csv
 from ..common._progress import Progress
-from ..common.units import unit_factor
+from ..common.units import plot_factor
 from .aft import MAX_PERIODS, UnderResolvedWarning, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance, excitation
@@ -272,10 +272,7 @@ class FrequencyResponse:
         """
         import matplotlib.pyplot as plt
 
-        try:
-            factor = 1.0 / unit_factor(unit, "length")
-        except ValueError as exc:
-            raise ValueError(f"unit must be one of the length units, got {unit!r} ({exc})") from None
+        factor = plot_factor(unit)
         if ax is None:
             _, ax = plt.subplots(figsize=(6, 4))
         if frequency_unit not in ("rad/s", "Hz"):
