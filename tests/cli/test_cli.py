@@ -172,3 +172,13 @@ def test_console_script(tmp_path):
     assert MicroslipModel.load(out).elements == 3
     bad = subprocess.run([script, "tune", "--load", "10parsec"], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 2 and "unknown force unit 'parsec'" in bad.stderr
+
+
+def test_a_negative_value_with_a_unit_reaches_its_option(tmp_path, capsys):
+    # argparse used to take "-30N" for an option and stop with "expected one argument"
+    from microslip import Sphere, tune
+
+    tune(Sphere.paper(), 37.5, elements=4).save(tmp_path / "m.json")
+    rc = main(["accuracy", str(tmp_path / "m.json"), "--load", "-30N", "--out", str(tmp_path / "out"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "expected one argument" not in err and "--load" in err and "-30" in err

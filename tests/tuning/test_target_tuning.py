@@ -87,6 +87,13 @@ def test_tune_to_target_returns_an_optimised_model(small):
     res = tune_to_target(SPHERE, (7.5, 37.5), elements=3, problem=small, maxfev=30, restarts=1,
                          budget=40)
     assert res.elements == 3 and res.spacing == "optimal" and res.evaluations > 1
+    # the search starts from the best of its spacing laws and must not end worse; it must beat the paper's
+    # even spacings it improves on
+    from microslip.tuning.target.search import _starts
+
+    optimised = small.score(res.model)
+    assert optimised <= min(small.score(small.tune_fractions(u)[0]) for u in _starts(3))
+    assert optimised < small.score(small.tune_fractions(np.arange(1, 4) / 3)[0])  # even displacement
 
 
 def test_smallest_elements_finds_the_first_j_that_meets(small):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import re
 import sys
 
 COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "accuracy", "target"]
@@ -27,10 +28,25 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: a value with a sign and a unit, such as -30N or -2.5um, which argparse would take for an option
+_NEGATIVE_VALUE = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*[^\d\s-][^\s]*$")
+
+
+def _joined_negatives(argv: list) -> list:
+    """``--load -30N`` as ``--load=-30N``: a negative value with a unit stays the option's value."""
+    out = []
+    for token in argv:
+        if out and _NEGATIVE_VALUE.match(token) and out[-1].startswith("--") and "=" not in out[-1]:
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def main(argv=None) -> int:
     """Entry point of the ``microslip`` console script."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(_joined_negatives(list(sys.argv[1:] if argv is None else argv)))
     import matplotlib
 
     matplotlib.use("Agg")  # the commands write figures to files; no window is ever opened
