@@ -37,8 +37,11 @@ matplotlib.use("Agg")
 
 import numpy as np
 import pytest
+import scipy.io
+import scipy.sparse
 
 import microslip
+import microslip.fe
 from microslip import (Cylinder, MeasuredContact, MicroslipModel, Sphere, State, Structure, accuracy, fit_backbone,
                        loops, mdr, paths, tune, tune_on_loops)
 from microslip.accuracy import PathBatch, reference_run, restriction_mask
@@ -346,6 +349,38 @@ def matrices_file() -> str:
     return "matrices.npz"
 
 
+# microslip.fe: a 3-DOF model (masses in kg, stiffnesses in N/m) in a NumPy .npz file and in one Matrix Market file
+# per matrix, and its DOF map in a CSV file
+FE_M = np.diag([1.0, 1.0, 0.5])
+FE_K = np.array([[2e4, -1e4, 0.0], [-1e4, 2e4, -1e4], [0.0, -1e4, 1e4]])
+
+
+@cache
+def fe_file() -> str:
+    np.savez("fe_model.npz", MGG=FE_M, KGG=FE_K, C=FE_K * 1e-4)
+    return "fe_model.npz"
+
+
+@cache
+def mtx_file(name: str) -> str:
+    scipy.io.mmwrite(f"{name}.mtx", {"M": FE_M, "K": FE_K, "C": FE_K * 1e-4}[name])
+    return f"{name}.mtx"
+
+
+def dof_map():
+    return microslip.fe.DofMap([1, 1, 2], ["x", "y", "x"])
+
+
+@cache
+def dof_file() -> str:
+    return str(dof_map().to_csv("dofs.csv"))
+
+
+@cache
+def fe_blade():
+    return microslip.fe.blade(300)
+
+
 N_APP = float(SPHERE.approach(N_TOT))
 NO_RISE = ("negative", "zero", "1e300", "1e-300")  # data values that make a curve flat or falling
 UNCHECKED = ("nan", "inf", "string", "dict")
@@ -639,6 +674,34 @@ CASES += [
     case("DesignCurve.to_csv", lambda: design_curve().to_csv, kinds=PATH, path="design.csv"),
     case("CraigBampton.save", lambda: reduced().save, kinds=PATH, path="saved.npz"),
     case("CraigBampton.load", lambda: microslip.frequency.CraigBampton.load, kinds=PATH, path=L(reduced_file)),
+
+    # -- microslip.fe ------------------------------------------------------------------------------
+    # one node's three DOFs: node ids of zero are valid, so zero nodes must give a map
+    case("DofMap", lambda: microslip.fe.DofMap, kinds={"components": "object"}, nodes=[1, 1, 1],
+         components=["x", "y", "rz"]),
+    case("DofMap.from_names", lambda: microslip.fe.DofMap.from_names, kinds={"names": "object"},
+         names=["1:x", "1:y", "2:x"]),
+    case("DofMap.from_csv", lambda: microslip.fe.DofMap.from_csv, kinds=PATH, path=L(dof_file)),
+    case("DofMap.to_csv", lambda: dof_map().to_csv, kinds=PATH, path="dofs_out.csv"),
+    case("DofMap.index", lambda: dof_map().index, name="1:y"),
+    case("DofMap.rows", lambda: dof_map().rows, node=1),
+    # the smallest blade (about 400 DOFs, 0.04 s): every accepted bad value builds one
+    case("fe.blade", lambda: microslip.fe.blade, dofs=300, span=0.06, chord=0.02, platform_width=0.04,
+         platform_height=0.004, shank_width=0.012, shank_height=0.015, thickness=0.003, contact_width=0.004,
+         contact_nodes=3, E=2e11, nu=0.3, rho=8190.0),
+    case("FEBlade.position", lambda: fe_blade().position, node=1),
+    case("fe.natural_frequencies", lambda: microslip.fe.natural_frequencies, M=FE_M, K=FE_K, count=2),
+    case("fe.natural_frequencies [sparse]", lambda: microslip.fe.natural_frequencies,
+         kinds={"M": "object", "K": "object"}, M=L(lambda: scipy.sparse.csr_matrix(FE_M)),
+         K=L(lambda: scipy.sparse.csr_matrix(FE_K)), count=2),
+    case("fe.read_matrix", lambda: microslip.fe.read_matrix, kinds=PATH, path=L(fe_file), name="KGG",
+         symmetry_tolerance=1e-6),
+    case("fe.read_matrices", lambda: microslip.fe.read_matrices,
+         kinds={**PATH, "dof_map": "path", "names": "mapping"}, path=L(fe_file), dof_map=L(dof_file),
+         names={"M": "MGG", "K": "KGG"}, symmetry_tolerance=1e-6),
+    case("fe.read_matrices [per matrix]", lambda: microslip.fe.read_matrices,
+         kinds={"M": "path", "K": "path", "C": "path"}, M=L(lambda: mtx_file("M")), K=L(lambda: mtx_file("K")),
+         C=L(lambda: mtx_file("C"))),
 ]
 CASE = {c.name: c for c in CASES}
 assert len(CASE) == len(CASES), "two entries of CASES share a name"
@@ -664,10 +727,10 @@ NOT_FUZZED = {
 RESULTS = {"AccuracyReport", "AFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
-           "DesignCurve"}
+           "DesignCurve", "FEBlade", "FEMatrices"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",
-                  "microslip.tuning", "microslip.measured", "microslip.accuracy")
+                  "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe")
 
 
 def public_callables() -> dict:

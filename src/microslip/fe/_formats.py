@@ -27,13 +27,17 @@ _PARTS = set(_COMPRESSED + _COORDINATES + ("format",))
 
 
 class MissingVariable(ValueError):
-    """A file lacks variables that were asked for; ``missing`` and ``held`` list the names."""
+    """A file lacks variables that were asked for; ``missing`` and ``held`` list the names.
 
-    def __init__(self, path: Path, missing: list[str], held):
-        self.missing, self.held = list(missing), sorted(held)
+    ``advice`` ends the message: how the caller chooses other variables.
+    """
+
+    def __init__(self, path: Path, missing: list[str], held,
+                 advice: str = "choose others with names={'M': ..., 'K': ...}"):
+        self.path, self.missing, self.held = path, list(missing), sorted(held)
         listed = ", ".join(self.held) if self.held else "no variables"
         super().__init__(f"{path}: no variable {', '.join(repr(m) for m in missing)}; the file holds {listed} "
-                         f"(choose others with names={{'M': ..., 'K': ...}})")
+                         f"({advice})")
 
 
 def _pick(path: Path, found: dict, wanted: list[str]) -> dict:

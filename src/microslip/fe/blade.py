@@ -34,6 +34,13 @@ MAX_DOFS = 1_000_000
 #: DOFs per element of a large grid of 9-node quadrilaterals: 1 corner, 2 edges, 1 centre, 2 components
 _DOFS_PER_ELEMENT = 8
 
+#: points closer than this fraction of the body's size are one point (node look-ups, the clamped edge)
+_SAME_POINT = 1e-9
+
+
+class _Unmeshable(ValueError):
+    """No grid of about the requested DOFs fits the shape (:func:`blade` says which part is to blame)."""
+
 
 @dataclass(frozen=True, eq=False)
 class FEBlade:
@@ -141,8 +148,8 @@ def _mesh(skfem, rectangles, xkeys, ykeys, dofs: int):
     trials = [h for h in trials if _line_count(xkeys, h[0]) * _line_count(ykeys, h[1]) <= 20 * dofs]
     counts = [_dof_count(rectangles, xkeys, ykeys, h) for h in trials]
     if not trials or min(counts) > 2 * dofs:
-        raise ValueError(f"the shape's proportions need far more than dofs = {dofs} DOFs (a part much longer or "
-                         f"thinner than the others); make them less extreme or ask for more dofs")
+        raise _Unmeshable(f"the shape's proportions need far more than dofs = {dofs} DOFs (a part much longer or "
+                          f"thinner than the others); make them less extreme or ask for more dofs")
     h = trials[int(np.argmin([abs(np.log(n / dofs)) for n in counts]))]
     xs, ys, i, j = _cells(rectangles, xkeys, ykeys, h)
     ny = ys.size
@@ -197,7 +204,7 @@ def _elastic_body(rectangles, xkeys, ykeys, dofs: int, *, E: float, nu: float, r
                          f"{thickness!r} m are too large")
     xy, node_dofs = _nodes(basis)
     size = max(x1 - x0 for x0, x1, _, _ in rectangles) + max(y1 - y0 for _, _, y0, y1 in rectangles)
-    root = np.flatnonzero(np.abs(xy[:, 1] - clamp_y) <= 1e-9 * size)
+    root = np.flatnonzero(np.abs(xy[:, 1] - clamp_y) <= _SAME_POINT * size)
     free = np.ones(basis.N, dtype=bool)
     free[node_dofs[root].ravel()] = False
     node_of = np.empty(basis.N, dtype=np.int64)
@@ -216,8 +223,32 @@ def _node_at(xy, x: float, y: float, size: float) -> int:
     """The id of the node at ``(x, y)`` (the grid puts one there)."""
     d = np.hypot(xy[:, 0] - x, xy[:, 1] - y)
     k = int(np.argmin(d))
-    assert d[k] <= 1e-9 * size, (x, y, d[k])
+    assert d[k] <= _SAME_POINT * size, (x, y, d[k])
     return k + 1
+
+
+#: the parameters that are the sizes (m) of the blade's parts
+_PARTS = ("span", "chord", "platform_width", "platform_height", "shank_width", "shank_height")
+
+
+def _dimensions(g: dict, n_contact: int, size: float) -> dict[str, float]:
+    """``{label: length}`` (m) of every part and of every distance between grid lines across the chord."""
+    out = {name: g[name] for name in _PARTS}
+    if n_contact > 1:
+        out["contact_width / (contact_nodes - 1)"] = g["contact_width"] / (n_contact - 1)
+    W = g["platform_width"]
+    keys = sorted([(0.0, "0"), (g["shank_width"] / 2, "shank_width / 2"), (g["chord"] / 2, "chord / 2"),
+                   (W / 2, "platform_width / 2"), (W / 2 - g["contact_width"], "platform_width / 2 - contact_width")])
+    for (a, name_a), (b, name_b) in zip(keys, keys[1:]):
+        if b - a > _SAME_POINT * size:  # closer ones are one grid line
+            out[f"the distance from x = {name_a} to x = {name_b}"] = b - a
+    return out
+
+
+def _extreme(dofs: int, W: float, H: float, label: str, value: float, advice: str) -> ValueError:
+    return ValueError(f"the shape's proportions need far more than dofs = {dofs} DOFs: the blade is {W:.3g} m wide "
+                      f"(platform_width) and {H:.3g} m high (shank_height + platform_height + span), and its "
+                      f"smallest dimension, {label}, is {value:.3g} m; {advice}")
 
 
 def blade(dofs: int = 2000, *, span: float = 0.06, chord: float = 0.02, platform_width: float = 0.04,
@@ -245,7 +276,8 @@ def blade(dofs: int = 2000, *, span: float = 0.06, chord: float = 0.02, platform
         Width (m) of the contact patch on the underside of each platform
         overhang, from its outer edge; at most the overhang.
     contact_nodes : int
-        Nodes per patch, evenly spaced across it, outer edge included.
+        Nodes per patch, evenly spaced across it, outer edge included; at
+        most ``dofs / 6``.
     E, nu, rho : float
         Young's modulus (Pa), Poisson's ratio and density (kg/m^3); default
         a nickel alloy (Inconel 718 at room temperature).
@@ -259,9 +291,12 @@ def blade(dofs: int = 2000, *, span: float = 0.06, chord: float = 0.02, platform
     ValueError
         A size that is not positive, a platform not wider than the airfoil
         and the shank, a contact patch wider than the overhang or too
-        narrow for its nodes, proportions too extreme to mesh with ``dofs``,
-        a material so stiff or heavy that the matrices overflow, ``nu``
-        outside (-1, 0.5), or ``dofs`` outside 300..1e6.
+        narrow for its nodes, proportions too extreme to mesh with ``dofs``
+        (a part thinner than 1e-9 of the blade's width plus height, with
+        any ``dofs``; the message names the smallest dimension), a material
+        so stiff or heavy that the matrices overflow, ``nu`` outside
+        (-1, 0.5), ``dofs`` outside 300..1e6 or ``contact_nodes`` above
+        ``dofs / 6``.
     ImportError
         scikit-fem is not installed (``pip install microslip[fe]``).
 
@@ -280,6 +315,10 @@ def blade(dofs: int = 2000, *, span: float = 0.06, chord: float = 0.02, platform
         ("contact_width", contact_width), ("E", E), ("rho", rho))}
     nu = _checks.in_range("nu", nu, -1.0, 0.5, lo_open=True, hi_open=True)
     n_contact = _checks.positive_int("contact_nodes", contact_nodes, minimum=1)
+    if n_contact > dofs // 6:
+        raise ValueError(f"contact_nodes must be at most dofs / 6 = {dofs // 6}, got {n_contact}: each contact node "
+                         f"puts a grid line of at least 3 nodes (6 DOFs) across each overhang, and the grid has at "
+                         f"most 2 x dofs DOFs")
     W = g["platform_width"]
     for name in ("chord", "shank_width"):
         if g[name] >= W:
@@ -292,18 +331,26 @@ def blade(dofs: int = 2000, *, span: float = 0.06, chord: float = 0.02, platform
     y1 = g["shank_height"]
     y2 = y1 + g["platform_height"]
     y3 = y2 + g["span"]
+    size = W + y3
+    parts = {name: g[name] for name in _PARTS}
+    thinnest = min(parts, key=parts.get)
+    if parts[thinnest] <= _SAME_POINT * size:  # so thin that its edges would be one grid line
+        raise _extreme(dofs, W, y3, thinnest, parts[thinnest], "make them less extreme")
+    if n_contact > 1 and g["contact_width"] / (n_contact - 1) <= _SAME_POINT * size:
+        raise ValueError(f"contact_width ({g['contact_width']!r} m) is too narrow for contact_nodes = {n_contact} "
+                         f"distinct nodes")
     rects = [(-g["shank_width"] / 2, g["shank_width"] / 2, 0.0, y1), (-W / 2, W / 2, y1, y2),
              (-g["chord"] / 2, g["chord"] / 2, y2, y3)]
     right = np.linspace(W / 2, W / 2 - g["contact_width"], n_contact) if n_contact > 1 else np.array([W / 2])
     xkeys = np.concatenate([[r[0] for r in rects], [r[1] for r in rects], [0.0], right, -right])
-    M, K, dof_map, xy, root, mesh = _elastic_body(rects, xkeys, [0.0, y1, y2, y3], dofs, E=g["E"], nu=nu,
-                                                  rho=g["rho"], thickness=g["thickness"], clamp_y=0.0)
-    size = W + y3
+    try:
+        M, K, dof_map, xy, root, mesh = _elastic_body(rects, xkeys, [0.0, y1, y2, y3], dofs, E=g["E"], nu=nu,
+                                                      rho=g["rho"], thickness=g["thickness"], clamp_y=0.0)
+    except _Unmeshable:
+        label, value = min(_dimensions(g, n_contact, size).items(), key=lambda item: item[1])
+        raise _extreme(dofs, W, y3, label, value, "make them less extreme or ask for more dofs") from None
     left_ids = np.array([_node_at(xy, -x, y1, size) for x in right])
     right_ids = np.array([_node_at(xy, x, y1, size) for x in right])
-    if np.unique(right_ids).size < n_contact:
-        raise ValueError(f"contact_width ({g['contact_width']!r} m) is too narrow for contact_nodes = {n_contact} "
-                         f"distinct nodes")
     tip = _node_at(xy, 0.0, y3, size)
     sets = {"platform_left": left_ids, "platform_right": right_ids, "tip": np.array([tip]), "root": root}
     return FEBlade(M, K, dof_map, np.concatenate([left_ids, right_ids]), tip, xy, sets, mesh)

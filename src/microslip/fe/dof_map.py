@@ -1,7 +1,7 @@
 """Which node and which displacement component each row of a finite-element matrix belongs to.
 
 A degree of freedom is named ``"node:component"``, e.g. ``"1204:x"``: ``node`` is a
-non-negative integer node (grid) id, ``component`` one of ``x, y, z, rx, ry, rz``
+node (grid) id (an integer from 0 to 2**53), ``component`` one of ``x, y, z, rx, ry, rz``
 (translations in m, rotations in rad), or its Nastran number ``1..6``
 (``"1204:1"`` is ``"1204:x"``).
 """
@@ -13,10 +13,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..common import _checks
 from ..common._io import atomic_write
 
 #: displacement components in Nastran's order (component ``k`` is ``COMPONENTS[k - 1]``)
 COMPONENTS = ("x", "y", "z", "rx", "ry", "rz")
+
+#: the largest node id: 2**53, so that an id read as a float (MATLAB stores numbers as doubles) is exact
+MAX_NODE = 2 ** 53
 
 
 def _component(value, where: str) -> str:
@@ -31,7 +35,9 @@ def _component(value, where: str) -> str:
 
 
 def _node(value, where: str) -> int:
-    """A node id: a non-negative integer (also from text such as ``"1204"``)."""
+    """A node id: an integer in ``0..MAX_NODE`` (also from text such as ``"1204"``)."""
+    if isinstance(value, np.floating):
+        value = float(value)  # shown as 1.5, not np.float64(1.5)
     if isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{where}: node id must be an integer, got {value!r}")
     if isinstance(value, (int, np.integer)):
@@ -44,6 +50,8 @@ def _node(value, where: str) -> int:
         raise ValueError(f"{where}: node id must be a non-negative integer, got {value!r}")
     if node < 0:
         raise ValueError(f"{where}: node id must be a non-negative integer, got {node}")
+    if node > MAX_NODE:
+        raise ValueError(f"{where}: node id must be at most 2**53 = {MAX_NODE}, got {value!r}")
     return node
 
 
@@ -78,7 +86,7 @@ class DofMap:
     Parameters
     ----------
     nodes : array_like of int, shape (ndof,)
-        Node (grid) id of each row, non-negative integers.
+        Node (grid) id of each row, integers from 0 to 2**53.
     components : sequence, shape (ndof,)
         Component of each row: ``"x", "y", "z", "rx", "ry", "rz"`` or
         Nastran's numbers ``1..6`` (stored as letters).
@@ -102,8 +110,8 @@ class DofMap:
         if len(nodes) != len(components):
             raise ValueError(f"nodes and components must have the same length, got {len(nodes)} and "
                              f"{len(components)}")
-        self._nodes = np.array([_node(n, f"row {i}") for i, n in enumerate(nodes)], dtype=np.int64)
-        self._components = tuple(_component(c, f"row {i}") for i, c in enumerate(components))
+        self._nodes = np.array([_node(n, f"nodes, row {i}") for i, n in enumerate(nodes)], dtype=np.int64)
+        self._components = tuple(_component(c, f"components, row {i}") for i, c in enumerate(components))
         self._rows: dict[tuple[int, str], int] = {}
         for i, key in enumerate(zip(self._nodes.tolist(), self._components)):
             if key in self._rows:
@@ -115,7 +123,12 @@ class DofMap:
     @classmethod
     def from_names(cls, names) -> DofMap:
         """A map from DOF names, one per row (e.g. ``["1204:x", "1204:y"]``)."""
-        pairs = [split_name(n) for n in names]
+        pairs = []
+        for i, name in enumerate(_sequence("names", names)):
+            try:
+                pairs.append(split_name(name))
+            except (TypeError, ValueError) as err:
+                raise type(err)(f"names, row {i}: {err}") from None
         return cls([p[0] for p in pairs], [p[1] for p in pairs])
 
     @classmethod
@@ -134,8 +147,10 @@ class DofMap:
             No header with ``node`` and ``component``, a row with a missing
             cell, an invalid node id or component (with the file and line),
             duplicate rows, no data row, or a file that is not UTF-8.
+        TypeError
+            ``path`` is not a file name.
         """
-        path = Path(path)
+        path = _checks.file_path("path", path)
         try:
             with open(path, newline="", encoding="utf-8-sig") as fh:
                 lines = [(no, line) for no, line in enumerate(fh, start=1)
@@ -168,6 +183,7 @@ class DofMap:
 
     def to_csv(self, path) -> Path:
         """Write the map as a ``node,component`` CSV (readable by :meth:`from_csv`), atomically."""
+        path = _checks.file_path("path", path)
         body = "".join(f"{n},{c}\n" for n, c in zip(self._nodes.tolist(), self._components))
         return atomic_write(path, "node,component\n" + body)
 

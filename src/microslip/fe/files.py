@@ -157,15 +157,22 @@ def read_matrix(path, name: str | None = None, *, symmetry_tolerance: float = SY
     ValueError
         Unknown suffix, a missing variable (the message lists those the
         file holds), or a matrix that fails :func:`check_matrix`.
+    TypeError
+        ``path`` is not a file path or ``name`` not a string.
     ImportError
         A v7.3 ``.mat`` without h5py or an ``.op4`` without pyNastran.
     """
     path = _path("path", path)
+    if name is not None:
+        name = _checks.text("name", name)
     tol = _checks.positive_scalar("symmetry_tolerance", symmetry_tolerance)
     if name is None:
         name, A = _formats.only(path)
     else:
-        A = _formats.read(path, [name])[name]
+        try:
+            A = _formats.read(path, [name])[name]
+        except _formats.MissingVariable as err:
+            raise _formats.MissingVariable(path, err.missing, err.held, advice="choose one with name=...") from None
     return check_matrix(A, _where(path, name) if name else str(path), symmetry_tolerance=tol)
 
 
