@@ -82,7 +82,6 @@ def test_dissipation_is_non_negative_when_n_holds_still_while_t_moves(model, pat
     r, _ = periodic_response(model, *path)
     work, magnitude = work_over_period(r)
     assert work >= -8 * r.t.size * EPS * magnitude
-    assert r.work == np.trapezoid(r.T, r.t)
 
 
 @settings(max_examples=100, deadline=None)
