@@ -250,3 +250,16 @@ def test_cli_target_sweep_from_stored_points_is_no_worse(tmp_path, capsys, paper
     score = {name: paper_problem.score(paper_problem.tune_fractions(u)[0]) for name, u in
              (("found", found), ("stored", stored))}
     assert score["found"] <= score["stored"] + 1e-12
+
+
+def test_the_differential_evolution_shows_its_progress(small, capsys, monkeypatch):
+    """It ran silently for 35 s on the default problem: now a line per generation, at most one every 5 s."""
+    from microslip.common import _progress
+
+    clock = iter(range(0, 10_000, 3))  # each reading of the clock 3 s later: a line every other generation
+    monkeypatch.setattr(_progress.time, "perf_counter", lambda: float(next(clock)))
+    optimal_points(small, 3, budget=64, restarts=0, progress=True)
+    err = capsys.readouterr().err
+    lines = [ln for ln in err.splitlines() if "generation" in ln and "best score" in ln]
+    assert len(lines) >= 2, err
+    assert lines[0].strip().startswith("generation ") and " of 3, best score " in lines[0]

@@ -155,8 +155,20 @@ def _evolve(objective, z0, f0, budget, seed, bar, J):
     popsize = POPULATION
     generations = max(1, budget // (popsize * dim) - 1)
     bar.step(f"J = {J}: differential evolution, {generations} generations of {popsize * dim} models")
-    res = optimize.differential_evolution(objective, [(-half, half)] * dim, x0=z0, seed=seed, popsize=popsize,
-                                          maxiter=generations, tol=0.0, polish=False, updating="immediate")
+    best, generation = [f0], [0]
+
+    def tracked(z):
+        f = objective(z)
+        best[0] = min(best[0], f)
+        return f
+
+    def report(xk, convergence=None):  # after each generation
+        generation[0] += 1
+        bar.note(f"generation {generation[0]} of {generations}, best score {best[0]:.4g}")
+
+    res = optimize.differential_evolution(tracked, [(-half, half)] * dim, x0=z0, seed=seed, popsize=popsize,
+                                          maxiter=generations, tol=0.0, polish=False, updating="immediate",
+                                          callback=report)
     if res.fun < f0:
         return res.x, float(res.fun)
     return z0, f0
