@@ -314,7 +314,7 @@ class Provenance:
         for k, v in self.reference.items():
             if isinstance(v, float):
                 params.append(f"{k} = {v:.6g}{_PARAMETER_UNITS.get(k, '')}")
-            elif isinstance(v, dict) and "kind" in v:
+            elif isinstance(v, dict) and "kind" in v and "mu" in v:  # a contact it was built on
                 params.append(f"{k}: {v['kind']}" + (f" ({v['law']} law)" if isinstance(v.get("law"), str) else ""))
             elif isinstance(v, str) and k != "kind":
                 params.append(f"{k} = {v}")
@@ -323,7 +323,8 @@ class Provenance:
         if self.load_range is not None:
             text += f" chosen for {self.load_range[0]:.6g}-{self.load_range[1]:.6g} N"
         if self.loops:
-            text += f", on the loops {', '.join(self.loops)}"
+            names = [x.replace("\\", "/").rsplit("/", 1)[-1] for x in self.loops]
+            text += f", on {len(names)} loop file{'s' * (len(names) > 1)} ({', '.join(names)})"
         return text + f"; mu {self.mu_source}; microslip {self.version}, {self.date}"
 
     def to_dict(self) -> dict:
