@@ -6,10 +6,12 @@ under-platform damper whose contact force follows the blade motion. The exact an
 the method of dimensionality reduction (``microslip.mdr``: a fine array of the same elements);
 the paper's 4-element array, tuned at 37.5 N, is run through the same displacements.
 
-Run ``python examples/variable_normal_load.py``; it prints the energy dissipated per steady
-cycle by both and writes ``variable_normal_load.png`` next to this file.
+Run ``python examples/variable_normal_load.py [--out DIR]``; it prints the energy dissipated per
+steady cycle by both and writes ``variable_normal_load.png`` into ``DIR`` (created if needed;
+default: the current folder), never over the figure kept with this file.
 """
 
+import argparse
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -17,8 +19,8 @@ import matplotlib.pyplot as plt
 from microslip import Sphere, mdr, paths, tune
 
 
-def main(out=Path(__file__).with_name("variable_normal_load.png"), N_m=20.0, N_a=12.0):
-    """Run both models on three phases; print and return the energies per cycle (J), save the figure."""
+def main(out=Path("variable_normal_load.png"), N_m=20.0, N_a=12.0):
+    """Run both models on three phases; print and return the energies per cycle (J), save the figure to ``out``."""
     sphere = Sphere.paper()
     exact = mdr(sphere, max_load=37.5, elements=2000)       # the continuous contact, exact to ~1e-6
     paper = tune(sphere, 37.5, elements=4)                  # the paper's array
@@ -49,4 +51,10 @@ def main(out=Path(__file__).with_name("variable_normal_load.png"), N_m=20.0, N_a
 
 
 if __name__ == "__main__":
-    main()
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", default=".", help="folder to write the figure into (default: the current folder)")
+    folder = Path(parser.parse_args().out)
+    if folder.exists() and not folder.is_dir():
+        parser.error(f"--out {folder} is a file, not a folder")
+    folder.mkdir(parents=True, exist_ok=True)
+    main(out=folder / "variable_normal_load.png")
