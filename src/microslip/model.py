@@ -556,13 +556,16 @@ class MicroslipModel:
         t = _checks.real_array("t", t, ndim=1, min_size=1)
         n = _checks.real_array("n", n)
         if n.ndim == 0:
-            n = np.full(t.shape, float(n))
+            top = float(n)
+            n = np.full(t.shape, top)
         elif n.shape != t.shape:
             raise ValueError(f"n must be a scalar or have the same shape as t {t.shape}, got {n.shape}")
+        else:
+            top = None  # its largest approach, only when there is a tuning load to compare it with
         per_element, work = _flag("per_element", per_element), _flag("work", work)
         s = self._check_state(state)
         if self._beyond is not None:
-            top = float(n.max())
+            top = float(n.max()) if top is None else top
             if top > self._beyond:
                 self._warn_beyond(top, 2)
         steps = t.size
