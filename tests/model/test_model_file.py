@@ -21,6 +21,16 @@ def paper_model():
     return tune(SPHERE, 37.5, elements=4)
 
 
+def changed(data, change):
+    """``data`` with the keys of ``change`` set, or deleted where the value is None."""
+    for k, v in change.items():
+        if v is None:
+            del data[k]
+        else:
+            data[k] = v
+    return data
+
+
 def write(path, data):
     path.write_text(json.dumps(data))
     return path
@@ -87,15 +97,20 @@ def test_bad_units_are_named(paper_model, tmp_path, units, error, message):
     ({"version": 7}, ValueError, "['version'] must be 1, got 7"),
 ])
 def test_every_error_of_a_model_file_names_the_file(paper_model, tmp_path, change, error, message):
-    data = paper_model.to_dict()
-    for k, v in change.items():
-        if v is None:
-            del data[k]
-        else:
-            data[k] = v
-    path = write(tmp_path / "m.json", data)
+    path = write(tmp_path / "m.json", changed(paper_model.to_dict(), change))
     with pytest.raises(error, match=re.escape(f"model file {str(path)!r}{message}")):
         MicroslipModel.load(path)
+
+
+@pytest.mark.parametrize("change, error, message", [
+    ({"format": "other"}, ValueError, "data['format'] must be 'microslip.MicroslipModel', got 'other'"),
+    ({"version": 2}, ValueError, "data['version'] must be 1, got 2"),
+    ({"kn": None, "mu": None}, ValueError, "data is missing the key(s) ['kn', 'mu']; expected kt, kn, gaps, mu"),
+    ({"kt": [1.0, -1.0, 1.0, 1.0]}, ValueError, "kt must be positive, got -1.0 at flat index 1"),
+])
+def test_from_dict_errors(paper_model, change, error, message):
+    with pytest.raises(error, match=re.escape(message)):
+        MicroslipModel.from_dict(changed(paper_model.to_dict(), change))
 
 
 def test_a_folder_or_a_json_list_is_named(tmp_path):
