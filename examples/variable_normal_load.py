@@ -11,6 +11,7 @@ steady cycle by both and writes ``variable_normal_load.png`` into ``DIR`` (defau
 ``./microslip-examples``; the figure in the README is ``examples/variable_normal_load.png``).
 """
 
+import argparse
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -52,10 +53,11 @@ def main(out=Path("microslip-examples") / "variable_normal_load.png", N_m=20.0, 
 
 
 if __name__ == "__main__":
-    import argparse
-
     parser = argparse.ArgumentParser(description="A sphere contact under a varying normal load: the paper's array "
                                                  "against the exact contact (writes variable_normal_load.png).")
-    parser.add_argument("--out", default="microslip-examples", help="folder to write into (default "
-                                                                    "./microslip-examples)")
-    main(Path(parser.parse_args().out) / "variable_normal_load.png")
+    parser.add_argument("--out", default="microslip-examples", help="folder to write into (created if needed; "
+                                                                    "default ./microslip-examples)")
+    folder = Path(parser.parse_args().out)
+    if folder.exists() and not folder.is_dir():
+        parser.error(f"--out {folder} is a file, not a folder")
+    main(folder / "variable_normal_load.png")

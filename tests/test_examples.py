@@ -47,3 +47,23 @@ def test_variable_normal_load_example(tmp_path):
     # rounding of the two marches (measured 3e-16)
     for name in (EXACT, PAPER):
         assert energies[180.0, name] == pytest.approx(energies[0.0, name], rel=1e-12)
+
+
+def test_variable_normal_load_script_writes_into_the_folder_given(tmp_path):
+    """Run as a script it wrote its figure next to itself, over the tracked examples/variable_normal_load.png."""
+    import os
+    import subprocess
+
+    tracked = EXAMPLES / "variable_normal_load.png"
+    before = tracked.stat().st_mtime_ns
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(EXAMPLES.parent / "src"), os.environ.get("PYTHONPATH", "")])}
+    script = str(EXAMPLES / "variable_normal_load.py")
+    done = subprocess.run([sys.executable, script, "--out", str(tmp_path / "figs")], capture_output=True, text=True,
+                          env=env, cwd=tmp_path, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "figs" / "variable_normal_load.png").stat().st_size > 20_000
+    assert tracked.stat().st_mtime_ns == before
+    a_file = tmp_path / "figs" / "variable_normal_load.png"
+    bad = subprocess.run([sys.executable, script, "--out", str(a_file)], capture_output=True, text=True, env=env,
+                         timeout=120)
+    assert bad.returncode == 2 and "is a file, not a folder" in bad.stderr

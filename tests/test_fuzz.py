@@ -388,6 +388,8 @@ T3 = [0.0, 0.5e-6, 1e-6]
 F3 = [0.0, 5.0, 10.0]
 X3 = [0.0, 1e-6, 0.0]  # harmonic balance unknowns of the 1-DOF structure with H = 1: c0, a1, b1 (m)
 L = Lazy  # short, for the table
+#: accuracy targets: math.inf is the documented "no limit" (tests/tuning/test_tune_range.py), not a bad value
+NO_LIMIT = {"energy_target": ("inf",), "force_target": ("inf",)}
 REFERENCE = SPHERE
 MODEL = L(model)
 STATE = L(lambda: State(np.zeros(4)))
@@ -462,6 +464,8 @@ CASES = [
     case("MicroslipModel.trial", lambda: model().trial, state=STATE, t=1e-7, n=N_APP),
     case("MicroslipModel.from_dict", lambda: MicroslipModel.from_dict, kinds={"data": "mapping"},
          data=L(lambda: model().to_dict())),
+    case("MicroslipModel.with_provenance", lambda: model().with_provenance, kinds={"provenance": "object"},
+         provenance=L(lambda: model().provenance)),
     case("MicroslipModel.save", lambda: model().save, kinds=PATH, path="saved.json"),
     case("MicroslipModel.load", lambda: MicroslipModel.load, kinds=PATH, path=L(model_file)),
     case("State", lambda: State, sliders=[0.0, 1e-7]),
@@ -513,7 +517,8 @@ CASES += [
     case("microslip.tune", lambda: tune, reference=REFERENCE, normal_load=N_TOT, elements=4),
     case("microslip.tune [forces]", lambda: tune, reference=REFERENCE, normal_load=N_TOT, forces=[5.0, 10.0, 15.0]),
     # a load range other than the one of the stored points starts a search of minutes
-    case("microslip.tune [load_range]", lambda: tune, refused_only=True, reference=REFERENCE, normal_load=N_TOT,
+    case("microslip.tune [load_range]", lambda: tune, refused_only=True, skip=NO_LIMIT,
+         reference=REFERENCE, normal_load=N_TOT,
          load_range=(7.5, N_TOT), elements=6, energy_target=0.02, force_target=0.02),
     case("microslip.tuning_points", lambda: tuning_points, reference=REFERENCE, normal_load=N_TOT, elements=4),
     case("microslip.tuning_points [displacements]", lambda: tuning_points, reference=REFERENCE, normal_load=N_TOT,
@@ -527,14 +532,16 @@ CASES += [
          kt=L(lambda: microslip.tuning.tangential_stiffnesses(points().t, points().T)),
          slip_displacements=L(lambda: points().t[::-1]), normal_load=N_TOT),
     # each of these searches for minutes once its arguments are accepted
-    case("microslip.tune_to_target", lambda: microslip.tune_to_target, refused_only=True, reference=REFERENCE,
+    case("microslip.tune_to_target", lambda: microslip.tune_to_target, refused_only=True, skip=NO_LIMIT,
+         reference=REFERENCE,
          load_range=(20.0, N_TOT), elements=3, energy_target=0.02, force_target=0.02, min_amplitude=0.5),
-    case("microslip.smallest_elements", lambda: microslip.smallest_elements, refused_only=True,
+    case("microslip.smallest_elements", lambda: microslip.smallest_elements, refused_only=True, skip=NO_LIMIT,
          reference=REFERENCE, load_range=(20.0, N_TOT), energy_target=0.9, force_target=0.9, min_amplitude=0.5,
          max_elements=4, spacing="force", start=2),
     case("tuning.element_sweep", lambda: microslip.tuning.element_sweep, refused_only=True, problem=L(problem),
          elements=[2, 3], spacings=["force"]),
-    case("TargetProblem", lambda: TargetProblem, kinds={"family_options": "mapping"}, reference=REFERENCE,
+    case("TargetProblem", lambda: TargetProblem, kinds={"family_options": "mapping"}, skip=NO_LIMIT,
+         reference=REFERENCE,
          load_range=(20.0, N_TOT), energy_target=0.02, force_target=0.02, min_amplitude=0.5, steps_per_cycle=16,
          reference_elements=40, family_options=dict(ratios=(0.0,), phases_deg=(0.0,), amplitudes=(1.0,),
                                                     levels=(1.0,)), dense=False),
@@ -546,6 +553,7 @@ CASES += [
     case("TargetProblem.result", lambda: problem().result, model=MODEL, points=L(points), spacing="force",
          evaluations=1),
     case("TargetProblem.tune_fractions", lambda: problem().tune_fractions, fractions=[0.3, 0.6, 1.0]),
+    case("TargetProblem.tune_points", lambda: problem().tune_points, kinds={"points": "object"}, points=L(points)),
     case("TargetProblem.tune_spacing", lambda: problem().tune_spacing, spacing="force", elements=3),
     case("ElementSweep.smallest", lambda: sweep().smallest, spacing="force"),
 

@@ -11,13 +11,17 @@ The public objects are
 * :class:`MicroslipModel` -- immutable parameters, :meth:`~MicroslipModel.simulate`
   for whole histories and :meth:`~MicroslipModel.trial` for one step at a time;
 * :class:`State` -- the committed slider positions;
-* :class:`Response` and :class:`Step` -- what a march or a trial step returns.
+* :class:`Response` and :class:`Step` -- what a march or a trial step returns;
+* :class:`Provenance` -- how a tuned model was tuned (kept in its JSON file);
+* :class:`BeyondTuningWarning` -- a model driven beyond the load it was tuned for.
 """
 
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+import warnings
+from dataclasses import dataclass, field, replace
+from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
@@ -25,11 +29,28 @@ import numpy as np
 from .common import _checks
 from . import _kernels
 from .common._io import atomic_write
+from .common._version import __version__
+from .common.units import unit_factor
 
 OPEN, STICK, SLIP = _kernels.OPEN, _kernels.STICK, _kernels.SLIP
 
 _FORMAT = "microslip.MicroslipModel"
 _FORMAT_VERSION = 1
+#: the keys of a model file (``provenance`` is optional: hand-built models and older files have none)
+_KEYS = ("format", "version", "units", "kt", "kn", "gaps", "mu", "provenance")
+#: the kind of unit each parameter of a model file may be given in (its ``units`` entry)
+_UNIT_KINDS = {"kt": "stiffness", "kn": "stiffness", "gaps": "length", "mu": "dimensionless"}
+_SI = {"kt": "N/m", "kn": "N/m", "gaps": "m", "mu": "-"}
+#: relative margin above the tuning approach before a model counts as driven beyond its tuning load
+_BEYOND_RTOL = 1e-9
+
+
+class BeyondTuningWarning(UserWarning):
+    """A tuned model is driven beyond the normal load it was tuned for.
+
+    Beyond its tuning approach every element of the paper's array is closed,
+    so its normal and tangential stiffnesses only extrapolate linearly.
+    """
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:
@@ -185,6 +206,157 @@ class Response:
         return ax
 
 
+def _now() -> str:
+    return datetime.now(timezone.utc).isoformat(timespec="seconds")
+
+
+#: units of the parameters of the usual references, for :meth:`Provenance.describe`
+_PARAMETER_UNITS = {"radius": " m", "length": " m", "flat_radius": " m", "edge_radius": " m", "E": " Pa",
+                    "normal_load": " N", "max_load": " N"}
+
+_PROVENANCE_KEYS = ("reference", "normal_load", "approach", "points", "mu_source", "load_range", "loops", "notes",
+                    "version", "date")
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """How a model was tuned, kept with it in its JSON file (SI units).
+
+    :func:`microslip.tune`, :func:`microslip.tune_on_loops` and the command
+    line fill it; a model built by hand from its parameters has none.
+    ``microslip accuracy`` takes its reference and load from it, and the
+    model warns (:class:`BeyondTuningWarning`) when driven beyond
+    ``approach``.
+
+    Parameters
+    ----------
+    reference : dict
+        The reference contact: ``{"kind": class name, parameter: value}``
+        (e.g. ``{"kind": "Sphere", "radius": 0.005, "E": 2e11, "nu": 0.3,
+        "mu": 0.4}``, SI units; nested for a reference built on another).
+    normal_load : float
+        Tuning load ``N_tot`` (N).
+    approach : float
+        The reference's normal approach at ``normal_load`` (m): the model
+        carries ``normal_load`` there, with every element closed.
+    points_t, points_T : sequence of float, shape (J,)
+        The tuning points on the reference backbone (m, N).
+    mu_source : str
+        Where ``mu`` came from (e.g. ``"given with the reference"``,
+        ``"fitted from the slip forces"``).
+    load_range : (float, float), optional
+        ``(N_lo, N_hi)`` (N) when the points were chosen for accuracy over
+        that range.
+    loops : sequence of str, optional
+        The measured loop files tuned on (names as given).
+    notes : dict, optional
+        Anything else worth keeping, name -> number or text.
+    version : str
+        Package version that tuned it (default: this one).
+    date : str
+        When (ISO 8601, UTC; default: now).
+    """
+
+    reference: dict
+    normal_load: float
+    approach: float
+    points_t: tuple
+    points_T: tuple
+    mu_source: str
+    load_range: tuple | None = None
+    loops: tuple = ()
+    notes: dict = field(default_factory=dict)
+    version: str = __version__
+    date: str = field(default_factory=_now)
+
+    def __post_init__(self):
+        if not isinstance(self.reference, dict) or not isinstance(self.reference.get("kind"), str):
+            raise TypeError(f"reference must be a dict with a 'kind' (the reference's class name), "
+                            f"got {_checks._show(self.reference)}")
+        set_ = lambda name, value: object.__setattr__(self, name, value)  # noqa: E731
+        set_("reference", json.loads(json.dumps(self.reference)))  # a plain-JSON copy (refuses what is not)
+        set_("normal_load", _checks.positive_scalar("normal_load", self.normal_load))
+        set_("approach", _checks.positive_scalar("approach", self.approach))
+        t = _checks.positive_array("points_t", self.points_t, ndim=1, min_size=1)
+        T = _checks.positive_array("points_T", self.points_T, ndim=1, min_size=1)
+        if t.size != T.size:
+            raise ValueError(f"points_t and points_T must have the same length, got {t.size} and {T.size}")
+        set_("points_t", tuple(float(x) for x in t))
+        set_("points_T", tuple(float(x) for x in T))
+        for name in ("mu_source", "version", "date"):
+            if not isinstance(getattr(self, name), str):
+                raise TypeError(f"{name} must be a str, got {_checks._show(getattr(self, name))}")
+        if self.load_range is not None:
+            set_("load_range", _checks.positive_pair("load_range", self.load_range, "(N_lo, N_hi) in N"))
+        if isinstance(self.loops, str) or not all(isinstance(x, str) for x in self.loops):
+            raise TypeError(f"loops must be a sequence of file names, got {_checks._show(self.loops)}")
+        set_("loops", tuple(self.loops))
+        if not isinstance(self.notes, dict) or not all(
+                isinstance(k, str) and isinstance(v, (str, int, float, bool)) for k, v in self.notes.items()):
+            raise TypeError(f"notes must be a dict of name -> number or text, got {_checks._show(self.notes)}")
+        set_("notes", dict(self.notes))
+
+    @property
+    def kind(self) -> str:
+        """Class name of the reference tuned on (e.g. ``'Sphere'``, ``'MeasuredContact'``)."""
+        return self.reference["kind"]
+
+    def describe(self) -> str:
+        """One sentence: the reference, the load, the points, mu, the version and the date."""
+        params = []
+        for k, v in self.reference.items():
+            if isinstance(v, float):
+                params.append(f"{k} = {v:.6g}{_PARAMETER_UNITS.get(k, '')}")
+            elif isinstance(v, dict) and "kind" in v and "mu" in v:  # a contact it was built on
+                params.append(f"{k}: {v['kind']}" + (f" ({v['law']} law)" if isinstance(v.get("law"), str) else ""))
+            elif isinstance(v, str) and k != "kind":
+                params.append(f"{k} = {v}")
+        text = f"tuned on a {self.kind}" + (f" ({', '.join(params)})" if params else "")
+        text += f" at {self.normal_load:.6g} N with {len(self.points_t)} point{'s' * (len(self.points_t) > 1)}"
+        if self.load_range is not None:
+            text += f" chosen for {self.load_range[0]:.6g}-{self.load_range[1]:.6g} N"
+        if self.loops:
+            names = [x.replace("\\", "/").rsplit("/", 1)[-1] for x in self.loops]
+            text += f", on {len(names)} loop file{'s' * (len(names) > 1)} ({', '.join(names)})"
+        return text + f"; mu {self.mu_source}; microslip {self.version}, {self.date}"
+
+    def to_dict(self) -> dict:
+        """Plain-JSON form (the ``"provenance"`` block of a model file)."""
+        d = {"reference": self.reference, "normal_load": self.normal_load, "approach": self.approach,
+             "points": {"t": list(self.points_t), "T": list(self.points_T)}, "mu_source": self.mu_source}
+        if self.load_range is not None:
+            d["load_range"] = list(self.load_range)
+        if self.loops:
+            d["loops"] = list(self.loops)
+        if self.notes:
+            d["notes"] = dict(self.notes)
+        d["version"], d["date"] = self.version, self.date
+        return d
+
+    @classmethod
+    def from_dict(cls, data, where: str = "provenance") -> "Provenance":
+        """Rebuild from :meth:`to_dict` output; unknown or missing keys are refused, naming ``where``."""
+        if not isinstance(data, dict):
+            raise TypeError(f"{where} must be a JSON object, got {_checks._show(data)}")
+        _checks.known_keys(where, data, _PROVENANCE_KEYS)
+        required = ("reference", "normal_load", "approach", "points", "mu_source", "version", "date")
+        missing = [k for k in required if k not in data]
+        if missing:
+            raise ValueError(f"{where} is missing the key(s) {missing}; it needs {', '.join(required)}")
+        points = data["points"]
+        if not isinstance(points, dict):
+            raise TypeError(f"{where}['points'] must be an object with the lists t (m) and T (N), got "
+                            f"{_checks._show(points)}")
+        _checks.known_keys(f"{where}['points']", points, ("t", "T"))
+        try:
+            return cls(reference=data["reference"], normal_load=data["normal_load"], approach=data["approach"],
+                       points_t=points.get("t", []), points_T=points.get("T", []), mu_source=data["mu_source"],
+                       load_range=data.get("load_range"), loops=data.get("loops", ()),
+                       notes=data.get("notes", {}), version=data["version"], date=data["date"])
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"{where}: {exc}") from None
+
+
 @dataclass(frozen=True, eq=False, repr=False)
 class MicroslipModel:
     """A parallel array of ``J`` macroslip elements with normal stiffness and gaps.
@@ -199,6 +371,14 @@ class MicroslipModel:
         Normal approach at which each element comes into contact (m).
     mu : float
         Friction coefficient, positive.
+    provenance : Provenance, optional
+        How it was tuned (filled by :func:`microslip.tune` and the other
+        tunings, kept in its JSON file); ``None`` for a model built by hand.
+        Equality ignores it: two models with the same parameters behave
+        identically whatever their history (and the same tuning run twice
+        differs in its date). When it is known, :meth:`simulate` and
+        :meth:`trial` warn (:class:`BeyondTuningWarning`) when the model is
+        driven beyond the load it was tuned for.
 
     Examples
     --------
@@ -214,6 +394,7 @@ class MicroslipModel:
     kn: np.ndarray
     gaps: np.ndarray
     mu: float
+    provenance: Provenance | None = None
 
     def __post_init__(self):
         kt = _checks.positive_array("kt", self.kt, ndim=1, min_size=1)
@@ -228,6 +409,24 @@ class MicroslipModel:
         object.__setattr__(self, "kn", _frozen(kn))
         object.__setattr__(self, "gaps", _frozen(gaps))
         object.__setattr__(self, "mu", mu)
+        if self.provenance is not None and not isinstance(self.provenance, Provenance):
+            raise TypeError(f"provenance must be a microslip Provenance or None, got {type(self.provenance).__name__}")
+        # the approach beyond which the model is driven past its tuning load (None: not known)
+        object.__setattr__(self, "_beyond", None if self.provenance is None
+                           else self.provenance.approach * (1.0 + _BEYOND_RTOL))
+        object.__setattr__(self, "_warned", False)
+
+    def with_provenance(self, provenance: Provenance | None) -> "MicroslipModel":
+        """The same model with another :class:`Provenance` (or none)."""
+        return replace(self, provenance=provenance)
+
+    def _warn_beyond(self, n_max: float, stacklevel: int) -> None:
+        p = self.provenance
+        warnings.warn(
+            f"the normal approach reaches {n_max:.4g} m, where this model carries {float(self.normal_force(n_max)):.4g} N: "
+            f"beyond the load it was tuned for ({p.normal_load:.4g} N, approach {p.approach:.4g} m), every element "
+            f"is closed and the array only extrapolates linearly; tune it at the highest load it is to meet",
+            BeyondTuningWarning, stacklevel=stacklevel + 1)
 
     # -- description -------------------------------------------------------
     @property
@@ -241,6 +440,7 @@ class MicroslipModel:
                 f"gaps=[{self.gaps.min():.4g} .. {self.gaps.max():.4g}] m)")
 
     def __eq__(self, other) -> bool:
+        """Same parameters ``kt``, ``kn``, ``gaps``, ``mu``; the provenance is not compared (see the class)."""
         if not isinstance(other, MicroslipModel):
             return NotImplemented
         return (self.mu == other.mu and np.array_equal(self.kt, other.kt)
@@ -340,15 +540,28 @@ class MicroslipModel:
         -------
         Response
             Forces in N, shapes ``(steps,)`` and ``(steps, J)``.
+
+        Warns
+        -----
+        BeyondTuningWarning
+            Once per call, when a model with a :class:`Provenance` is driven
+            beyond the approach of the load it was tuned for.
         """
         t = _checks.real_array("t", t, ndim=1, min_size=1)
         n = _checks.real_array("n", n)
         per_element, work = _checks.flag("per_element", per_element), _checks.flag("work", work)
         if n.ndim == 0:
-            n = np.full(t.shape, float(n))
+            top = float(n)
+            n = np.full(t.shape, top)
         elif n.shape != t.shape:
             raise ValueError(f"n must be a scalar or have the same shape as t {t.shape}, got {n.shape}")
+        else:
+            top = None  # its largest approach, only when there is a tuning load to compare it with
         s = self._check_state(state)
+        if self._beyond is not None:
+            top = float(n.max()) if top is None else top
+            if top > self._beyond:
+                self._warn_beyond(top, 2)
         steps = t.size
         T = np.empty(steps)
         N = np.empty(steps)
@@ -376,10 +589,19 @@ class MicroslipModel:
         -------
         Step
             Forces (N), consistent tangent (N/m) and the trial state.
+
+        Warns
+        -----
+        BeyondTuningWarning
+            The first time a model with a :class:`Provenance` is stepped
+            beyond its tuning approach (once per model object).
         """
         t = _checks.real_scalar("t", t)
         n = _checks.real_scalar("n", n)
         s = self._check_state(state)
+        if self._beyond is not None and n > self._beyond and not self._warned:
+            object.__setattr__(self, "_warned", True)  # called per step inside solvers: once per model
+            self._warn_beyond(n, 2)
         T, N = np.empty(1), np.empty(1)
         Ti = np.empty((1, self.elements))
         cond = np.empty((1, self.elements), dtype=np.int8)
@@ -397,32 +619,57 @@ class MicroslipModel:
 
     # -- persistence -------------------------------------------------------
     def to_dict(self) -> dict:
-        """Plain-JSON form: ``{"format", "version", "units", "kt", "kn", "gaps", "mu"}``."""
-        return {
+        """Plain-JSON form: ``{"format", "version", "units", "kt", "kn", "gaps", "mu"}`` and ``"provenance"`` if known."""
+        d = {
             "format": _FORMAT,
             "version": _FORMAT_VERSION,
-            "units": {"kt": "N/m", "kn": "N/m", "gaps": "m", "mu": "-"},
+            "units": dict(_SI),
             "kt": self.kt.tolist(),
             "kn": self.kn.tolist(),
             "gaps": self.gaps.tolist(),
             "mu": self.mu,
         }
+        if self.provenance is not None:
+            d["provenance"] = self.provenance.to_dict()
+        return d
 
     @classmethod
-    def from_dict(cls, data: dict) -> "MicroslipModel":
-        """Rebuild a model from :meth:`to_dict` output (checks format and keys)."""
+    def from_dict(cls, data: dict, *, where: str = "data") -> "MicroslipModel":
+        """Rebuild a model from :meth:`to_dict` output.
+
+        Every key is checked: an unknown one is refused (naming it, a close
+        spelling and the accepted keys), never ignored. ``units`` may give
+        other units for ``kt``, ``kn`` (e.g. ``"N/um"``) and ``gaps`` (e.g.
+        ``"um"``); the values are converted to SI. ``where`` names the data
+        in messages (:meth:`load` passes the file).
+        """
         if not isinstance(data, dict):
-            raise TypeError(f"data must be a dict from MicroslipModel.to_dict(), got {type(data).__name__}")
+            raise TypeError(f"{where} must be a dict from MicroslipModel.to_dict(), got {type(data).__name__}")
+        _checks.known_keys(where, data, _KEYS)
         fmt = data.get("format", _FORMAT)
         if fmt != _FORMAT:
-            raise ValueError(f"data['format'] must be {_FORMAT!r}, got {fmt!r}")
+            raise ValueError(f"{where}['format'] must be {_FORMAT!r}, got {fmt!r}")
         version = data.get("version", _FORMAT_VERSION)
         if version != _FORMAT_VERSION:
-            raise ValueError(f"data['version'] must be {_FORMAT_VERSION}, got {version!r}")
+            raise ValueError(f"{where}['version'] must be {_FORMAT_VERSION}, got {version!r}")
         missing = [k for k in ("kt", "kn", "gaps", "mu") if k not in data]
         if missing:
-            raise ValueError(f"data is missing the key(s) {missing}; expected kt, kn, gaps, mu")
-        return cls(kt=data["kt"], kn=data["kn"], gaps=data["gaps"], mu=data["mu"])
+            raise ValueError(f"{where} is missing the key(s) {missing}; expected kt, kn, gaps, mu")
+        factors = _unit_factors(data.get("units", {}), where)
+        values = {}
+        for key in ("kt", "kn", "gaps", "mu"):
+            name = key if where == "data" else f"{where}: {key}"
+            values[key] = (_checks.real_array(name, data[key]) if key != "mu" else _checks.real_scalar(name, data[key]))
+            values[key] = values[key] * factors[key]
+        provenance = data.get("provenance")
+        if provenance is not None:
+            provenance = Provenance.from_dict(provenance, where=f"{where}['provenance']")
+        try:
+            return cls(**values, provenance=provenance)
+        except (TypeError, ValueError) as exc:
+            if where == "data":
+                raise
+            raise type(exc)(f"{where}: {exc}") from None
 
     def save(self, path) -> Path:
         """Write the model as JSON to ``path`` (atomically). Returns the path."""
@@ -431,12 +678,31 @@ class MicroslipModel:
 
     @classmethod
     def load(cls, path) -> "MicroslipModel":
-        """Read a model written by :meth:`save`."""
+        """Read a model written by :meth:`save` (messages name the file)."""
         path = _checks.file_path("path", path)
         try:
             data = json.loads(path.read_text(encoding="utf-8"))
         except FileNotFoundError:
             raise FileNotFoundError(f"model file {str(path)!r} does not exist") from None
-        except json.JSONDecodeError as exc:
+        except IsADirectoryError:
+            raise IsADirectoryError(f"model file {str(path)!r} is a folder, not a file") from None
+        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
             raise ValueError(f"model file {str(path)!r} is not valid JSON: {exc}") from None
-        return cls.from_dict(data)
+        return cls.from_dict(data, where=f"model file {str(path)!r}")
+
+
+def _unit_factors(units, where: str) -> dict:
+    """SI factor of each parameter from a model file's ``units`` entry (absent: SI)."""
+    if not isinstance(units, dict):
+        raise TypeError(f"{where}['units'] must be an object such as {_SI}, got {_checks._show(units)}")
+    _checks.known_keys(f"{where}['units']", units, _UNIT_KINDS)
+    factors = {}
+    for key, kind in _UNIT_KINDS.items():
+        unit = units.get(key, _SI[key])
+        if not isinstance(unit, str):
+            raise TypeError(f"{where}['units']['{key}'] must be a unit symbol such as {_SI[key]!r}, got {unit!r}")
+        try:
+            factors[key] = unit_factor(unit, kind)
+        except ValueError as exc:
+            raise ValueError(f"{where}['units']['{key}']: {exc}") from None
+    return factors

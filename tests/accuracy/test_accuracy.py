@@ -194,7 +194,7 @@ def test_cli_accuracy(tmp_path, capsys):
 
     head = (out / "summary.txt").read_text().split("\n\n")[0].splitlines()
     assert head[0] == f"microslip version: {__version__}" and head[1].startswith("date: 20")
-    assert {"model: " + str(model), "reference: sphere", "tuning load: 37.5 N", "MDR elements: 200",
+    assert {"model: " + str(model), "reference: sphere", "loads up to: 37.5 N", "MDR elements: 200",
             "samples per cycle: 16", "min load: 7.5 N", "min amplitude: 0.5 t_gs(N_min)", "mu: 0.4"} <= set(head)
 
 

@@ -147,3 +147,23 @@ def test_column_si_errors(tmp_path):
     # a plain dict (no file lines): the data row
     with pytest.raises(ValueError, match=re.escape("x.json: data row 2, column 't': inf is not a finite number")):
         column_si({"t": np.array([1.0, np.inf])}, {"t": "mm"}, "t", "length", path="x.json")
+
+
+@pytest.mark.parametrize("text, value", [("2%", 0.02), ("2 %", 0.02), ("0.02", 0.02), (".5", 0.5), ("1", 1.0),
+                                         ("150%", 1.5), ("-3%", -0.03), (0.25, 0.25)])
+def test_fractions_are_read_as_fractions_or_percentages(text, value):
+    from microslip.common.units import parse_fraction
+
+    assert parse_fraction(text) == pytest.approx(value, rel=1e-15)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("2", "--energy-target: '2' is a fraction above 1 (fractions: 0.02 means 2 %); write 2% for 2 percent, or 0.02"),
+    ("2N", "--energy-target: cannot read '2N' as a fraction such as 0.02 or a percentage such as 2%"),
+    ("two", "cannot read 'two'"),
+])
+def test_a_bare_number_above_one_is_refused_with_both_spellings(text, message):
+    from microslip.common.units import parse_fraction
+
+    with pytest.raises(ValueError, match=re.escape(message)):
+        parse_fraction(text, name="--energy-target")

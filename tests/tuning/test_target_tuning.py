@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from microslip import Sphere, TargetNotMet, TargetProblem, smallest_elements, tune, tune_to_target
 from microslip.tuning.target import ElementSweep, dense_options, element_sweep, load_optimal_points, optimal_points
-from microslip.tuning.target.search import _fractions, _log_spacings
+from microslip.tuning.target.search import _fractions, _log_spacings, _starts
 
 SPHERE = Sphere.paper()
 SMALL = {"ratios": (0.0, 0.6), "phases_deg": (90.0,), "amplitudes": (0.5, 1.0, 2.0), "levels": (0.5, 1.0)}
@@ -87,13 +87,11 @@ def test_tune_to_target_returns_an_optimised_model(small):
     res = tune_to_target(SPHERE, (7.5, 37.5), elements=3, problem=small, maxfev=30, restarts=1,
                          budget=40)
     assert res.elements == 3 and res.spacing == "optimal" and res.evaluations > 1
-    # the search starts from the best of its spacing laws and must not end worse; it must beat the paper's
-    # even spacings it improves on
-    from microslip.tuning.target.search import _starts
-
-    optimised = small.score(res.model)
-    assert optimised <= min(small.score(small.tune_fractions(u)[0]) for u in _starts(3))
-    assert optimised < small.score(small.tune_fractions(np.arange(1, 4) / 3)[0])  # even displacement
+    # the search starts from the best of the spacing laws; what it returns must score better than that start
+    # (measured: 11.6 against 13.2; the search keeps its start when it finds nothing better, so "not worse"
+    # would hold for a search that did nothing)
+    start = min(small.score(small.tune_fractions(u)[0]) for u in _starts(3))
+    assert small.normalised(res.energy_error, res.force_difference) < 0.95 * start
 
 
 def test_smallest_elements_finds_the_first_j_that_meets(small):
@@ -273,3 +271,16 @@ def test_cli_target_sweep_from_stored_points_is_no_worse(tmp_path, capsys, paper
     score = {name: paper_problem.score(paper_problem.tune_fractions(u)[0]) for name, u in
              (("found", found), ("stored", stored))}
     assert score["found"] <= score["stored"] + 1e-12
+
+
+def test_the_differential_evolution_shows_its_progress(small, capsys, monkeypatch):
+    """It ran silently for 35 s on the default problem: now a line per generation, at most one every 5 s."""
+    from microslip.common import _progress
+
+    clock = iter(range(0, 10_000, 3))  # each reading of the clock 3 s later: a line every other generation
+    monkeypatch.setattr(_progress.time, "perf_counter", lambda: float(next(clock)))
+    optimal_points(small, 3, budget=64, restarts=0, progress=True)
+    err = capsys.readouterr().err
+    lines = [ln for ln in err.splitlines() if "generation" in ln and "best score" in ln]
+    assert len(lines) >= 2, err
+    assert lines[0].strip().startswith("generation ") and " of 3, best score " in lines[0]

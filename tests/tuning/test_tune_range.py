@@ -1,5 +1,9 @@
 """``tune(..., load_range=...)``: the points, or J and the points, chosen by measurement (issue 3, item 4)."""
 
+import json
+import math
+import re
+
 import numpy as np
 import pytest
 
@@ -68,6 +72,30 @@ def test_unreachable_targets_raise_with_the_best_found(monkeypatch):
 def test_bad_arguments(kwargs, exc, message):
     with pytest.raises(exc, match=message):
         tune(SPHERE, 37.5, **kwargs)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"energy_target": 2, "force_target": 2}, "energy_target must be a fraction in (0, 1] (fractions: 0.02 means 2 %), "
+                                              "got 2; for 2 % pass 0.02"),
+    ({"force_target": 5.0}, "force_target must be a fraction in (0, 1] (fractions: 0.02 means 2 %), got 5"),
+])
+def test_targets_are_fractions_and_percent_numbers_are_refused(kwargs, message):
+    """Before, energy_target=2 meant 200 % and returned J = 2; the command line's 2 meant 2 %."""
+    with pytest.raises(ValueError, match=re.escape(message)):
+        tune(SPHERE, 37.5, load_range=(7.5, 37.5), **kwargs)
+    with pytest.raises(ValueError, match=re.escape(message)):
+        TargetProblem(SPHERE, (7.5, 37.5), **kwargs)  # refused before the family or the reference is built
+
+
+def test_an_infinite_target_leaves_that_error_out():
+    small = {"ratios": (0.0,), "phases_deg": (90.0,), "amplitudes": (1.0,), "levels": (1.0,)}
+    problem = TargetProblem(SPHERE, (7.5, 37.5), force_target=math.inf, steps_per_cycle=32, reference_elements=100,
+                            family_options=small)
+    model, _ = problem.tune_fractions(np.arange(1, 5) / 4)
+    energy, force = problem.worst(model)
+    assert force > 0 and problem.score(model) == energy / 0.02  # the force difference counts for nothing
+    assert model.provenance.notes["force_target"] == "no limit"  # the file stays plain JSON (no Infinity)
+    assert "Infinity" not in json.dumps(model.to_dict())
 
 
 def test_stored_points_match_only_their_problem():

@@ -10,12 +10,15 @@ import argparse
 import importlib
 import re
 import sys
+import warnings
 
 COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "accuracy", "target"]
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    from ._args import Parser
+
+    parser = Parser(
         prog="microslip",
         description="Microslip friction contacts with variable normal load (Gastaldi & Gola). "
                     "SI units unless a value carries its own unit (e.g. 10mm, 2.5um, 30N, 200GPa).")
@@ -51,10 +54,22 @@ def main(argv=None) -> int:
 
     matplotlib.use("Agg")  # the commands write figures to files; no window is ever opened
     try:
-        return int(args.func(args) or 0)
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")  # each distinct warning once, wherever the filters were set
+            warnings.showwarning = _show_warning(args.command)
+            return int(args.func(args) or 0)
     except (ValueError, TypeError, OSError) as exc:
         print(f"microslip {args.command}: error: {exc}", file=sys.stderr)
         return 2
+
+
+def _show_warning(command: str):
+    """Warnings as a command's messages, ``microslip CMD: warning: ...``, without the source line."""
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        print(f"microslip {command}: warning: {message}", file=sys.stderr)
+
+    return show
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -5,7 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ._args import add_output_folder, add_sphere_options, load_range, sphere_from
+from ._args import (add_sphere_options, checked, fraction, load_range, output_file, output_folder, percent, positive_int,
+                    sphere_from)
 
 
 def _elements_list(text):
@@ -44,10 +45,11 @@ def add_parser(sub) -> None:
     add_sphere_options(p)
     p.add_argument("--load-range", type=load_range, default=(7.5, 37.5),
                    help="loads N_lo,N_hi the contact meets, e.g. 7.5N,37.5N (default); tuned at N_hi")
-    p.add_argument("--energy-target", type=float, default=2.0,
-                   help="worst allowed |energy-per-cycle error|, %% (default 2)")
-    p.add_argument("--force-target", type=float, default=2.0,
-                   help="worst allowed force difference, %% of the reference's peak (default 2)")
+    p.add_argument("--energy-target", type=fraction, default=0.02,
+                   help="worst allowed |energy-per-cycle error|: 2%% or 0.02 (a fraction; a bare number above 1 "
+                        "is refused) (default 2%%)")
+    p.add_argument("--force-target", type=fraction, default=0.02,
+                   help="worst allowed force difference, of the reference's peak force: 2%% or 0.02 (default 2%%)")
     p.add_argument("--min-amplitude", type=float, default=0.5,
                    help="smallest tangential amplitude of the family, as a multiple of the gross-slip "
                         "displacement at a path's lowest load (default 0.5)")
@@ -56,17 +58,17 @@ def add_parser(sub) -> None:
                         "1560 paths instead of 96 at the defaults): the worst error over the continuous ranges "
                         "rather than over the default family's samples (about 15x slower per model)")
     what = p.add_mutually_exclusive_group()
-    what.add_argument("--elements", type=int, default=None, help="optimise the points of this many elements")
+    what.add_argument("--elements", type=positive_int, default=None, help="optimise the points of this many elements")
     what.add_argument("--sweep", type=_elements_list, default=None,
                       help="sweep these J, e.g. 2-16,20,24,28,32, and write sweep.csv and sweep.png to --out")
     p.add_argument("--method", choices=("global", "local"), default="global",
                    help="point search: 'global' (differential evolution seeded by spacing laws, then "
                         "Nelder-Mead; default) or 'local' (Nelder-Mead from the best spacing law only)")
-    p.add_argument("--budget", type=int, default=None,
+    p.add_argument("--budget", type=positive_int, default=None,
                    help="models evaluated by the differential evolution per J (default 600 J; about 3 ms each "
                         "on the default family)")
     p.add_argument("--seed", type=int, default=0, help="seed of the differential evolution (default 0)")
-    p.add_argument("--max-elements", type=int, default=32,
+    p.add_argument("--max-elements", type=positive_int, default=32,
                    help="largest J tried when searching for the smallest (default 32)")
     p.add_argument("--reuse-points", action="store_true",
                    help="with --sweep: re-measure the optimised points stored with the package instead of "
@@ -75,9 +77,14 @@ def add_parser(sub) -> None:
     p.add_argument("--start-from-stored", action="store_true",
                    help="with --sweep: start each J's search from the points stored with the package too (the "
                         "result is then never worse than them)")
-    p.add_argument("--save-points", default=None, help="with --sweep: write the optimised points to this JSON file")
-    p.add_argument("-o", "--output", default="model.json", help="model file to write (default model.json)")
-    add_output_folder(p, "microslip-target")
+    p.add_argument("--save-points", default=None, type=output_file("points.json"),
+                   help="with --sweep: write the optimised points to this JSON file")
+    p.add_argument("-o", "--output", default=None, type=output_file("model.json"),
+                   help="without --sweep: the model file to write (default model.json)")
+    p.add_argument("--out", default=None, type=output_folder, metavar="DIR",
+                   help="with --sweep: the folder for sweep.csv, sweep.png and sweep.txt, created if needed "
+                        "(default ./microslip-target)")
+    p.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
     p.set_defaults(func=run)
 
 
@@ -87,11 +94,18 @@ def run(args) -> int:
 
     _check_options(args)
     reference = sphere_from(args)
+    if args.reuse_points:  # before the exact reference is built
+        from ..tuning.target import stored_mismatch
+
+        why = stored_mismatch(reference, args.load_range, min_amplitude=args.min_amplitude,
+                              energy_target=args.energy_target, force_target=args.force_target)
+        if why:
+            raise ValueError(f"--reuse-points: the stored points do not solve this problem ({why}); drop "
+                             "--reuse-points to search (minutes), or --start-from-stored to start from them")
     bar = Progress(1, enabled=not args.quiet)
     bar.step("load paths and exact reference")
-    problem = TargetProblem(reference, args.load_range, energy_target=args.energy_target / 100,
-                            force_target=args.force_target / 100, min_amplitude=args.min_amplitude,
-                            dense=args.dense)
+    problem = TargetProblem(reference, args.load_range, energy_target=args.energy_target,
+                            force_target=args.force_target, min_amplitude=args.min_amplitude, dense=args.dense)
     if args.sweep is not None:
         return _sweep(args, problem)
     if args.elements is not None:
@@ -111,18 +125,27 @@ def run(args) -> int:
 
 
 def _check_options(args) -> None:
-    """Refuse bad numbers naming the option, the value as typed and its unit (before any computation)."""
-    for option, value, unit in (("--energy-target", args.energy_target, "%"),
-                                ("--force-target", args.force_target, "% of the reference's peak force")):
-        if not (value > 0 and value < float("inf")):
-            raise ValueError(f"{option} must be a positive percentage, got {value:g} ({unit})")
+    """Refuse bad numbers and options that do not apply, naming the option (before any computation).
+
+    ``-o`` names the model file a search writes, ``--out`` the folder a
+    ``--sweep`` writes: each is refused where it would be ignored.
+    """
+    if args.sweep is not None and args.output is not None:
+        raise ValueError(f"-o {args.output} names a model file, which --sweep does not write: --sweep writes "
+                         "sweep.csv, sweep.png and sweep.txt into the folder --out DIR")
+    if args.sweep is None:
+        for option, value in (("--out", args.out), ("--save-points", args.save_points)):
+            if value is not None:
+                raise ValueError(f"{option} applies to --sweep only; without it the model goes to -o FILE")
+    args.output = "model.json" if args.output is None else args.output
+    args.out = "microslip-target" if args.out is None else args.out
+    if args.sweep is None:  # the defaults are checked too
+        checked("-o", output_file("model.json"), args.output)
+    else:
+        checked("--out", output_folder, args.out)
     if not (args.min_amplitude >= 0 and args.min_amplitude < float("inf")):
         raise ValueError(f"--min-amplitude must be a non-negative multiple of the gross-slip displacement, "
                          f"got {args.min_amplitude:g}")
-    for option, value in (("--elements", args.elements), ("--max-elements", args.max_elements),
-                          ("--budget", args.budget)):
-        if value is not None and value < 1:
-            raise ValueError(f"{option} must be a positive integer, got {value}")
     if args.seed < 0:
         raise ValueError(f"--seed must be a non-negative integer, got {args.seed}")
     if args.reuse_points and args.sweep is None:
@@ -135,8 +158,8 @@ def _search(args) -> dict:
 
 
 def _summary(res, path, meets):
-    return {"written": str(path), "elements": res.elements, "energy_error_percent": round(100 * res.energy_error, 4),
-            "force_difference_percent": round(100 * res.force_difference, 4), "meets_target": bool(meets),
+    return {"written": str(path), "elements": res.elements, "energy_error_percent": percent(res.energy_error),
+            "force_difference_percent": percent(res.force_difference), "meets_target": bool(meets),
             "points_um": [round(x * 1e6, 6) for x in res.points.t]}
 
 
@@ -144,15 +167,9 @@ def _sweep(args, problem) -> int:
     import matplotlib.pyplot as plt
 
     from ..common._io import atomic_write, save_figure, write_csv
-    from ..tuning.target import element_sweep, load_optimal_points, points_record, stored_mismatch
+    from ..tuning.target import element_sweep, load_optimal_points, points_record
 
     stored = load_optimal_points()["fractions"] if args.reuse_points or args.start_from_stored else None
-    if args.reuse_points:
-        why = stored_mismatch(problem.reference, problem.load_range, min_amplitude=problem.min_amplitude,
-                              energy_target=problem.energy_target, force_target=problem.force_target)
-        if why:
-            raise ValueError(f"--reuse-points: the stored points do not solve this problem ({why}); drop "
-                             "--reuse-points to search (minutes), or --start-from-stored to start from them")
     sweep = element_sweep(problem, args.sweep, fractions=stored if args.reuse_points else None,
                           starts=stored if args.start_from_stored else None, progress=not args.quiet, **_search(args))
     out = Path(args.out)

@@ -11,9 +11,11 @@ and the validation at every measured load is written next to the model.
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
-from ._args import add_sphere_options, load_range, quantity, quantity_list, sphere_from
+from ._args import (add_sphere_options, load_range, output_file, output_folder, percent, quantity, quantity_list,
+                    sphere_from)
 
 
 def add_parser(sub) -> None:
@@ -34,15 +36,15 @@ def add_parser(sub) -> None:
                    help="the reference contact without LOOPS (default: sphere, Hertz + Cattaneo-Mindlin)")
     add_sphere_options(p)
     p.set_defaults(mu=None)
-    p.add_argument("--load", type=quantity("force"), default=None,
+    p.add_argument("--load", type=quantity("force", sign="positive"), default=None,
                    help="normal load N_tot to tune at, e.g. 37.5N (default: 37.5N for the sphere, the highest "
                         "measured load with LOOPS)")
     pts = p.add_mutually_exclusive_group()
     pts.add_argument("--elements", type=int, default=None,
                      help="number of elements J; points evenly spaced in force (default 4)")
-    pts.add_argument("--forces", type=quantity_list("force"), default=None,
+    pts.add_argument("--forces", type=quantity_list("force", sign="positive"), default=None,
                      help="tuning forces, comma-separated, increasing, last = mu*N_tot (e.g. 3.75N,7.5N,11.25N,15N)")
-    pts.add_argument("--displacements", type=quantity_list("length"), default=None,
+    pts.add_argument("--displacements", type=quantity_list("length", sign="positive"), default=None,
                      help="tuning displacements, comma-separated, increasing, last at gross slip")
     p.add_argument("--load-range", type=load_range, default=None,
                    help="sphere only: loads N_lo,N_hi the contact meets, e.g. 7.5N,37.5N; the points of --elements "
@@ -53,7 +55,7 @@ def add_parser(sub) -> None:
     g.add_argument("--normal-law", default="palmgren",
                    help="normal force-approach law: 'palmgren' (Harris), 'lundberg' (Lundberg-Sjovall), or a "
                         "table file with columns 'n [unit]' and 'N [unit]' (monotone) (default palmgren)")
-    g.add_argument("--length", type=quantity("length"), default=10e-3,
+    g.add_argument("--length", type=quantity("length", sign="positive"), default=10e-3,
                    help="length of the line of contact, e.g. 10mm (default 10mm)")
     g.add_argument("--t-column", metavar="DISP_COLUMN", default=None,
                    help="name of the tangential displacement column (default: t, x, u or displacement)")
@@ -67,10 +69,12 @@ def add_parser(sub) -> None:
     g.add_argument("--T-unit", dest="T_unit", metavar="FORCE_UNIT", default=None,
                    help="unit of the force column when the header has none, e.g. N (a unit that differs from the "
                         "header's is an error)")
-    g.add_argument("--report", default=None,
-                   help="folder for the report (default: the folder of --output); files <model stem>-report.*")
+    g.add_argument("--out", "--report", dest="report", default=None, type=output_folder, metavar="DIR",
+                   help="folder for the report, created if needed (default: the folder of -o); files "
+                        "<model stem>-report.*")
     g.add_argument("--quiet", action="store_true", help="do not show progress on standard error")
-    p.add_argument("-o", "--output", default="model.json", help="model file to write (default model.json)")
+    p.add_argument("-o", "--output", default="model.json", type=output_file("model.json"),
+                   help="model file to write (default model.json)")
     p.set_defaults(func=run)
 
 
@@ -79,8 +83,11 @@ def run(args) -> int:
         raise ValueError("--load-range applies to the sphere only, not to measured LOOPS")
     if args.loops:
         return _run_loops(args)
+    if args.report is not None:
+        raise ValueError("--out is the folder of the report on measured LOOPS; the sphere's model goes to -o FILE")
     from ..tuning import tune
 
+    mu_source = "given (--mu)" if args.mu is not None else "the default --mu 0.4 (the paper's)"
     if args.mu is None:
         args.mu = 0.4
     reference = sphere_from(args)
@@ -95,9 +102,16 @@ def run(args) -> int:
         extra = {"load_range": args.load_range, "progress": not args.quiet}
     model = tune(reference, load, forces=args.forces, displacements=args.displacements,
                  elements=None if points_given else (4 if args.elements is None else args.elements), **extra)
+    model = model.with_provenance(replace(model.provenance, mu_source=mu_source))
     model.save(args.output)
     print(json.dumps({"written": args.output, "elements": model.elements, "mu": model.mu}))
     return 0
+
+
+def _check_normal_law(law: str) -> None:
+    """Refuse a --normal-law that is neither a law's name nor a file (before any file is read)."""
+    if law not in ("palmgren", "lundberg") and not Path(law).is_file():
+        raise ValueError(f"--normal-law must be 'palmgren', 'lundberg' or an existing table file, got {law!r}")
 
 
 def normal_law(args):
@@ -105,10 +119,9 @@ def normal_law(args):
     from ..reference import Cylinder
 
     law = args.normal_law
+    _check_normal_law(law)
     if law in ("palmgren", "lundberg"):
         return Cylinder(length=args.length, radius=args.radius, E=args.E, nu=args.nu, mu=args.mu, law=law)
-    if not Path(law).is_file():
-        raise ValueError(f"--normal-law must be 'palmgren', 'lundberg' or an existing table file, got {law!r}")
     return Cylinder.from_file(law, args.length, args.radius, args.E, args.nu, args.mu)
 
 
@@ -138,6 +151,12 @@ def _run_loops(args) -> int:
     from ..common._progress import Progress
     from ..measured.loop_tuning import tune_on_loops
 
+    _check_normal_law(args.normal_law)
+    for item in args.loops:  # every file named exists before the first is read
+        path, _ = _split_load(item)
+        if not Path(path).is_file():
+            raise ValueError(f"loop file {path!r} does not exist" if not Path(path).exists()
+                             else f"loop file {path!r} is not a file")
     bar = Progress(len(args.loops) + 2, enabled=not args.quiet)
     columns = {k: v for k, v in (("t", args.t_column), ("T", args.T_column), ("N", args.N_column)) if v}
     units = {k: v for k, v in (("t", args.t_unit), ("T", args.T_unit)) if v}
@@ -152,14 +171,19 @@ def _run_loops(args) -> int:
     result = tune_on_loops(analysed, normal_law(args),
                            elements=None if points_given else (4 if args.elements is None else args.elements),
                            forces=args.forces, displacements=args.displacements, normal_load=args.load)
-    result.model.save(args.output)
+    tuned = result.model.provenance
+    notes = {"normal_law_table": args.normal_law} if args.normal_law not in ("palmgren", "lundberg") else {}
+    model = result.model.with_provenance(replace(tuned, loops=tuple(_split_load(i)[0] for i in args.loops),
+                                                 notes={**tuned.notes, **notes}))
+    model.save(args.output)
     out = Path(args.output)
     bar.step("writing the report")
     html, md = result.report(Path(args.report) if args.report else out.parent, stem=f"{out.stem}-report")
     bar.done(f"wrote {args.output}")
     worst = result.validation.worst()
     print(json.dumps({"written": args.output, "report": [str(html), str(md)], "elements": result.model.elements,
-                      "mu": result.reference.mu, "normal_load": result.reference.normal_load,
-                      "fit_relative_residual": result.reference.fit.relative_residual,
-                      "worst_validation_difference": worst}))
+                      "mu": round(result.reference.mu, 4), "normal_load_N": result.reference.normal_load,
+                      "fit_relative_residual_percent": percent(result.reference.fit.relative_residual),
+                      "worst_validation_difference_percent": {k: percent(v) for k, v in worst.items()}}))
     return 0
+

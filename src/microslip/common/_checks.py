@@ -180,3 +180,22 @@ def finite_result(name: str, value, result):
         raise ValueError(f"{name} is too large: {largest:.6g} gives a result beyond the floating-point range "
                          "(about 1.8e308)")
     return result
+
+
+def known_keys(where: str, keys, accepted) -> None:
+    """Refuse any key not in ``accepted``, naming ``where``, the key, a close spelling and the accepted keys.
+
+    ``where`` says what holds the keys (e.g. ``"model file 'm.json'"``), so
+    that a misspelt key is never silently ignored.
+    """
+    import difflib
+
+    accepted = [str(a) for a in accepted]
+    unknown = [str(k) for k in keys if str(k) not in accepted]
+    if unknown:
+        named = []
+        for k in unknown:
+            close = difflib.get_close_matches(k, accepted, n=1, cutoff=0.6)
+            named.append(f"{k!r}" + (f" (did you mean {close[0]!r}?)" if close else ""))
+        raise ValueError(f"{where}: unknown key{'s' if len(unknown) > 1 else ''} {', '.join(named)}; the accepted "
+                         f"keys are {', '.join(accepted)}")

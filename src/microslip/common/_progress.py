@@ -33,6 +33,13 @@ class Progress:
             elapsed = time.perf_counter() - self.start
             print(f"[{self.count}/{self.total}] {label} ({elapsed:.1f} s)", file=self.stream, flush=True)
 
+    def note(self, label: str, *, every: float = 5.0) -> None:
+        """Within a long step: print ``label`` indented, at most once per ``every`` seconds (s)."""
+        now = time.perf_counter()
+        if self.enabled and now - getattr(self, "_noted", self.start) >= every:
+            self._noted = now
+            print(f"      {label} ({now - self.start:.1f} s)", file=self.stream, flush=True)
+
     def done(self, label: str = "done") -> float:
         """Announce the end; returns the elapsed time (s)."""
         elapsed = time.perf_counter() - self.start

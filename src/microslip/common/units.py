@@ -117,3 +117,37 @@ def plot_factor(unit: str) -> float:
         return 1.0 / unit_factor(unit, "length")
     except ValueError as exc:
         raise ValueError(f"unit must be one of the length units, got {unit!r} ({exc})") from None
+
+
+def parse_fraction(text, *, name: str = "value") -> float:
+    """Parse a fraction written as a fraction (``"0.02"``) or a percentage (``"2%"``, ``"2 %"``) into a float.
+
+    A bare number is a fraction, so one above 1 is refused rather than
+    guessed (``2`` could mean 2 % or 200 %): the message shows both
+    spellings of what was probably meant.
+
+    Parameters
+    ----------
+    text : str or float
+        The value.
+    name : str
+        What it is, for error messages (e.g. ``"--energy-target"``).
+
+    Returns
+    -------
+    float
+        The fraction (``0.02`` for 2 %); its sign and size are the caller's to check.
+    """
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
+        number, percent = float(text), False
+    else:
+        match = _NUMBER.match(str(text))
+        if not match or match.group(2) not in ("", "%"):
+            raise ValueError(f"{name}: cannot read {text!r} as a fraction such as 0.02 or a percentage such as 2%")
+        number, percent = float(match.group(1)), match.group(2) == "%"
+    if percent:
+        return number / 100.0
+    if number > 1.0:
+        raise ValueError(f"{name}: {text!r} is a fraction above 1 (fractions: 0.02 means 2 %); write {number:g}% for "
+                         f"{number:g} percent, or {number / 100:g}")
+    return number

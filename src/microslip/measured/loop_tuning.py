@@ -12,7 +12,7 @@ and writes all of it as HTML and Markdown (:mod:`microslip.measured.loop_report`
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -171,5 +171,6 @@ def tune_on_loops(loops, normal, *, elements=None, forces=None, displacements=No
     N_tot = reference.normal_load
     points = tuning_points(reference, N_tot, forces=forces, displacements=displacements, elements=elements)
     model = model_from_points(reference, points)
+    model = model.with_provenance(replace(model.provenance, loops=tuple(L.record.source for L in items)))
     usable = [L for L in items if L.normal_load <= N_tot * (1 + 1e-9)]
     return LoopTuning(reference, model, points, tuple(items), validate(model, normal, usable))

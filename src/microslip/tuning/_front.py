@@ -48,7 +48,8 @@ def tune(reference, normal_load, *, forces=None, displacements=None, elements=No
         any other problem is searched afresh, which takes minutes.
     energy_target, force_target : float, optional
         With ``load_range``: worst allowed ``|energy error|`` and force
-        difference (fractions; 0.02 each when not given).
+        difference, fractions in ``(0, 1]`` (0.02 means 2 %; values above 1
+        are refused; 0.02 each when not given).
     progress : bool, default False
         With ``load_range``: show the search's progress on standard error.
 

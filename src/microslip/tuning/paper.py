@@ -33,6 +33,7 @@ from scipy import optimize
 
 from ..common import _checks
 from ..model import MicroslipModel
+from ._record import record
 
 
 class TuningError(ValueError):
@@ -366,7 +367,9 @@ def model_from_points(reference, points: TuningPoints) -> MicroslipModel:
     Returns
     -------
     MicroslipModel
-        As :func:`tune` returns it.
+        As :func:`tune` returns it, with its :class:`~microslip.model.Provenance`
+        (the reference, the tuning load and approach, the points, where ``mu``
+        came from).
     """
     _check_reference(reference)
     if not isinstance(points, TuningPoints):
@@ -374,7 +377,7 @@ def model_from_points(reference, points: TuningPoints) -> MicroslipModel:
     kt = tangential_stiffnesses(points.t, points.T)
     s = points.t[::-1]  # element e slips at t_{J+1-e}
     kn, gaps = _normal_parameters(reference, kt, s, points.normal_load)
-    return MicroslipModel(kt=kt, kn=kn, gaps=gaps, mu=reference.mu)
+    return MicroslipModel(kt=kt, kn=kn, gaps=gaps, mu=reference.mu, provenance=record(reference, points))
 
 
 def _ends_at_gross_slip(name, values, target, unit, target_text):

@@ -17,7 +17,8 @@ The objective is the worst normalised error over the family,
 differential evolution seeded with the best of a few two-parameter spacing
 laws, then Nelder--Mead on all the points (:func:`optimal_points`;
 deterministic, fixed seed). Pass
-``force_target=1e9`` (any large value) to minimise the worst energy error alone.
+``force_target=math.inf`` to minimise the worst energy error alone (targets are
+fractions: 0.02 means 2 %; above 1 is refused).
 
 Below ``min_amplitude`` a finite array dissipates too little by construction
 (Mindlin's loss grows as the cube of the amplitude; the array's begins only

@@ -5,7 +5,7 @@ See :mod:`microslip.tuning.target` for the method.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -108,7 +108,9 @@ class TargetProblem:
         ``N_hi``; the family keeps the paths whose lowest load is at least
         ``N_lo``.
     energy_target, force_target : float, default 0.02
-        Worst allowed ``|energy error|`` and force difference (fractions).
+        Worst allowed ``|energy error|`` and force difference, fractions in
+        ``(0, 1]`` (0.02 means 2 %; above 1 is refused); ``math.inf`` leaves
+        that error out of the objective.
     min_amplitude : float, default 0.5
         Smallest tangential amplitude kept, as a multiple of the gross-slip
         displacement at the path's lowest load.
@@ -146,8 +148,8 @@ class TargetProblem:
         family_options = _checks.mapping("family_options", {} if family_options is None else family_options)
         self.reference = reference
         self.load_range = (lo, hi)
-        self.energy_target = _checks.positive_scalar("energy_target", energy_target)
-        self.force_target = _checks.positive_scalar("force_target", force_target)
+        self.energy_target = target_fraction("energy_target", energy_target)
+        self.force_target = target_fraction("force_target", force_target)
         self.min_amplitude = _checks.positive_scalar("min_amplitude", min_amplitude, allow_zero=True)
         if not isinstance(dense, (bool, np.bool_)):
             raise TypeError(f"dense must be True or False, got {dense!r}")
@@ -239,14 +241,19 @@ class TargetProblem:
                              f"{np.array2string(fractions, precision=6, threshold=8)}")
         t = fractions * float(self.reference.gross_slip_displacement(self.normal_load))
         pts = tuning_points(self.reference, self.normal_load, displacements=t)
-        return model_from_points(self.reference, pts), pts
+        return self.tune_points(pts), pts
+
+    def tune_points(self, points):
+        """The paper's model on ``points`` (TuningPoints at ``N_hi``), its provenance naming this problem."""
+        return ranged(model_from_points(self.reference, points), self.load_range, energy_target=self.energy_target,
+                      force_target=self.force_target, min_amplitude=self.min_amplitude, dense_family=self.dense)
 
     def tune_spacing(self, spacing: str, elements: int) -> TargetTuning:
         """The model with ``elements`` points spaced evenly in ``'force'`` or ``'displacement'``."""
         J = _checks.size("elements", elements, minimum=1)
         if spacing == "force":
             pts = tuning_points(self.reference, self.normal_load, elements=J)
-            model = model_from_points(self.reference, pts)
+            model = self.tune_points(pts)
         elif spacing == "displacement":
             model, pts = self.tune_fractions(np.arange(1, J + 1) / J)
         else:
@@ -278,6 +285,23 @@ def dense_options(min_amplitude: float = 0.5, *, amplitudes: int = 40, levels: i
     nl = _checks.positive_int("levels", levels, minimum=2)
     amps = np.geomspace(a, 3.0, na) if a < 3.0 else np.array([a])
     return {"amplitudes": tuple(float(x) for x in amps), "levels": tuple(float(x) for x in np.linspace(0.1, 1.0, nl))}
+
+
+def target_fraction(name: str, value) -> float:
+    """An accuracy target: a fraction in ``(0, 1]`` (0.02 means 2 %), or ``math.inf`` for no limit."""
+    if isinstance(value, (float, np.floating)) and value == np.inf:
+        return float(value)
+    x = _checks.positive_scalar(name, value)
+    if x > 1.0:
+        raise ValueError(f"{name} must be a fraction in (0, 1] (fractions: 0.02 means 2 %), got {x:g}; "
+                         f"for {x:g} % pass {x / 100:g}, and math.inf for no limit")
+    return x
+
+
+def ranged(model, load_range, **problem):
+    """``model`` whose provenance adds the load range (N) and the problem (targets as fractions) its points were chosen for."""
+    notes = {k: "no limit" if isinstance(v, float) and v == np.inf else v for k, v in problem.items()}
+    return model.with_provenance(replace(model.provenance, load_range=tuple(load_range), notes=notes))
 
 
 def _load_range(load_range):

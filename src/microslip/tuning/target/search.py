@@ -11,7 +11,7 @@ from scipy import optimize
 from ...common import _checks
 from ...common._progress import Progress
 from .points import stored_fractions
-from .problem import SPACINGS, TargetProblem, TargetTuning, _load_range
+from .problem import SPACINGS, TargetProblem, TargetTuning, _load_range, ranged, target_fraction
 from ..paper import TuningError, model_from_points, tuning_points
 
 
@@ -155,8 +155,20 @@ def _evolve(objective, z0, f0, budget, seed, bar, J):
     popsize = POPULATION
     generations = max(1, budget // (popsize * dim) - 1)
     bar.step(f"J = {J}: differential evolution, {generations} generations of {popsize * dim} models")
-    res = optimize.differential_evolution(objective, [(-half, half)] * dim, x0=z0, seed=seed, popsize=popsize,
-                                          maxiter=generations, tol=0.0, polish=False, updating="immediate")
+    best, generation = [f0], [0]
+
+    def tracked(z):
+        f = objective(z)
+        best[0] = min(best[0], f)
+        return f
+
+    def report(xk, convergence=None):  # after each generation
+        generation[0] += 1
+        bar.note(f"generation {generation[0]} of {generations}, best score {best[0]:.4g}")
+
+    res = optimize.differential_evolution(tracked, [(-half, half)] * dim, x0=z0, seed=seed, popsize=popsize,
+                                          maxiter=generations, tol=0.0, polish=False, updating="immediate",
+                                          callback=report)
     if res.fun < f0:
         return res.x, float(res.fun)
     return z0, f0
@@ -176,7 +188,8 @@ def tune_to_target(reference, load_range, *, elements: int, energy_target=0.02, 
         Number of elements ``J``.
     energy_target, force_target : float, default 0.02
         Normalisation of the two errors in the objective, and the targets
-        that ``meets`` reports (fractions).
+        that ``meets`` reports: fractions in ``(0, 1]`` (0.02 means 2 %),
+        or ``math.inf`` to leave one out.
     min_amplitude : float, default 0.5
         Smallest amplitude of the family (multiple of the gross-slip
         displacement at a path's lowest load).
@@ -297,12 +310,13 @@ def tune_over_range(reference, normal_load, load_range, *, elements=None, energy
     if J is None and energy_target is None and force_target is None:
         raise ValueError("load_range= needs elements= (optimise the points of J elements) or energy_target= / "
                          "force_target= (find the smallest J meeting them)")
-    et = 0.02 if energy_target is None else _checks.positive_scalar("energy_target", energy_target)
-    ft = 0.02 if force_target is None else _checks.positive_scalar("force_target", force_target)
+    et = 0.02 if energy_target is None else target_fraction("energy_target", energy_target)
+    ft = 0.02 if force_target is None else target_fraction("force_target", force_target)
     known = stored_fractions(reference, (lo, hi), energy_target=et, force_target=ft) or {}
     if J is not None and J in known:
         t = known[J] * float(reference.gross_slip_displacement(hi))
-        return model_from_points(reference, tuning_points(reference, hi, displacements=t))
+        model = model_from_points(reference, tuning_points(reference, hi, displacements=t))
+        return ranged(model, (lo, hi), energy_target=et, force_target=ft, min_amplitude=0.5, dense_family=False)
     problem = TargetProblem(reference, (lo, hi), energy_target=et, force_target=ft)
     if J is not None:
         return optimal_points(problem, J, progress=progress).model
