@@ -40,6 +40,11 @@ from ..model import MicroslipModel
 from . import _aft
 
 MAX_PERIODS = 1000
+#: harmonics kept at most (each adds two unknowns per DOF; a response with kinks needs tens, not hundreds)
+MAX_HARMONICS = 256
+#: samples x (2H + 1) at most: the AFT's tables and work arrays hold about seven arrays of that many
+#: numbers (235 MB at the limit), so a slip such as samples = 10**7 is refused before any allocation
+MAX_TABLE = 2**22
 
 
 class NotPeriodicError(RuntimeError):
@@ -52,20 +57,37 @@ def default_samples(harmonics: int) -> int:
     ``16 H`` rounded up to a power of two, at least 32 (128 for ``H = 7``);
     1 for ``H = 0`` (a constant needs one sample). See the module docstring for why.
     """
-    H = _checks.positive_int("harmonics", harmonics, minimum=0)
+    H = check_harmonics(harmonics, minimum=0)
     if H == 0:
         return 1
     return max(32, 1 << (16 * H - 1).bit_length())  # bit_length: ceil(log2) in integers
 
 
+def check_harmonics(harmonics, *, name: str = "harmonics", minimum: int = 1) -> int:
+    """``harmonics`` checked: an integer from ``minimum`` to :data:`MAX_HARMONICS`."""
+    return _checks.size(name, harmonics, minimum=minimum, maximum=MAX_HARMONICS)
+
+
+def check_table(name: str, samples: int, harmonics: int) -> None:
+    """Refuse ``samples`` per period whose tables for ``harmonics`` would exceed :data:`MAX_TABLE` numbers."""
+    limit = MAX_TABLE // (2 * harmonics + 1)
+    if samples > limit:
+        raise ValueError(f"{name} must be at most {limit} with harmonics = {harmonics} (the tables of a period "
+                         f"hold {name} x (2 harmonics + 1) numbers, at most {MAX_TABLE}), got {samples}")
+
+
 def check_samples(samples, harmonics: int) -> int:
-    """``samples`` checked against ``harmonics`` (``None``: :func:`default_samples`)."""
+    """``samples`` checked against ``harmonics`` (``None``: :func:`default_samples`).
+
+    At least ``2 harmonics + 1``, and small enough for :func:`check_table`.
+    """
     if samples is None:
         return default_samples(harmonics)
     Ns = _checks.size("samples", samples, minimum=1)
     if Ns < 2 * harmonics + 1:
         raise ValueError(f"samples must be at least 2 * harmonics + 1 = {2 * harmonics + 1} "
                          f"to resolve {harmonics} harmonics, got {Ns}")
+    check_table("samples", Ns, harmonics)
     return Ns
 
 
@@ -75,7 +97,7 @@ def harmonics_of(name: str, coefficients) -> tuple[np.ndarray, int]:
     if c.ndim == 0 or c.shape[-1] % 2 == 0:
         raise ValueError(f"{name} must hold 2H + 1 Fourier coefficients [c0, a1, b1, ..., aH, bH] "
                          f"along its last axis, got shape {c.shape}")
-    return c, (c.shape[-1] - 1) // 2
+    return c, check_harmonics((c.shape[-1] - 1) // 2, name=f"{name}: the number of harmonics H", minimum=0)
 
 
 def synthesise(coefficients, samples: int) -> np.ndarray:

@@ -20,7 +20,7 @@ from ..common import _checks
 from ..common._io import write_csv
 from ..common._progress import Progress
 from ..common.units import plot_factor
-from .aft import MAX_PERIODS, UnderResolvedWarning, synthesise
+from .aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance, excitation
 from .cyclic import CyclicStructure
@@ -363,12 +363,18 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
         retained DOFs, then every DOF is recovered).
     """
     tolerance = _checks.in_range("tolerance", tolerance, 0.0, 1.0, lo_open=True, hi_open=True)
+    if not isinstance(structure, Structure):
+        raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
     if force is None:
         static_force = {}
-    elif isinstance(force, Mapping):
+    elif isinstance(force, Mapping):  # every harmonic checked (keys, vectors), the static one used
+        excitation(structure, force, max([0] + [h for h in force if isinstance(h, (int, np.integer))]))
         static_force = _static_force(force)
     else:
-        static_force = {0: force}
+        f = structure.force_vector(force, "force")
+        if np.iscomplexobj(f):
+            raise TypeError(f"force (a static force) must be real, got {_checks._show(force)}")
+        static_force = {0: f}
     static, _, _ = _equations(structure, static_force, 0, None, MAX_PERIODS, reduction, modes)
     x = _static_state(static, tolerance=tolerance)[0]
     return static._full(x, 1.0)[0]
@@ -381,7 +387,7 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     """
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
-    H = _checks.size("harmonics", harmonics, minimum=0)
+    H = check_harmonics(harmonics, minimum=0)
     engine_order = check_engine_order(structure, engine_order)
     _check_determined(structure)
     static_force = _static_force(force) if force is not None else {}
@@ -588,7 +594,7 @@ def incomplete_message(result: FrequencyResponse, omega_end: float, control: Ste
 def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, reduction="auto", modes=None,
                  engine_order=None):
     """The equations, the solution at ``lo`` (from the static state) and the scales of x and R."""
-    H = _checks.positive_int("harmonics", harmonics, minimum=1)
+    H = check_harmonics(harmonics)
     static_hb, hb, _ = _equations(structure, force, H, samples, max_periods, reduction, modes, engine_order)
     if not np.any(hb.f_ext[1:]):
         raise ValueError("force must have a non-zero dynamic part (harmonic >= 1)")
