@@ -653,30 +653,33 @@ def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> fl
 RESOLUTION = 1e-3
 
 
-def _check_resolution(q: dict, samples: int) -> None:
+def _check_resolution(q: dict, samples: int, contacts, omegas) -> None:
     """Warn when a contact opens and closes during the cycle faster than the AFT's samples resolve it.
 
     The energy it dissipates then differs, from the force harmonics and from the
     friction work of the same samples, by more than :data:`RESOLUTION` of the
-    excitation's work; the difference falls like ``1/samples^2``.
+    excitation's work; the difference falls like ``1/samples^2``. The warning
+    names the worst contact and the frequency where it is worst, and points at
+    the caller of :func:`frequency_response` or :func:`frequency_point`.
     """
     if not q["opens"].any():
         return
-    gap = np.abs(q["contacts_harmonic"] - q["contacts"]).max(axis=1)
-    scale = np.maximum(np.abs(q["excitation"]), 1e-300)
-    worst = float(np.max(np.where(q["opens"].any(axis=1), gap / scale, 0.0)))
+    scale = np.maximum(np.abs(q["excitation"]), 1e-300)[:, None]
+    error = np.where(q["opens"], np.abs(q["contacts_harmonic"] - q["contacts"]) / scale, 0.0)
+    k, c = np.unravel_index(int(np.argmax(error)), error.shape)
+    worst = float(error[k, c])
     if worst > RESOLUTION:
         need = samples * int(2 ** np.ceil(np.log2(np.sqrt(worst / RESOLUTION))))
-        warnings.warn(f"a contact opens and closes during the cycle faster than {samples} samples per period "
-                      f"resolve: its energy per cycle is uncertain by {worst:.2g} of the excitation's work; "
-                      f"samples={need} resolves it to {RESOLUTION:g} (the error falls like 1/samples^2)",
-                      UnderResolvedWarning, stacklevel=3)
+        warnings.warn(f"contact {contacts[c].name!r} opens and closes during the cycle faster than {samples} samples "
+                      f"per period resolve (worst at omega = {float(omegas[k]):.6g} rad/s): its energy per cycle is "
+                      f"uncertain by {worst:.2g} of the excitation's work; samples={need} resolves it to "
+                      f"{RESOLUTION:g} (the error falls like 1/samples^2)", UnderResolvedWarning, stacklevel=4)
 
 
 def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> FrequencyResponse:
     """The result object from the solutions ``xs`` and the static state ``(N0, T0, closed)``."""
     q = hb.curve_quantities(xs, omegas)
-    _check_resolution(q, hb.samples)
+    _check_resolution(q, hb.samples, hb.structure.contacts, omegas)
     reduced = isinstance(hb, ReducedHarmonicBalance)
     extra = {"contact_harmonic_work": q["contacts_harmonic"]}
     if reduced:
