@@ -43,12 +43,31 @@ def test_frf_writes_curve_plots_and_report(config_dir, capsys):
     report = (out / "report.md").read_text()
     assert "| x |" in report and "mean normal load" in report
     assert "excitation frequency from 2069.01 to 2546.48 Hz" in report  # Hz by default, as engineers read it
+    assert "| frequency range (Hz) | 2069.01 to 2546.48 |" in report  # the run's table too (it gave rad/s)
+    assert "2 DOFs, 1 contact, H = 7" in report  # not "1 contact(s)"
     assert "| 1 | x | 0.6 | 0 |" in report  # the excitation: harmonic, DOF, amplitude (N), phase
     # energies in a unit chosen by magnitude (0.48 µJ is written 484.1 nJ, not 4.841e-07 J)
     assert re.search(r"largest energy dissipated per cycle \d{1,3}(\.\d+)? nJ\.", report)
     # the static state: the 37.5 N preload is shared with the springs (see the configuration's comment)
     static = "static state: normal force N0 = 21.36"
     assert static in printed.out and static in report and "3 of 4 elements closed" in report
+
+
+def test_frf_prints_and_reports_an_under_resolved_contact(config_dir, capsys):
+    """The example's whole range at the default samples: the contact opens at the second mode too fast for them."""
+    cfg = config_dir / "block.toml"
+    out = config_dir / "out"
+    assert main(["frf", str(cfg), "--out", str(out), "--quiet"]) == 0
+    assert "warning" not in capsys.readouterr().err  # the example's 256 samples resolve it
+    _edit(cfg, "samples = 256", "samples = 128")
+    assert main(["frf", str(cfg), "--out", str(out), "--quiet"]) == 0
+    err = capsys.readouterr().err
+    # one line naming the contact and the setting to change (it was a Python warning pointing inside the package)
+    assert re.search(r"^microslip frf: warning: contact 'sphere' opens and closes during the cycle faster than 128 "
+                     r"samples per period resolve \(worst at omega = 1\d{4}(\.\d+)? rad/s\): .*; \[sweep\] samples = "
+                     r"256 resolves it", err, re.M)
+    assert "response.py" not in err and "UnderResolvedWarning" not in err
+    assert "**Sampling**: contact 'sphere' opens and closes" in (out / "report.md").read_text()
 
 
 def test_frf_exits_non_zero_on_a_curve_cut_short_by_max_points(config_dir, capsys):
@@ -105,7 +124,33 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
     ("harmonics = 7", 'harmonics = 7\nreduction = "fast"', "\\[sweep\\] reduction must be one of 'auto', 'none', "
      "'exact', 'modal', got 'fast'"),
     ('h1 = ["0.6N", "0N"]', 'h1 = ["0.6m", "0N"]', "unknown force unit 'm'"),
-    ('h1 = ["0.6N", "0N"]', 'first = [0.6, 0.0]', "key 'first' is neither 'static' nor 'h<harmonic>'"),
+    ('h1 = ["0.6N", "0N"]', 'first = [0.6, 0.0]', "\\[excitation\\] has an unknown key 'first' \\(it accepts static, "
+     "h<harmonic> such as h1, and phase_h<harmonic> such as phase_h1\\)"),
+    # the [excitation] table, its did-you-mean, and harmonics beyond the sweep's named with the file and table
+    ('h1 = ["0.6N", "0N"]', 'statc = [0.0, 0.0]\nh1 = [0.6, 0.0]', "\\[excitation\\] has an unknown key 'statc'; "
+     "did you mean 'static'\\?"),
+    ('h1 = ["0.6N", "0N"]', 'h1 = [0.6, 0.0]\nphse_h1 = [0.0, 0.0]', "\\[excitation\\] has an unknown key 'phse_h1'; "
+     "did you mean 'phase_h1'\\?"),
+    ('h1 = ["0.6N", "0N"]', 'h9 = [0.6, 0.0]', "block.toml: \\[excitation\\] h9 is a harmonic above \\[sweep\\] "
+     "harmonics = 7; raise harmonics to 9 or more, or remove h9"),
+    ('h1 = ["0.6N", "0N"]', 'h1 = [0.6, 0.0]\nphase_static = [0.0, 0.0]', "\\[excitation\\] phase_static: a static "
+     "force has no phase"),
+    ("[excitation]", "[[excitation]]", "\\[excitation\\] must be a table, got \\[\\{'h1'"),
+    ('preload = "37.5N"', 'PRELOAD = "37.5N"', "has an unknown key 'PRELOAD'; did you mean 'preload'\\?"),
+    ("[[contact]]", "[contact]", "block.toml: contact must be an array of tables, written \\[\\[contact\\]\\] \\(one "
+     "per contact\\), got a single table \\[contact\\]"),
+    # DOF names: a string was split into letters, a repeated name gave two CSV columns of one name
+    ('dofs = ["x", "y"]', 'dofs = "xy"', "\\[structure\\] dofs must be a list of names \\(non-empty strings\\), one "
+     "per DOF, got 'xy'"),
+    ('dofs = ["x", "y"]', 'dofs = ["x", "x"]', "\\[structure\\] dofs names 'x' twice; each DOF needs its own name"),
+    ("plot = [0, 1]", 'plot = ["z"]', "\\[output\\] plot: 'z' is not a DOF \\(an index from 0 to 1, or one of the "
+     "names x, y\\)"),
+    ("plot = [0, 1]", 'plot = ["X"]', "\\[output\\] plot: 'X' is not a DOF; did you mean 'x'\\?"),
+    ("plot = [0, 1]", "plot = 0", "\\[output\\] plot must be a list of DOFs \\(indices or names\\), got 0"),
+    # sizes that ended in a MemoryError
+    ("harmonics = 7", "harmonics = 100000", "\\[sweep\\] harmonics must be at most 256"),
+    ("samples = 256", "samples = 9000000", "\\[sweep\\] samples must be at most 279620 with "
+     "harmonics = 7"),
     ('model = "sphere_4_elements.json"', 'model = "nope.json"', "model file .*nope.json.* does not exist"),
     ('preload = "37.5N"', 'preload = "37.5N"\napproach = "1um"\nbogus = 1', "has an unknown key 'bogus' \\(it"),
     ("omega = [12000, 18000]", "omega = [12000]", "the range must have 2 values"),
@@ -134,7 +179,7 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
     ("harmonic = 1", 'harmonic = "one"', "\\[output\\] harmonic must be an integer, got 'one'"),
     ("harmonic = 1", "harmonic = -1", "\\[output\\] harmonic must be an integer >= 0, got -1"),
     ("harmonics = 7", "harmonics = 0", "\\[sweep\\] harmonics must be an integer >= 1, got 0"),
-    ("harmonics = 7", "harmonics = 7\nsamples = 8", "\\[sweep\\] samples must be at least 2 \\* harmonics \\+ 1 "
+    ("samples = 256", "samples = 8", "\\[sweep\\] samples must be at least 2 \\* harmonics \\+ 1 "
      "= 15"),
     ("harmonics = 7", 'harmonics = 7\n[continuation]\nmax_angle = "big"',
      "\\[continuation\\] max_angle must be a real number, got 'big'"),
@@ -149,6 +194,12 @@ def test_config_errors_name_the_key(config_dir, old, new, message):
         return
     with pytest.raises((ConfigError, FileNotFoundError, ValueError), match=message):
         load_config(cfg)
+
+
+def test_plot_takes_dof_names(config_dir):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, "plot = [0, 1]", 'plot = ["y", 0]')
+    assert load_config(cfg).plot_dofs == [1, 0]
 
 
 def test_frf_reports_errors_without_traceback(config_dir, capsys):

@@ -40,6 +40,20 @@ def oscillator():
     (lambda: steady_state(oscillator(), {"a": [1.0]}, 100.0, steps_per_period=64, harmonics=1), TypeError,
      "force: harmonic keys must be integers, got 'a'"),
     (lambda: oscillator().force_vector([1.0], name=1.0), TypeError, "name must be a string, got 1.0"),
+    # sizes below the general limit of 10**7 that still needed gigabytes (MemoryError after a long wait):
+    # the AFT's tables hold samples x (2H + 1) numbers, limited to 2**22
+    (lambda: frequency_response(oscillator(), [1.0], (90.0, 110.0), harmonics=7, samples=10**7), ValueError,
+     r"samples must be at most 279620 with harmonics = 7 \(the tables of a period hold samples x \(2 harmonics "
+     r"\+ 1\) numbers, at most 4194304\), got 10000000"),
+    (lambda: aft(JENKINS, [0.0, 1e-6, 0.0], [1e-6, 0.0, 0.0], samples=10**7), ValueError,
+     "samples must be at most 1398101 with harmonics = 1"),
+    (lambda: frequency_point(oscillator(), [1.0], 100.0, harmonics=10**4), ValueError,
+     r"harmonics must be at most 256 \(a size: larger ones would need gigabytes\), got 10000"),
+    (lambda: HarmonicBalance(oscillator(), [1.0], 300), ValueError, "harmonics must be at most 256"),
+    (lambda: synthesise(np.zeros(2 * 300 + 1), 4096), ValueError,
+     "coefficients: the number of harmonics H must be at most 256"),
+    (lambda: steady_state(oscillator(), [1.0], 100.0, steps_per_period=10**7, harmonics=7), ValueError,
+     "steps_per_period must be at most 279620 with harmonics = 7"),
 ])
 def test_bad_arguments_are_named(call, error, message):
     with pytest.raises(error, match=message):

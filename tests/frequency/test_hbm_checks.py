@@ -149,6 +149,20 @@ def test_static_solution_takes_a_force_vector():
         static_solution(s, "abc")
 
 
+@pytest.mark.parametrize("force, error, message", [
+    ("abc", TypeError, "^force must be an array of real numbers, got 'abc'$"),  # was force[0] and an array repr
+    ([1j], TypeError, "force \\(a static force\\) must be real, got \\[1j\\]"),
+    ({"a": [1.0]}, TypeError, "force: harmonic keys must be integers, got 'a'"),  # was ignored: zero displacement
+    ({1: "x"}, TypeError, "force\\[1\\] must be an array of real numbers, got 'x'"),  # an unused harmonic, checked
+    ({-1: [1.0]}, ValueError, "force: harmonic -1 is outside"),
+    ({0: [1.0, 2.0]}, ValueError, "force\\[0\\] must have one entry per DOF \\(1\\), got 2"),
+])
+def test_static_solution_names_a_bad_force(force, error, message):
+    s = Structure([[1.0]], None, [[2e4]])
+    with pytest.raises(error, match=message):
+        static_solution(s, force)
+
+
 def test_a_dof_held_only_by_friction_is_named_with_the_fix():
     # a free mass on a Jenkins contact: its mean position is undetermined (it used to end in "did not converge
     # (relative residual 1.3e-11 after 50 iterations)" or "continuation stalled")

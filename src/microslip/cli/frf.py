@@ -24,7 +24,9 @@ def add_parser(sub) -> None:
                     "0 on success, 1 when the solution fails or the curve stops at [continuation] max_points "
                     "before the end of the range (the results up to there are written), 2 for an invalid "
                     "configuration. Plots and the report give frequencies in Hz unless [output] "
-                    "frequency_unit = \"rad/s\"; frf.csv has both.")
+                    "frequency_unit = \"rad/s\"; frf.csv has both. A contact that opens and closes faster than "
+                    "the AFT samples resolve is named in a warning and in the report, with the [sweep] samples "
+                    "that resolve it.")
     p.add_argument("config", help="TOML configuration file")
     add_output_folder(p, "microslip-frf")
     p.set_defaults(func=run)
@@ -68,36 +70,46 @@ def run(args) -> int:
     import sys
     import warnings
 
-    from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, frequency_response
+    from ..frequency import (ConvergenceError, IncompleteCurveWarning, NotPeriodicError, UnderResolvedWarning,
+                             frequency_response)
     from ..frequency.response import incomplete_message
     from ..frequency.config import load_config
-    from ..common.report import Report
+    from ..common.report import Report, plural
 
     cfg = load_config(args.config)
     out = Path(args.out)
     try:
-        with warnings.catch_warnings():  # an incomplete curve is reported below, as an error
-            warnings.simplefilter("ignore", IncompleteCurveWarning)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("ignore", IncompleteCurveWarning)  # reported below, as an error
+            warnings.simplefilter("always", UnderResolvedWarning)  # printed and written in the report below
             result = frequency_response(cfg.structure, cfg.force, cfg.omega, harmonics=cfg.harmonics,
                                         samples=cfg.samples, control=cfg.control, progress=not args.quiet,
                                         reduction=cfg.reduction, modes=cfg.modes, engine_order=cfg.engine_order)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip frf: error: {exc}", file=sys.stderr)
         return 1
+    resolution = []
+    for w in caught:
+        if issubclass(w.category, UnderResolvedWarning):  # advice on [sweep] samples, without a traceback line
+            resolution.append(str(w.message).replace("samples=", "[sweep] samples = "))
+            print(f"microslip frf: warning: {resolution[-1]}", file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     csv = result.to_csv(out / "frf.csv", dofs=range(cfg.structure.ndof) if cfg.structure.ndof <= 20
                         else cfg.plot_dofs, names=cfg.dof_names)
     report = Report(f"microslip frf: {cfg.title}", parameters={
         "configuration": str(args.config), "DOFs": cfg.structure.ndof, "contacts": len(cfg.structure.contacts),
         "harmonics H": cfg.harmonics, "AFT samples per period": result.samples,
-        "frequency range (rad/s)": f"{cfg.omega[0]:.6g} to {cfg.omega[1]:.6g}", "reduction": result.reduction,
+        f"frequency range ({cfg.frequency_unit})": "{:.6g} to {:.6g}".format(*_frequency(cfg, np.array(cfg.omega))[0]),
+        "reduction": result.reduction,
         "modes": result.modes if result.modes else "-", "output": str(out)})
     lo, hi = _frequency(cfg, np.array(cfg.omega))[0]
     reduced = (f"the linear structure condensed onto the {result.dofs.size} DOFs the contacts and the excitation "
                f"use ({result.reduction}" + (f", {result.modes} modes, estimated error "
                                              f"{result.reduction_error:.2g}" if result.modes else "") + ")"
                if result.reduction != "none" else "every DOF solved")
-    report.text(f"Configuration `{args.config}`: {cfg.structure.ndof} DOFs, {len(cfg.structure.contacts)} "
-                f"contact(s), H = {result.harmonics} harmonics, {result.samples} AFT samples per period, "
+    report.text(f"Configuration `{args.config}`: {plural(cfg.structure.ndof, 'DOF')}, "
+                f"{plural(len(cfg.structure.contacts), 'contact')}, H = {result.harmonics} harmonics, {result.samples} AFT samples per period, "
                 f"excitation frequency from {lo:.6g} to {hi:.6g} {cfg.frequency_unit}; {reduced}.")
     report.table(["harmonic", "DOF", "amplitude (N)", "phase (°)"], _excitation_rows(cfg),
                  caption="Excitation: force amplitude on each DOF (static: a constant force)")
@@ -112,6 +124,8 @@ def run(args) -> int:
                  caption="Highest point of each plotted DOF's curve")
     if not result.complete:
         report.text(f"**Incomplete curve**: {incomplete_message(result, cfg.omega[1], cfg.control)}.")
+    for text in resolution:
+        report.text(f"**Sampling**: {text}.")
     unit, factor = display_unit(result.contact_dissipation, "energy")
     for c, contact in enumerate(result.structure.contacts):
         report.text(_static_text(result, c) + f" Along the curve: mean normal load "

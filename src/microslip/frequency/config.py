@@ -66,7 +66,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # dof = 2                           # the DOF whose peak is read
 
     [output]
-    # plot = [0]                        # DOFs to plot (default: all, up to 6)
+    # plot = [0]                        # DOFs to plot, indices or names ("x"; default: all, up to 6)
     # harmonic = 1                      # plotted amplitude: a harmonic, or omit for max |q - q0|
     # frequency_unit = "Hz"             # of the plots and the report: "Hz" (default) or "rad/s"
 
@@ -84,7 +84,7 @@ import numpy as np
 from ..common import _checks
 from ..model import MicroslipModel
 from ..common.units import parse_quantity
-from .aft import check_samples
+from .aft import check_harmonics, check_samples
 from .continuation import StepControl
 from .structure import Structure
 
@@ -144,15 +144,74 @@ class FrfConfig:
 
 def _known(table: dict, where: str, path) -> None:
     """Refuse a key ``where`` does not accept, naming it, the table and the accepted keys (the closest first)."""
-    import difflib
-
     accepted = KEYS[where]
     for key in table:
         if key not in accepted:
-            close = difflib.get_close_matches(key, accepted, n=1, cutoff=0.6)
-            hint = f"; did you mean {close[0]!r}?" if close else ""
-            raise ConfigError(f"{path}: {where} has an unknown key {key!r}{hint} (it accepts "
+            raise ConfigError(f"{path}: {where} has an unknown key {key!r}{_close(key, accepted)} (it accepts "
                               f"{', '.join(accepted)})")
+
+
+def _close(key: str, accepted) -> str:
+    """``"; did you mean 'x'?"`` for the accepted key closest to ``key`` (case ignored), else ``""``."""
+    import difflib
+
+    lowered = {a.lower(): a for a in accepted}
+    close = difflib.get_close_matches(str(key).lower(), list(lowered), n=1, cutoff=0.6)
+    return f"; did you mean {lowered[close[0]]!r}?" if close else ""
+
+
+def _harmonic_key(key: str) -> int | None:
+    """The harmonic an ``[excitation]`` key names: 0 for ``static``, ``h`` for ``h<h>`` (h >= 1), else None."""
+    if key == "static":
+        return 0
+    if key.startswith("h") and key[1:].isdigit() and int(key[1:]) >= 1:
+        return int(key[1:])
+    return None
+
+
+def _tables(data: dict, key: str, path) -> list:
+    """The tables of an array of tables ``[[key]]`` (none if absent)."""
+    value = data.get(key, [])
+    if isinstance(value, dict):
+        raise ConfigError(f"{path}: {key} must be an array of tables, written [[{key}]] (one per {key}), "
+                          f"got a single table [{key}]")
+    if not isinstance(value, list):
+        raise ConfigError(f"{path}: {key} must be an array of tables, written [[{key}]], got {value!r}")
+    return value
+
+
+def _dof_names(value, ndof: int, path) -> list[str]:
+    """``[structure] dofs``: one distinct, non-empty name per DOF."""
+    if not isinstance(value, list) or not all(isinstance(v, str) and v.strip() for v in value):
+        raise ConfigError(f"{path}: [structure] dofs must be a list of names (non-empty strings), one per DOF, "
+                          f"got {value!r}")
+    if len(value) != ndof:
+        raise ConfigError(f"{path}: [structure] dofs names {len(value)} DOFs, the matrices have {ndof}")
+    seen = set()
+    for name in value:
+        if name in seen:
+            raise ConfigError(f"{path}: [structure] dofs names {name!r} twice; each DOF needs its own name")
+        seen.add(name)
+    return list(value)
+
+
+def _plot_dofs(value, names: list[str], path) -> list[int]:
+    """``[output] plot``: DOF indices or names, as indices."""
+    if not isinstance(value, list):
+        raise ConfigError(f"{path}: [output] plot must be a list of DOFs (indices or names), got {value!r}")
+    out = []
+    for d in value:
+        if isinstance(d, str) and d in names:
+            out.append(names.index(d))
+        elif isinstance(d, int) and not isinstance(d, bool) and 0 <= d < len(names):
+            out.append(d)
+        elif isinstance(d, int) and not isinstance(d, bool):
+            raise ConfigError(f"{path}: [output] plot names DOF {d}; the structure has {len(names)}")
+        else:
+            raise ConfigError(f"{path}: [output] plot: {d!r} is not a DOF{_close(str(d), names)} (an index "
+                              f"from 0 to {len(names) - 1}, or one of the names {', '.join(names[:8])}"
+                              f"{', ...' if len(names) > 8 else ''})")
+    return out
 
 
 def _checked(path, where: str, check, *args, **kwargs):
@@ -290,13 +349,11 @@ def load_config(path) -> FrfConfig:
     if "cyclic" in data:
         structure, engine_order = _cyclic(_table(data["cyclic"], "[cyclic]", path), structure, path)
     ndof = structure.ndof
-    names = [str(n) for n in st.get("dofs", [])] or (
+    names = _dof_names(st["dofs"], ndof, path) if "dofs" in st else (
         structure.dof_map.names if structure.dof_map is not None else [f"q{i}" for i in range(ndof)])
-    if len(names) != ndof:
-        raise ConfigError(f"{path}: [structure] dofs names {len(names)} DOFs, the matrices have {ndof}")
 
     # -- contacts ----------------------------------------------------------------------
-    for i, c in enumerate(data.get("contact", [])):
+    for i, c in enumerate(_tables(data, "contact", path)):
         where = f"[[contact]] {i + 1}"
         _table(c, "[[contact]]", path, where)
         model_path = base / _get(c, "model", where, path)
@@ -319,23 +376,27 @@ def load_config(path) -> FrfConfig:
 
     # -- dampers ------------------------------------------------------------------------
     bare = structure  # without the dampers: what the design curve attaches its damper to
-    dampers = [_damper(d, k, structure, base_dir=base, path=path) for k, d in enumerate(data.get("damper", []))]
+    dampers = [_damper(d, k, structure, base_dir=base, path=path) for k, d in enumerate(_tables(data, "damper", path))]
     for d in dampers:
         structure = d.attach(structure)
     names = names + [f"damper{k} {axis}" for k in range(len(dampers)) for axis in ("X", "Y", "R")]
 
     # -- excitation ----------------------------------------------------------------------
     ex = _get(data, "excitation", "the file", path)
+    if not isinstance(ex, dict):
+        raise ConfigError(f"{path}: [excitation] must be a table, got {ex!r}")
     force = {}
     for key, value in ex.items():
-        if key.startswith("phase_"):
+        if key == "phase_static":
+            raise ConfigError(f"{path}: [excitation] phase_static: a static force has no phase (give a signed "
+                              f"static force instead)")
+        if key.startswith("phase_") and _harmonic_key(key[6:]) is not None:
             continue
-        if key == "static":
-            h = 0
-        elif key.startswith("h") and key[1:].isdigit():
-            h = int(key[1:])
-        else:
-            raise ConfigError(f"{path}: [excitation] key {key!r} is neither 'static' nor 'h<harmonic>' (e.g. h1)")
+        h = _harmonic_key(key)
+        if h is None:
+            example = ["static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phase_h3"]
+            raise ConfigError(f"{path}: [excitation] has an unknown key {key!r}{_close(key, example)} (it accepts "
+                              f"static, h<harmonic> such as h1, and phase_h<harmonic> such as phase_h1)")
         amp = _array(value, f"[excitation] {key}", path).astype(complex)
         if amp.size != ndof:
             raise ConfigError(f"{path}: [excitation] {key} has {amp.size} value(s); the structure has {ndof} DOFs "
@@ -357,7 +418,11 @@ def load_config(path) -> FrfConfig:
         omega = _frequency_range(sw["omega"], "[sweep] omega", path, "rad/s")
     else:
         omega = _frequency_range(sw["frequency"], "[sweep] frequency", path, "Hz")
-    harmonics = _checked(path, "", _checks.positive_int, "[sweep] harmonics", sw.get("harmonics", 5))
+    harmonics = _checked(path, "", check_harmonics, sw.get("harmonics", 5), name="[sweep] harmonics")
+    for h in force:
+        if h > harmonics:
+            raise ConfigError(f"{path}: [excitation] h{h} is a harmonic above [sweep] harmonics = {harmonics}; "
+                              f"raise harmonics to {h} or more, or remove h{h}")
     samples = sw.get("samples")
     if samples is not None:
         samples = _checked(path, "[sweep] ", check_samples, samples, harmonics)
@@ -376,10 +441,7 @@ def load_config(path) -> FrfConfig:
     if frequency_unit not in FREQUENCY_UNITS:
         raise ConfigError(f"{path}: [output] frequency_unit must be one of {', '.join(FREQUENCY_UNITS)}, "
                           f"got {frequency_unit!r}")
-    plot_dofs = [int(d) for d in out.get("plot", range(min(ndof, 6)))]
-    for d in plot_dofs:
-        if not 0 <= d < ndof:
-            raise ConfigError(f"{path}: [output] plot names DOF {d}; the structure has {ndof}")
+    plot_dofs = _plot_dofs(out["plot"], names[:ndof], path) if "plot" in out else list(range(min(ndof, 6)))
     harmonic = out.get("harmonic")
     if harmonic is not None:
         harmonic = _checked(path, "", _checks.positive_int, "[output] harmonic", harmonic, minimum=0)

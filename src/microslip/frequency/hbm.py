@@ -27,7 +27,7 @@ import scipy.sparse.linalg as spla
 
 from ..common import _checks
 from . import _aft, _hbm
-from .aft import MAX_PERIODS, check_periodic, check_samples, cycle_work, friction_work
+from .aft import MAX_PERIODS, check_harmonics, check_periodic, check_samples, cycle_work, friction_work
 from .structure import Structure
 
 DENSE_LIMIT = 600  # unknowns up to which dense linear algebra is used
@@ -115,7 +115,7 @@ class HarmonicBalance:
         """What every form of the equations shares: sizes, AFT tables, excitation, the contacts' laws."""
         if not isinstance(structure, Structure):
             raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
-        H = _checks.positive_int("harmonics", harmonics, minimum=0)
+        H = check_harmonics(harmonics, minimum=0)
         self.structure = structure
         self.H = H
         self.nb = nb = 2 * H + 1

@@ -20,7 +20,7 @@ from ..common import _checks
 from ..common._io import write_csv
 from ..common._progress import Progress
 from ..common.units import plot_factor
-from .aft import MAX_PERIODS, UnderResolvedWarning, synthesise
+from .aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, synthesise
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance, excitation
 from .cyclic import CyclicStructure
@@ -363,12 +363,18 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
         retained DOFs, then every DOF is recovered).
     """
     tolerance = _checks.in_range("tolerance", tolerance, 0.0, 1.0, lo_open=True, hi_open=True)
+    if not isinstance(structure, Structure):
+        raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
     if force is None:
         static_force = {}
-    elif isinstance(force, Mapping):
+    elif isinstance(force, Mapping):  # every harmonic checked (keys, vectors), the static one used
+        excitation(structure, force, max([0] + [h for h in force if isinstance(h, (int, np.integer))]))
         static_force = _static_force(force)
     else:
-        static_force = {0: force}
+        f = structure.force_vector(force, "force")
+        if np.iscomplexobj(f):
+            raise TypeError(f"force (a static force) must be real, got {_checks._show(force)}")
+        static_force = {0: f}
     static, _, _ = _equations(structure, static_force, 0, None, MAX_PERIODS, reduction, modes)
     x = _static_state(static, tolerance=tolerance)[0]
     return static._full(x, 1.0)[0]
@@ -381,7 +387,7 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     """
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
-    H = _checks.size("harmonics", harmonics, minimum=0)
+    H = check_harmonics(harmonics, minimum=0)
     engine_order = check_engine_order(structure, engine_order)
     _check_determined(structure)
     static_force = _static_force(force) if force is not None else {}
@@ -588,7 +594,7 @@ def incomplete_message(result: FrequencyResponse, omega_end: float, control: Ste
 def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, reduction="auto", modes=None,
                  engine_order=None):
     """The equations, the solution at ``lo`` (from the static state) and the scales of x and R."""
-    H = _checks.positive_int("harmonics", harmonics, minimum=1)
+    H = check_harmonics(harmonics)
     static_hb, hb, _ = _equations(structure, force, H, samples, max_periods, reduction, modes, engine_order)
     if not np.any(hb.f_ext[1:]):
         raise ValueError("force must have a non-zero dynamic part (harmonic >= 1)")
@@ -647,30 +653,33 @@ def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> fl
 RESOLUTION = 1e-3
 
 
-def _check_resolution(q: dict, samples: int) -> None:
+def _check_resolution(q: dict, samples: int, contacts, omegas) -> None:
     """Warn when a contact opens and closes during the cycle faster than the AFT's samples resolve it.
 
     The energy it dissipates then differs, from the force harmonics and from the
     friction work of the same samples, by more than :data:`RESOLUTION` of the
-    excitation's work; the difference falls like ``1/samples^2``.
+    excitation's work; the difference falls like ``1/samples^2``. The warning
+    names the worst contact and the frequency where it is worst, and points at
+    the caller of :func:`frequency_response` or :func:`frequency_point`.
     """
     if not q["opens"].any():
         return
-    gap = np.abs(q["contacts_harmonic"] - q["contacts"]).max(axis=1)
-    scale = np.maximum(np.abs(q["excitation"]), 1e-300)
-    worst = float(np.max(np.where(q["opens"].any(axis=1), gap / scale, 0.0)))
+    scale = np.maximum(np.abs(q["excitation"]), 1e-300)[:, None]
+    error = np.where(q["opens"], np.abs(q["contacts_harmonic"] - q["contacts"]) / scale, 0.0)
+    k, c = np.unravel_index(int(np.argmax(error)), error.shape)
+    worst = float(error[k, c])
     if worst > RESOLUTION:
         need = samples * int(2 ** np.ceil(np.log2(np.sqrt(worst / RESOLUTION))))
-        warnings.warn(f"a contact opens and closes during the cycle faster than {samples} samples per period "
-                      f"resolve: its energy per cycle is uncertain by {worst:.2g} of the excitation's work; "
-                      f"samples={need} resolves it to {RESOLUTION:g} (the error falls like 1/samples^2)",
-                      UnderResolvedWarning, stacklevel=3)
+        warnings.warn(f"contact {contacts[c].name!r} opens and closes during the cycle faster than {samples} samples "
+                      f"per period resolve (worst at omega = {float(omegas[k]):.6g} rad/s): its energy per cycle is "
+                      f"uncertain by {worst:.2g} of the excitation's work; samples={need} resolves it to "
+                      f"{RESOLUTION:g} (the error falls like 1/samples^2)", UnderResolvedWarning, stacklevel=4)
 
 
 def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> FrequencyResponse:
     """The result object from the solutions ``xs`` and the static state ``(N0, T0, closed)``."""
     q = hb.curve_quantities(xs, omegas)
-    _check_resolution(q, hb.samples)
+    _check_resolution(q, hb.samples, hb.structure.contacts, omegas)
     reduced = isinstance(hb, ReducedHarmonicBalance)
     extra = {"contact_harmonic_work": q["contacts_harmonic"]}
     if reduced:

@@ -376,13 +376,13 @@ class Structure:
                 else:
                     f[i] += _checks.real_scalar(part, value)
             return f if f.imag.any() else f.real
-        f = np.asarray(force)
-        if np.iscomplexobj(f):
+        f = None if isinstance(force, (str, bytes)) else np.asarray(force)
+        if f is not None and np.iscomplexobj(f):
             re = _checks.real_array(name, f.real, ndim=1)
             im = _checks.real_array(name, f.imag, ndim=1)
             f = re + 1j * im
         else:
-            f = _checks.real_array(name, f, ndim=1)
+            f = _checks.real_array(name, force, ndim=1)  # the value as given, in the message
         if f.size != self.ndof:
             raise ValueError(f"{name} must have one entry per DOF ({self.ndof}), got {f.size}")
         return f

@@ -21,6 +21,7 @@ from ..common import _checks
 from .._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from ..common._progress import Progress
 from . import _aft, _transient
+from .aft import MAX_HARMONICS, MAX_TABLE, check_table
 from .hbm import excitation
 from .response import static_solution
 from .structure import Structure, direction
@@ -112,7 +113,8 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     omega = _checks.positive_scalar("omega", omega)
     _checks.finite_result("omega", omega, omega * omega)  # the step's M / dt^2
     steps = _checks.size("steps_per_period", steps_per_period, minimum=8)
-    H = _checks.size("harmonics", harmonics, minimum=1, maximum=steps // 2 - 1)
+    H = _checks.size("harmonics", harmonics, minimum=1, maximum=min(MAX_HARMONICS, steps // 2 - 1))
+    check_table("steps_per_period", steps, H)
     progress = _checks.flag("progress", progress)
     tolerance = _checks.positive_scalar("tolerance", tolerance)
     max_periods = _checks.positive_int("max_periods", max_periods)
@@ -127,9 +129,10 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     w_max = float(np.sqrt(np.max(np.abs(sla.eigvals(K_max, M)))))
     period = 2 * np.pi / omega
     steps = max(steps, int(np.ceil(period * w_max / 1.8)))
-    if steps > _checks.MAX_SIZE:
+    limit = MAX_TABLE // (2 * H + 1)
+    if steps > limit:
         raise ValueError(f"omega = {omega:g} rad/s is too low: a stable step needs {steps:.3g} steps per period "
-                         f"(at most {_checks.MAX_SIZE})")
+                         f"(at most {limit} with harmonics = {H})")
     dt = period / steps
     A_inv = np.linalg.inv(M / dt**2 + C / (2 * dt))
     B1 = 2 * M / dt**2
