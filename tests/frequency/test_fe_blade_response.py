@@ -133,7 +133,9 @@ def test_harmonic_balance_agrees_with_time_integration(reduced, frequencies):
     * the harmonics: the contact elements open and close and stick and slip within the cycle, so
       the contact forces have kinks and the truncation falls slowly and not monotonically with H
       (against time integration at 4096 steps, largest over the five frequencies: 6e-3 for H = 3,
-      8.5e-4 for H = 5, 1.8e-3 for H = 7, 1.6e-4 for H = 11, 2.8e-4 for H = 15);
+      8.5e-4 for H = 5, 1.8e-3 for H = 7, 1.6e-4 for H = 11; at 13800 rad/s with 1024 samples
+      1.8e-4 for H = 11, 3.2e-4 for H = 15, 2.3e-4 for H = 21 and 9e-6 for H = 31, where time
+      integration from each of these solutions lands on the same motion within 2e-6);
     * the time step: 2.4e-5 at 1024 steps (the difference to 4096 steps falls like dt^2).
 
     Measured at H = 11 and 1024 steps: 2.3e-5, 4.4e-5, 1.3e-4 (the peak), 1.8e-4 and 1.6e-5; held

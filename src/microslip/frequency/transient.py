@@ -9,12 +9,14 @@ Where it starts matters. A contact element that sticks through the whole
 steady cycle keeps the force it took before: friction makes the steady state
 depend on the history. By default the integration starts at rest at the
 static equilibrium (the contacts closed at ``t = 0`` with no tangential force,
-then loaded statically) and the excitation is switched on: the start-up
-transient may make an element slip that then sticks for good. Harmonic
-balance instead loads every contact once to the mean of its periodic motion
+then loaded statically) and the excitation is switched on: off a resonance
+the start-up transient beats, its first peaks larger than the steady ones,
+and may make an element slip that then sticks for good. Harmonic balance
+instead loads every contact once to the mean of its periodic motion
 (:mod:`microslip.frequency.aft`), so where an element sticks throughout the
-two steady states can differ by more than the harmonic truncation (1 % off
-the resonance of ``examples/fe_blade.py``). With ``start=`` a
+two steady states can differ by more than the harmonic truncation (up to
+1.2 % off the resonance of the blade of ``examples/fe_blade.py``, nothing
+at its peak). With ``start=`` a
 harmonic-balance solution, the integration starts on that motion with the
 contacts in the state harmonic balance assumes for it; it then settles on the
 exact periodic solution next to it, and the difference measures the
