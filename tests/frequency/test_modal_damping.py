@@ -46,7 +46,8 @@ def test_the_omega_derivative_matches_finite_differences():
     modal = ModalCondensation(M, C, K, RETAINED, 12)
     S, dS = modal.harmonic(3, OMEGA)
     h = 1e-5 * OMEGA
-    fd = (modal.harmonic(3, OMEGA + h, derivative=False)[0] - modal.harmonic(3, OMEGA - h, derivative=False)[0]) / (2 * h)
+    fd = (modal.harmonic(3, OMEGA + h, derivative=False)[0]
+          - modal.harmonic(3, OMEGA - h, derivative=False)[0]) / (2 * h)
     # central differences: truncation (h^2 / 6) S''' measured 3.4e-5 of dS at h = 1e-3 omega, so about 3e-9 here;
     # round-off eps |S| / h about 1e-9 of dS
     np.testing.assert_allclose(dS, fd, rtol=0, atol=1e-7 * np.max(np.abs(dS)))

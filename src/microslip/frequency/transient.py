@@ -110,7 +110,7 @@ def _start_coefficients(structure: Structure, start) -> np.ndarray:
 
 
 def _periodic_start(structure: Structure, coefficients, steps: int):
-    """``(q_prev, q, sliders)``: on the periodic motion ``coefficients`` at ``tau = 0``, contacts as harmonic balance has them.
+    """``(q_prev, q, sliders)``: on the motion ``coefficients`` at ``tau = 0``, contacts as harmonic balance has them.
 
     ``coefficients`` ``(2H+1, ndof)`` (m) of every DOF; ``q`` at ``tau = 0`` and
     ``q_prev`` one step of ``2 pi / steps`` before (m, ``(ndof,)`` each). Every
