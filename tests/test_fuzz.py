@@ -625,7 +625,7 @@ CASES += [
          structure=L(jenkins_structure), force=[1.0], omega=(90.0, 110.0), harmonics=1, samples=16, progress=False,
          max_periods=100),
     case("frequency.steady_state", lambda: steady_state, structure=L(jenkins_structure), force=[1.0], omega=100.0,
-         steps_per_period=64, harmonics=1, tolerance=1e-7, max_periods=20, progress=False),
+         steps_per_period=64, harmonics=1, tolerance=1e-7, max_periods=20, progress=False, start=L(a_point)),
     case("frequency.aft", lambda: aft, model=MODEL, t=[1e-7, 1e-7, 0.0], n=[N_APP, 0.0, 0.0], samples=16,
          max_periods=100),
     case("frequency.aft_batch", lambda: microslip.frequency.aft_batch, models=L(lambda: [model(), model()]),

@@ -189,7 +189,10 @@ def test_contact_dissipation_is_never_negative_when_the_contact_only_opens():
     with pytest.warns(UnderResolvedWarning) as caught:  # the opening is under-resolved
         r = frequency_response(s, 5.0 * normal, (12000.0, 18000.0), harmonics=7)
     assert np.all(np.abs(r.contact_t[:, 0, :]) < 1e-12 * np.abs(r.contact_n[:, 0, 1:]).max())  # no sliding
-    assert r.points > 100 and np.all(r.contact_dissipation == 0.0)  # was negative at 414 of 762 points
+    # was negative at 414 of 762 points, down to -0.68 % of the excitation work; now never negative, and
+    # what remains is the friction work of tangential motion at rounding level (below 1e-12 of the normal
+    # motion above): measured at most 2.4e-38 J, against works of order 1e-6 J
+    assert r.points > 100 and np.all(r.contact_dissipation >= 0.0) and r.contact_dissipation.max() < 1e-30
     # once per curve, naming the contact, where it is worst and the samples that resolve it, and pointing
     # at the caller's line (it used to point inside the package and name no contact)
     [warning] = [w for w in caught if w.category is UnderResolvedWarning]

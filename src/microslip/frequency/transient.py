@@ -2,10 +2,25 @@
 
 An independent check of harmonic balance: the same structure and contacts,
 integrated in time with explicit central differences (compiled, see
-:mod:`microslip.frequency._transient`) from the static equilibrium, period
-after period, until the response repeats. The contacts start in the state
-harmonic balance assumes (closed at ``t = 0`` with no tangential force,
-then loaded statically), so elements that never slip carry the same force.
+:mod:`microslip.frequency._transient`) period after period, until the
+response repeats.
+
+Where it starts matters. A contact element that sticks through the whole
+steady cycle keeps the force it took before: friction makes the steady state
+depend on the history. By default the integration starts at rest at the
+static equilibrium (the contacts closed at ``t = 0`` with no tangential force,
+then loaded statically) and the excitation is switched on: off a resonance
+the start-up transient beats, its first peaks larger than the steady ones,
+and may make an element slip that then sticks for good. Harmonic balance
+instead loads every contact once to the mean of its periodic motion
+(:mod:`microslip.frequency.aft`), so where an element sticks throughout the
+two steady states can differ by more than the harmonic truncation (up to
+1.2 % off the resonance of the blade of ``examples/fe_blade.py``, nothing
+at its peak). With ``start=`` a
+harmonic-balance solution, the integration starts on that motion with the
+contacts in the state harmonic balance assumes for it; it then settles on the
+exact periodic solution next to it, and the difference measures the
+truncation of the harmonics and the time step only.
 """
 
 from __future__ import annotations
@@ -21,9 +36,9 @@ from ..common import _checks
 from .._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from ..common._progress import Progress
 from . import _aft, _transient
-from .aft import MAX_HARMONICS, MAX_TABLE, check_table
+from .aft import MAX_HARMONICS, MAX_PERIODS, MAX_TABLE, check_table
 from .hbm import excitation
-from .response import static_solution
+from .response import FrequencyResponse, static_solution
 from .structure import Structure, direction
 
 
@@ -78,9 +93,58 @@ def _fourier(q: np.ndarray, H: int) -> np.ndarray:
     return _aft.tables(H, q.shape[0])[1] @ np.roll(q, 1, axis=0)
 
 
+def _start_coefficients(structure: Structure, start) -> np.ndarray:
+    """The Fourier coefficients ``(2H+1, ndof)`` (m) of every DOF of a one-point harmonic balance result, checked."""
+    if not isinstance(start, FrequencyResponse):
+        raise TypeError(f"start must be None or a FrequencyResponse (from frequency_point), got "
+                        f"{type(start).__name__}")
+    if start.points != 1:
+        raise ValueError(f"start must be a solution at one frequency (frequency_point), got a curve of "
+                         f"{start.points} points")
+    if start.engine_order is not None or start.structure.ndof != structure.ndof:
+        raise ValueError(f"start must be a solution of a structure with the same {structure.ndof} DOFs, got one "
+                         f"with {start.structure.ndof}" + (" (a cyclic sector)" if start.engine_order else ""))
+    if start.dofs.size == structure.ndof:
+        return start.coefficients[0][:, np.argsort(start.dofs)]
+    return start.recovery(0)
+
+
+def _periodic_start(structure: Structure, coefficients, steps: int):
+    """``(q_prev, q, sliders)``: on the motion ``coefficients`` at ``tau = 0``, contacts as harmonic balance has them.
+
+    ``coefficients`` ``(2H+1, ndof)`` (m) of every DOF; ``q`` at ``tau = 0`` and
+    ``q_prev`` one step of ``2 pi / steps`` before (m, ``(ndof,)`` each). Every
+    contact is loaded once from the virgin state to the mean of its motion,
+    then marched along the motion sampled at the ``steps`` time steps, period
+    after period, until its state repeats (at most ``aft.MAX_PERIODS``): the
+    convention of :mod:`microslip.frequency.aft`. ``sliders`` (m) is that
+    state at the end of a period.
+    """
+    H = (coefficients.shape[0] - 1) // 2
+    q = _aft.tables(H, steps)[0] @ coefficients  # tau_k = 2 pi k / steps
+    Bt, Bn, n0 = structure.contact_directions()
+    t, n = q @ Bt, q @ Bn + n0
+    kt, kn, gaps, offsets, mu = structure.packed_models()
+    sliders = np.zeros(kt.size)
+    T, N = np.empty(steps), np.empty(steps)
+    for i in range(len(structure.contacts)):
+        lo, hi = offsets[i], offsets[i + 1]
+        law = (kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i])
+        mean = coefficients[0] @ Bt[:, i], coefficients[0] @ Bn[:, i] + n0[i]
+        march(*law, np.array([mean[0]]), np.array([mean[1]]), sliders[lo:hi], T[:1], N[:1], NO_WORK, NO_ELEMENTS,
+              NO_CONDITIONS)
+        path = np.roll(t[:, i], -1), np.roll(n[:, i], -1)  # tau_1, ..., tau_(steps-1), 2 pi: the period ends at 0
+        for _ in range(MAX_PERIODS):
+            before = sliders[lo:hi].copy()
+            march(*law, *path, sliders[lo:hi], T, N, NO_WORK, NO_ELEMENTS, NO_CONDITIONS)
+            if np.array_equal(before, sliders[lo:hi]):
+                break
+    return q[-1].copy(), q[0].copy(), sliders
+
+
 def steady_state(structure: Structure, force, omega: float, *, steps_per_period: int = 4096,
                  harmonics: int = 7, tolerance: float = 1e-7, max_periods: int = 5000,
-                 progress: bool = False) -> SteadyState:
+                 progress: bool = False, start: FrequencyResponse | None = None) -> SteadyState:
     """Integrate in time until the periodic steady state.
 
     Parameters
@@ -103,6 +167,14 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
         Periods integrated at most.
     progress : bool
         Report progress on standard error.
+    start : FrequencyResponse, optional
+        Where to start: by default at rest at the static equilibrium, the
+        excitation switched on at ``t = 0``; a harmonic balance solution at
+        one frequency (:func:`~microslip.frequency.frequency_point`, of this
+        structure, any reduction) starts on its motion at ``t = 0`` with the
+        contacts in the state harmonic balance assumes for it (see the
+        module: the steady state of a contact with elements that stick
+        throughout depends on where it starts).
 
     Returns
     -------
@@ -118,6 +190,7 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     progress = _checks.flag("progress", progress)
     tolerance = _checks.positive_scalar("tolerance", tolerance)
     max_periods = _checks.positive_int("max_periods", max_periods)
+    coefficients = None if start is None else _start_coefficients(structure, start)
     dense = [A.toarray() if sp.issparse(A) else np.asarray(A) for A in (structure.M, structure.C, structure.K)]
     M, C, K = dense
     contacts = structure.contacts
@@ -143,16 +216,18 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     # forcing (steps, ndof) at tau_k = 2 pi k / steps: aft.synthesise's cached table, without its
     # samples >= 2H+1 check (steps_per_period is raised for stability only, never refused here)
     f = _aft.tables((coef.shape[0] - 1) // 2, steps)[0] @ coef
-    # initial state: static equilibrium, contacts loaded statically from the virgin state
-    q = static_solution(structure, force)
-    q_prev = q.copy()
     kt, kn, gaps, offsets, mu = structure.packed_models()
-    sliders = np.zeros(kt.size)
-    for i, c in enumerate(contacts):
-        lo, hi = offsets[i], offsets[i + 1]
-        march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([Bt[:, i] @ q]),
-                     np.array([Bn[:, i] @ q + n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), NO_WORK,
-              NO_ELEMENTS, NO_CONDITIONS)
+    if coefficients is not None:  # on a harmonic balance solution
+        q_prev, q, sliders = _periodic_start(structure, coefficients, steps)
+    else:  # at rest at the static equilibrium, contacts loaded statically from the virgin state
+        q = static_solution(structure, force)
+        q_prev = q.copy()
+        sliders = np.zeros(kt.size)
+        for i, c in enumerate(contacts):
+            lo, hi = offsets[i], offsets[i + 1]
+            march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([Bt[:, i] @ q]),
+                  np.array([Bn[:, i] @ q + n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), NO_WORK,
+                  NO_ELEMENTS, NO_CONDITIONS)
     out = np.empty((steps, ndof))
     report = Progress(max_periods, enabled=progress)
     previous = None
