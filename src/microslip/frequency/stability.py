@@ -11,10 +11,16 @@ is rate independent, so the contact forces depend on the displacements only) and
 ``D`` the harmonic derivative ``d/dtau`` (:func:`~.hbm.harmonic_operators`); this is
 ``(lambda + omega d/dtau)`` substituted for ``d/dtime`` in ``M q'' + C q' + K q``.
 The quadratic eigenproblem is solved through its companion form. Its ``(2H+1)
-ndof`` pairs repeat the Floquet exponents shifted by ``i k omega``; the ``2 ndof``
-with the smallest ``|Im lambda|`` are taken as the exponents (the principal
-strip ``|Im lambda| <= omega / 2``, the usual sorting), and the solution is stable
-when all have a negative real part.
+ndof`` pairs repeat the Floquet exponents shifted by ``i k omega``; the truncation
+resolves best the copy whose eigenvector lies in the middle of the kept harmonics,
+the one with the smallest ``|Im lambda|``, and the copies near the edge of the
+truncation are inaccurate. So the exponents are the eigenvalues of the strip
+``|Im lambda| <= omega / 2`` (at most ``2 ndof``, by ``|Im|``, copies of one another
+at the strip's two edges removed; Lazarus & Thomas 2010). A mode above
+``(H + 1/2) omega`` has no copy in the strip: its nearest copies are edge ones,
+which can show a spurious positive real part, so it is left out and the verdict
+rests on the exponents the kept harmonics resolve. The solution is stable when all
+have a negative real part (a point with none is stable, its leading exponent NaN).
 """
 
 from __future__ import annotations
@@ -27,6 +33,9 @@ from .hbm import HarmonicBalance, harmonic_operators
 
 #: unknowns up to which Hill's eigenproblem is solved (a dense eigensolution of twice that size per point)
 HILL_LIMIT = 300
+#: two eigenvalues whose real parts and imaginary parts modulo omega agree to this share of omega are
+#: copies of one Floquet exponent (at the two edges of the strip)
+COPY_TOLERANCE = 1e-3
 
 
 def floquet_exponents(hb: HarmonicBalance, x, omega: float) -> np.ndarray:
@@ -58,9 +67,30 @@ def floquet_exponents(hb: HarmonicBalance, x, omega: float) -> np.ndarray:
     A[:n, n:] = np.eye(n)
     A[n:, :n] = -sla.lu_solve(lu, J)
     A[n:, n:] = -sla.lu_solve(lu, D1)
-    lam = sla.eigvals(A)
-    principal = lam[np.argsort(np.abs(lam.imag), kind="stable")[:2 * hb.ndof]]
-    return principal[np.argsort(-principal.real)]
+    return principal_exponents(sla.eigvals(A), omega, 2 * hb.ndof)
+
+
+def principal_exponents(lam, omega: float, count: int) -> np.ndarray:
+    """The Floquet exponents among Hill's eigenvalues ``lam`` (1/s), by decreasing real part.
+
+    At most ``count`` eigenvalues of the strip ``|Im| <= omega / 2`` (with
+    :data:`COPY_TOLERANCE` of slack), by increasing ``|Im|``, a copy shifted by
+    ``i k omega`` (``k != 0``) of one already kept left out.
+    """
+    lam = np.asarray(lam, dtype=complex)
+    lam = lam[np.isfinite(lam) & (np.abs(lam.imag) <= (0.5 + COPY_TOLERANCE) * omega)]
+    lam = lam[np.argsort(np.abs(lam.imag), kind="stable")]
+    tol = COPY_TOLERANCE * omega
+    keep = np.empty(0, dtype=complex)
+    for v in lam:
+        if keep.size == count:
+            break
+        d = (v.imag - keep.imag) / omega
+        shift = np.round(d)
+        if np.any((np.abs(v.real - keep.real) <= tol) & (np.abs(d - shift) * omega <= tol) & (shift != 0)):
+            continue
+        keep = np.append(keep, v)
+    return keep[np.argsort(-keep.real, kind="stable")]
 
 
 def stable_points(hb: HarmonicBalance, xs, omegas, *, tolerance: float = 1e-9):
@@ -68,8 +98,13 @@ def stable_points(hb: HarmonicBalance, xs, omegas, *, tolerance: float = 1e-9):
 
     A point is stable when that real part is below ``tolerance * omega``.
     """
-    leading = np.array([floquet_exponents(hb, x, w)[0].real for x, w in zip(xs, omegas)])
-    return leading < tolerance * np.asarray(omegas), leading
+    leading = np.array([_largest(floquet_exponents(hb, x, w).real) for x, w in zip(xs, omegas)])
+    return ~(leading >= tolerance * np.asarray(omegas)), leading
+
+
+def _largest(values) -> float:
+    """The largest value, NaN for none."""
+    return float(np.max(values)) if np.size(values) else np.nan
 
 
 def bifurcations(omegas, amplitude, leading, stable) -> list:
