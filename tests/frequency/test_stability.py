@@ -119,20 +119,82 @@ def test_modes_above_the_harmonics_give_no_spurious_instability(chain):
     # multipliers move by 2.5e-7
     ("modal", 5, 1e-5),
 ])
-def test_reduced_equations_give_the_exponents_of_the_whole_structure(chain, reduction, modes, tolerance):
+@pytest.mark.parametrize("dense_limit", [None, 10])  # 10: the reduced problem by shift-invert Arnoldi, sparse
+def test_reduced_equations_give_the_exponents_of_the_whole_structure(chain, reduction, modes, tolerance,
+                                                                    dense_limit, monkeypatch):
+    import microslip.frequency.stability as stability
+
     s, f = chain
     w = 8000.0  # the first mode (10781 rad/s) is within the strip of the kept harmonics (below 2.5 omega)
     full = frequency_point(s, f, w, harmonics=2, reduction="none")
-    reduced = frequency_point(s, f, w, harmonics=2, reduction=reduction, modes=modes)
     _, hb_full, _ = _equations(s, f, 2, None, 1000, "none", None)
+    a = floquet_exponents(hb_full, full.coefficients[0].ravel(), w)  # every eigenvalue, dense
+    if dense_limit is not None:
+        monkeypatch.setattr(stability, "DENSE_LIMIT", dense_limit)
+    reduced = frequency_point(s, f, w, harmonics=2, reduction=reduction, modes=modes)
     _, hb_red, _ = _equations(s, f, 2, None, 1000, reduction, modes)
-    a = floquet_exponents(hb_full, full.coefficients[0].ravel(), w)
     b = floquet_exponents(hb_red, reduced.coefficients[0].ravel(), w)
     assert reduced.stable.tolist() == full.stable.tolist() == [True]
     # the contact slips: its exponents are not the linear chain's (the check would pass trivially if stuck)
     assert full.contact_dissipation[0, 0] > 0
     assert a.size == b.size >= 2
     assert matched(multipliers(a, w), multipliers(b, w)) < tolerance
+
+
+def fe_blade(force: float):
+    """The scikit-fem blade of about 400 DOFs, a Jenkins contact (x tangential, y normal, 50 N preload) at
+    each of its two contact nodes under the platform, ``force`` (N) along x at the tip."""
+    from microslip.fe import blade
+
+    b = blade(300, contact_nodes=1)
+    s = Structure(b.M, 2e-7 * b.K, b.K, dof_map=b.dof_map)
+    for node in b.platform_nodes:
+        s.add_contact(MicroslipModel(kt=[2e6], kn=[2e8], gaps=[0.0], mu=0.1), tangential={f"{node}:x": 1.0},
+                      normal={f"{node}:y": 1.0}, preload=50.0)
+    return s, s.force_vector({f"{b.tip_node}:x": force})
+
+
+def test_a_finite_element_model_gets_the_same_exponents_from_every_reduction():
+    """384 DOFs, H = 3: Hill problems of 2688 unknowns (every DOF, or the whole structure behind an exact
+    reduction), solved by sparse shift-invert Arnoldi, and of 140 (a modal reduction with 20 modes)."""
+    from microslip.frequency.stability import one_blas_thread
+
+    s, f = fe_blade(12.0)
+    w = 9800.0  # below the first resonance of the blade held by its stuck contacts
+    # one BLAS thread for the solves as well as the eigenvalues: on a loaded 2-core machine OpenBLAS's threads
+    # make the small dense algebra of the reductions 5-40 times slower (9 s instead of 1.5 s); nothing else changes
+    with one_blas_thread():
+        none, exact, modal = (frequency_point(s, f, w, harmonics=3, reduction=r, modes=m)
+                              for r, m in (("none", None), ("exact", None), ("modal", 20)))
+    assert none.contact_dissipation[0].min() > 0  # both contacts slip
+    assert none.stable.tolist() == exact.stable.tolist() == modal.stable.tolist() == [True]
+    # the same eigenvalues, assembled two ways (the whole Jacobian; the structure's plus the reduced contact
+    # Jacobian at the retained DOFs): agreement to the Arnoldi tolerance
+    assert exact.leading_exponent[0] == pytest.approx(none.leading_exponent[0], rel=1e-8)
+    # the modal model leaves out the damping of the omitted modes (their residual flexibility is static): the
+    # real part moves by 0.15 1/s of -94 (measured), 1e-4 in the multipliers
+    assert matched(multipliers(modal.leading_exponent, w), multipliers(exact.leading_exponent, w)) < 5e-4
+    assert modal.leading_exponent[0].real == pytest.approx(exact.leading_exponent[0].real, rel=5e-3)
+
+
+def test_a_singular_hill_problem_is_solved_off_its_singular_point(monkeypatch):
+    """An undamped oscillator whose natural frequency is twice the excitation's: the second harmonic's block of
+    ``J0`` is exactly zero (a pair of exponents at 0, as at a fold), so shift-invert at 0 has no factorisation."""
+    import scipy.sparse as sp
+
+    import microslip.frequency.stability as stability
+    from microslip.frequency.hbm import harmonic_operators
+
+    w, H = 100.0, 3
+    D, W = harmonic_operators(H)
+    I = np.eye(2 * H + 1)
+    J0 = 4 * w**2 * I - w**2 * W  # K = (2 omega)^2, M = 1, C = 0
+    assert np.linalg.matrix_rank(J0) == 2 * H + 1 - 2
+    monkeypatch.setattr(stability, "DENSE_LIMIT", 0)
+    for matrix in (J0, sp.csc_matrix(J0)):
+        lam = stability.HillProblem(matrix, 2 * w * D, I, 1, w).exponents()
+        # the exponents of +-2i omega, shifted by -+2i omega: both at 0 (to the Arnoldi tolerance)
+        np.testing.assert_allclose(lam, [0.0, 0.0], atol=1e-6 * w)
 
 
 # -- a fold: stability against time integration and shooting ---------------------------------------------
