@@ -428,3 +428,24 @@ def test_a_hill_problem_too_large_is_not_assessed(chain, monkeypatch):
     r = frequency_point(s, f, 8000.0, harmonics=2, reduction="exact")
     assert r.stable is None and r.leading_exponent is None
     assert "stable [-]" not in r.columns()
+
+
+def test_frf_report_lists_unstable_stretches_and_folds(tmp_path, capsys):
+    import shutil
+
+    from microslip.cli import main
+
+    shutil.copy(EXAMPLES / "sphere_4_elements.json", tmp_path / "sphere_4_elements.json")
+    text = (EXAMPLES / "inclined_block.toml").read_text()
+    assert "omega = [12000, 18000]" in text and "harmonics = 7" in text
+    (tmp_path / "b.toml").write_text(text.replace("omega = [12000, 18000]", "omega = [16500, 17500]")
+                                     .replace("harmonics = 7", "harmonics = 5\nsamples = 512"))
+    assert main(["frf", str(tmp_path / "b.toml"), "--out", str(tmp_path / "out"), "--quiet"]) == 0
+    report = (tmp_path / "out" / "report.md").read_text()
+    # the two folds of the fold_curve fixture (the same configuration): 17070 and 16893 rad/s, 2716.8 and 2688.6 Hz
+    # (the report's unit)
+    assert "points are unstable (dashed in the plot), from 2688" in report and "The curve has 2 folds." in report
+    assert "| fold | 1707" in report and "| fold | 1689" in report
+    assert "points are unstable" in capsys.readouterr().out
+    data = np.genfromtxt(tmp_path / "out" / "frf.csv", delimiter=",", names=True)
+    assert 0 < data["stable_"].sum() < data.size
