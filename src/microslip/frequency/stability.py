@@ -152,14 +152,24 @@ class HillProblem:
         Excitation frequency (rad/s).
     solve_D2 : callable, optional
         ``solve_D2(B)``: ``D2^-1 B`` for a dense ``B`` (default: a Cholesky factorisation of ``D2``).
+    start : int, optional
+        Eigenvalues the iterative solver asks for first (default :data:`NEAREST_START`).
+
+    Attributes
+    ----------
+    needed : int
+        After :meth:`eigenvalues` by the iterative solver: how many eigenvalues
+        the disc ``|lambda| <= omega`` held (a start for the next point of a curve).
     """
 
-    def __init__(self, J0, D1, D2, per_harmonic: int, omega: float, solve_D2=None):
+    def __init__(self, J0, D1, D2, per_harmonic: int, omega: float, solve_D2=None, start: int | None = None):
         self.J0, self.D1, self.D2 = J0, D1, D2
         self.m = per_harmonic
         self.n = J0.shape[0]
         self.omega = float(omega)
         self._solve_D2 = solve_D2
+        self.start = NEAREST_START if start is None else start
+        self.needed = 0
 
     def eigenvalues(self) -> np.ndarray:
         """Eigenvalues of the quadratic problem (1/s): all of them (dense) or those nearest 0 (iterative)."""
@@ -200,11 +210,12 @@ class HillProblem:
 
         linear = spla.LinearOperator((2 * n, 2 * n), matvec=op, dtype=float)
         most = min(2 * n - 2, NEAREST_LIMIT)
-        k = min(NEAREST_START, most)
+        k = min(max(self.start, 1), most)
         while True:
             mu = spla.eigs(linear, k=k, which="LM", return_eigenvectors=False, tol=1e-10)
             lam = sigma + 1.0 / mu
             if np.max(np.abs(lam - sigma)) >= self.omega or k >= most:
+                self.needed = int(np.count_nonzero(np.abs(lam - sigma) < self.omega))
                 return lam
             k = min(2 * k, most)
 
@@ -273,6 +284,7 @@ class _Builder:
 
     def __init__(self, hb: HarmonicBalance):
         self.hb = hb
+        self.start = NEAREST_START  # the iterative solver's first request, from the point before
         nb = hb.nb
         self.D, self.W = harmonic_operators(hb.H)
         linear = getattr(hb, "linear", None)
@@ -321,7 +333,15 @@ class _Builder:
                 J0 = self.Lam + omega * self.DC - omega ** 2 * self.WI + self.Phi.T @ (Jc @ X)
             else:
                 J0 = self._whole(Jc, omega)
-        return HillProblem(J0, self.C1 + (2.0 * omega) * self.M1, self.D2, self.m, omega, self.solve_D2)
+        return HillProblem(J0, self.C1 + (2.0 * omega) * self.M1, self.D2, self.m, omega, self.solve_D2, self.start)
+
+    def exponents(self, x, omega: float) -> np.ndarray:
+        """The Floquet exponents at the solution ``x`` (m) at ``omega`` (rad/s); the next point's solver starts from
+        a few more eigenvalues than this one's disc ``|lambda| <= omega`` held (the curve changes little)."""
+        problem = self.problem(x, omega)
+        lam = problem.exponents()
+        self.start = max(NEAREST_START, problem.needed + problem.needed // 4 + 2)
+        return lam
 
     def _whole(self, Jc, omega: float):
         """The whole structure's ``J0`` with the contact Jacobian ``Jc`` of the retained DOFs (exact reduction)."""
@@ -424,7 +444,7 @@ def assess(hb: HarmonicBalance, xs, omegas) -> tuple[np.ndarray | None, np.ndarr
     if not builder.assessed:
         return None, None, []
     with one_blas_thread():
-        exponents = [builder.problem(x, float(w)).exponents() for x, w in zip(xs, omegas)]
+        exponents = [builder.exponents(x, float(w)) for x, w in zip(xs, omegas)]
     stable = np.array([not np.any(lam.real > TOLERANCE * w) for lam, w in zip(exponents, omegas)])
     leading = np.array([lam[0] if lam.size else complex(np.nan, np.nan) for lam in exponents])
     kinds = [_kinds(lam, w) for lam, w in zip(exponents, omegas)]
