@@ -63,6 +63,15 @@ eigenvalues nearest to 0 are found by shift-invert Arnoldi
 (hence every exponent of the strip ``|Im| <= omega / 2`` whose real part is below
 ``0.87 omega`` in size). Dense LAPACK runs with one BLAS thread here: on a loaded
 machine OpenBLAS's threads make calls of this size a hundred times slower.
+
+Limit: where a contact element just reaches its slip limit somewhere on the orbit
+(the onset of microslip, a contact dissipating almost nothing), the friction force
+has a kink on the orbit and its linearisation depends on which side of it the AFT
+samples fall. The verdict there can change with the samples and ``H``: on a blade
+with platform contacts near the onset of slip, the leading exponent moved between
++45 and -55 1/s with 128, 512 and 2048 samples and H = 5 or 9, while time
+integration from the solution showed no growth over 400 periods. Check such
+stretches by time integration (:class:`~microslip.frequency.transient.PeriodMap`).
 """
 
 from __future__ import annotations
