@@ -21,6 +21,13 @@ A second figure: the curve of a blade with a 16-element microslip damper (exampl
 with the sphere contact tuned with 16 elements; normal load 37.5 N, all 16 elements closed), at the
 excitation level of the optimum of the 4-element damper (7 N: the elements slip one after the other
 along the curve), H = 7, 128 samples.
+
+The cost of stability (Hill's method at every point): each curve timed with and without it in the
+same run (the curves above are timed without it: pyHarm computes none), the RATIO printed; also on
+a reduced finite-element curve (the scikit-fem blade of about 1000 DOFs, a Jenkins contact at each of
+its four platform nodes, H = 5; needs the fe extra), with reduction="exact" (Hill's problem of the
+whole structure, 11000 unknowns) and "modal" (40 modes, 440 unknowns). Run it with
+OPENBLAS_NUM_THREADS=1 on a shared machine (OpenBLAS's threads slow the reductions' small dense algebra).
 """
 
 from __future__ import annotations
@@ -62,8 +69,19 @@ def best_of(fn, repeat=5):
     return best, result
 
 
-def microslip_curve(control=None):
-    return frequency_response(jenkins_oscillator(), [2.0], (60.0, 160.0), harmonics=7, samples=128, control=control)
+def microslip_curve(control=None, stability=False):
+    """The curve alone (pyHarm computes no stability), or with Hill's stability at every point."""
+    return frequency_response(jenkins_oscillator(), [2.0], (60.0, 160.0), harmonics=7, samples=128, control=control,
+                              stability=stability)
+
+
+def stability_cost(label, run, t_curve, repeat=5):
+    """Time of ``run(stability=True)`` against the curve alone (``t_curve``, s); the RATIO with / without."""
+    t, r = best_of(lambda: run(stability=True), repeat)
+    print(f"{label} with stability (Hill's method at every point): {t * 1e3:.1f} ms, "
+          f"+{(t - t_curve) / r.points * 1e3:.3f} ms per point; RATIO with / without {t / t_curve:.2f}x "
+          f"({int((~r.stable).sum())} of {r.points} points unstable, {len(r.bifurcations)} bifurcations)")
+    return r
 
 
 def pyharm_input(ds):
@@ -113,8 +131,10 @@ def main():
     print(f"microslip: {t_ms * 1e3:7.1f} ms for {curve.points} points "
           f"({t_ms / curve.points * 1e3:.3f} ms per point), peak error {err_ms:+.1e}")
     assert abs(err_ms) < A_TOL
+    stability_cost("microslip", lambda stability: microslip_curve(stability=stability), t_ms)
     compare_with_pyharm(t_ms, a_ref)
     sixteen_element_damper()
+    reduced_fe_stability()
 
 
 def compare_with_pyharm(t_ms, a_ref):
@@ -149,7 +169,8 @@ def sixteen_element_damper():
     from blade_damper import blade_with_damper
 
     blade = blade_with_damper(elements=16)
-    run = lambda: frequency_response(blade, [0.0, 7.0], (4000.0, 12000.0), harmonics=7, samples=128)  # noqa: E731
+    run = lambda stability=False: frequency_response(blade, [0.0, 7.0], (4000.0, 12000.0), harmonics=7,  # noqa: E731
+                                                     samples=128, stability=stability)
     run()
     t16, r16 = best_of(run)
     slipping = np.count_nonzero(r16.contact_dissipation[:, 0] > 1e-6 * r16.excitation_work)
@@ -157,6 +178,33 @@ def sixteen_element_damper():
           f"points ({slipping} with the contact dissipating); static state N0 = "
           f"{r16.static_normal_force[0]:.4g} N, T0 = {r16.static_tangential_force[0]:.2g} N, "
           f"{r16.static_closed_elements[0]} of 16 elements closed")
+    stability_cost("blade", run, t16)
+
+
+def reduced_fe_stability():
+    """Stability on a reduced finite-element curve: exact (the whole structure's Hill problem) and modal."""
+    try:
+        from microslip.fe import blade
+    except ImportError as exc:
+        print(f"the fe extra is not installed ({exc}): the finite-element stability case is skipped")
+        return
+    b = blade(1000, contact_nodes=2)
+    s = Structure(b.M, 2e-7 * b.K, b.K, dof_map=b.dof_map)
+    for node in b.platform_nodes:
+        s.add_contact(MicroslipModel(kt=[2e6], kn=[2e8], gaps=[0.0], mu=0.1), tangential={f"{node}:x": 1.0},
+                      normal={f"{node}:y": 1.0}, preload=50.0)
+    f = s.force_vector({f"{b.tip_node}:x": 12.0})
+    for reduction, modes in (("exact", None), ("modal", 40)):
+        def run(stability=False):
+            return frequency_response(s, f, (7000.0, 11000.0), harmonics=5, reduction=reduction, modes=modes,
+                                      stability=stability)
+
+        t, r = best_of(run, repeat=2)
+        slipping = np.count_nonzero(r.contact_dissipation.max(axis=1) > 0)
+        print(f"FE blade, {s.ndof} DOFs, 4 contacts, H = 5, reduction = {reduction!r}"
+              + (f" ({modes} modes)" if modes else "") + f": curve alone {t:.2f} s for {r.points} points "
+              f"({slipping} with a contact slipping)")
+        stability_cost(f"FE blade {reduction}", run, t, repeat=2)
 
 
 def in_temporary_directory(fn):

@@ -617,8 +617,9 @@ CASES += [
     case("frequency.static_solution", lambda: microslip.frequency.static_solution,
          skip={"force": ("nan", "inf", "string", "dict")}, structure=L(jenkins_structure), force=[1.0],
          tolerance=1e-10),
-    # a force of 1e300 N overflows the work per cycle (force times displacement) to inf
-    case("frequency.frequency_point", lambda: frequency_point, skip={"force": ("1e300",)},
+    # a force of 1e300 N overflows the work per cycle (force times displacement) to inf; at 1e-300 rad/s every mode
+    # lies above the harmonics, so Hill's method resolves no Floquet exponent: leading_exponent is NaN by definition
+    case("frequency.frequency_point", lambda: frequency_point, skip={"force": ("1e300",), "omega": ("1e-300",)},
          structure=L(jenkins_structure), force=[1.0], omega=100.0, harmonics=1, samples=16, max_periods=100),
     # a curve takes seconds once its arguments are accepted
     case("microslip.frequency_response", lambda: microslip.frequency_response, refused_only=True,

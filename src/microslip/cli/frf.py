@@ -20,7 +20,8 @@ def add_parser(sub) -> None:
                     "'microslip tune'), the excitation and the sweep; its format is documented in "
                     "microslip.frequency.config (python -c 'import microslip.frequency.config as c; "
                     "print(c.__doc__)'). Writes frf.csv, frf.png, contacts.png, report.html and report.md, and prints "
-                    "each contact's static state (normal and tangential force, elements closed). Exit status: "
+                    "each contact's static state (normal and tangential force, elements closed) and the curve's "
+                    "unstable stretches (Hill's method; dashed in the plot). Exit status: "
                     "0 on success, 1 when the solution fails or the curve stops at [continuation] max_points "
                     "before the end of the range (the results up to there are written), 2 for an invalid "
                     "configuration. Plots and the report give frequencies in Hz unless [output] "
@@ -126,6 +127,15 @@ def run(args) -> int:
         report.text(f"**Incomplete curve**: {incomplete_message(result, cfg.omega[1], cfg.control)}.")
     for text in resolution:
         report.text(f"**Sampling**: {text}.")
+    report.text(_stability_text(result, cfg))
+    print(_stability_text(result, cfg))
+    if result.bifurcations:
+        report.table(["kind", "ω (rad/s)", "f (Hz)"] + [f"{cfg.dof_names[d]} (µm)" for d in cfg.plot_dofs],
+                     [[b.kind, f"{b.omega:.6g}", f"{b.omega / (2 * np.pi):.6g}"]
+                      + [f"{b.interpolate(result.amplitude(d, cfg.harmonic)) * 1e6:.6g}" for d in cfg.plot_dofs]
+                      for b in result.bifurcations],
+                     caption="Bifurcations along the curve (between two points, linearly interpolated): "
+                             "the response amplitude of each plotted DOF there")
     unit, factor = display_unit(result.contact_dissipation, "energy")
     for c, contact in enumerate(result.structure.contacts):
         report.text(_static_text(result, c) + f" Along the curve: mean normal load "
@@ -143,6 +153,27 @@ def run(args) -> int:
               f"(set max_points in [continuation]); the results written stop there", file=sys.stderr)
         return 1
     return 0
+
+
+def _stability_text(result, cfg) -> str:
+    """Which stretches of the curve are unstable (Hill's method), in the configured frequency unit, and its folds."""
+    if result.stable is None:
+        from ..frequency.stability import HILL_LIMIT
+
+        return (f"Stability was not computed: Hill's eigenproblem would have more than {HILL_LIMIT} unknowns "
+                "(the whole structure's with reduction = \"exact\"; use reduction = \"modal\"), or the "
+                "structure is a cyclic sector.")
+    folds = sum(b.kind == "fold" for b in result.bifurcations)
+    fold_text = f" The curve has {folds} fold{'s' if folds != 1 else ''}." if folds else ""
+    if result.stable.all():
+        return ("Stability (Hill's method): every point is stable (every Floquet exponent the harmonics resolve "
+                "has a negative real part)." + fold_text)
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], (~result.stable).astype(int), [0]])))
+    x, _ = _frequency(cfg, result.omega)
+    stretches = [f"{x[lo:hi].min():.6g} to {x[lo:hi].max():.6g} {cfg.frequency_unit} (points {lo} to {hi - 1})"
+                 for lo, hi in zip(edges[::2], edges[1::2])]
+    return (f"Stability (Hill's method): {int((~result.stable).sum())} of {result.points} points are unstable "
+            f"(dashed in the plot), from " + "; ".join(stretches) + "." + fold_text)
 
 
 def _excitation_rows(cfg) -> list:

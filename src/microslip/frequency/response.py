@@ -26,7 +26,7 @@ from .hbm import HarmonicBalance, excitation
 from .cyclic import CyclicStructure
 from .cyclic_balance import check_engine_order, cyclic_equations, phase_operator
 from .reduced import (ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs)
-from .stability import HILL_LIMIT, bifurcations, stable_points
+from .stability import assess
 from .structure import Structure, direction
 
 _CURVE_SAMPLES = 256  # samples per period when reporting the maximum of a time signal
@@ -103,13 +103,20 @@ class FrequencyResponse:
         For a cyclic structure: the engine order solved; the DOFs are this
         sector's (:meth:`sector_coefficients` gives any other sector).
     stable : ndarray of bool, shape (points,), or None
-        Stability of each point by Hill's method (:mod:`~microslip.frequency.stability`);
-        None where it was not computed (reduced equations, or more than
-        ``HILL_LIMIT`` unknowns).
-    bifurcations : list of (str, float, float)
-        ``(kind, omega rad/s, amplitude m)`` where stability changes along the
-        curve: ``"fold"`` (the frequency turns back) or ``"neimark-sacker"``;
-        the amplitude is the first harmonic of the first DOF.
+        Stability of each point by Hill's method (:mod:`~microslip.frequency.stability`):
+        True when every Floquet exponent the harmonics resolve has a negative
+        real part. None when it was not computed (``stability=False``, a cyclic
+        sector, or a Hill problem of more than ``stability.HILL_LIMIT`` unknowns).
+    leading_exponent : ndarray of complex, shape (points,), or None
+        The Floquet exponent with the largest real part at each point (1/s):
+        a perturbation grows or decays like ``exp(Re * time)``; NaN where the
+        harmonics resolve no exponent (every mode above ``(H + 1/2) omega``).
+    bifurcations : list of Bifurcation
+        Folds, branch points, Neimark--Sacker and period-doubling points found
+        between the points, in the order of the curve
+        (:class:`~microslip.frequency.stability.Bifurcation`: kind, frequency,
+        fractional point index; ``b.interpolate(r.amplitude(dof))`` gives an
+        amplitude there).
     contact_harmonic_work : ndarray, shape (points, nc)
         The contacts' energy per cycle from the force harmonics kept (J): with
         the excitation's and the viscous work it balances exactly at a
@@ -145,6 +152,7 @@ class FrequencyResponse:
     contact_harmonic_work: np.ndarray | None = field(default=None, repr=False)
     stable: np.ndarray | None = field(default=None, repr=False)
     bifurcations: list = field(default_factory=list)
+    leading_exponent: np.ndarray | None = field(default=None, repr=False)
     recovery: object = field(default=None, repr=False)
 
     def __post_init__(self):
@@ -323,6 +331,7 @@ class FrequencyResponse:
             cols[f"{contact.name} dissipation [J]"] = self.contact_dissipation[:, c]
         if self.stable is not None:
             cols["stable [-]"] = self.stable.astype(int)
+            cols["growth rate [1/s]"] = self.leading_exponent.real
         cols["viscous dissipation [J]"] = self.viscous_dissipation
         cols["excitation work [J]"] = self.excitation_work
         return cols
@@ -515,11 +524,12 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         Normal modes of a modal reduction (default 60); implies ``"modal"``
         with ``reduction="auto"``.
     stability : bool, default True
-        Mark each point stable or unstable (Hill's method on the equations of
-        every DOF, recovered from the contact DOFs of a reduced solution) and
-        locate folds and Neimark--Sacker points, while those equations have at
-        most ``stability.HILL_LIMIT`` unknowns (else, and for a cyclic sector,
-        :attr:`FrequencyResponse.stable` is None).
+        Mark each point stable or unstable (Hill's method on the harmonic
+        balance Jacobian: the whole structure's with ``"exact"``, the modal
+        model's with ``"modal"``; :mod:`~microslip.frequency.stability`) and
+        locate the folds and other bifurcations between points, while the Hill
+        problem has at most ``stability.HILL_LIMIT`` (20000) unknowns (else, and
+        for a cyclic sector, :attr:`FrequencyResponse.stable` is None).
     engine_order : int, optional
         For a :class:`~microslip.frequency.CyclicStructure` (required there):
         the engine order ``EO`` of the travelling-wave excitation; ``force``
@@ -563,16 +573,8 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
                                                control=control, callback=tick)
     result = _collect(hb, xs, omegas, iters, static, complete)
-    full_size = (2 * hb.H + 1) * structure.ndof
-    if stability and full_size <= HILL_LIMIT and not isinstance(structure, CyclicStructure):
-        if isinstance(hb, ReducedHarmonicBalance):  # Hill's method on every DOF, recovered from the contact DOFs
-            hill = HarmonicBalance(structure, force, hb.H, samples=hb.samples, max_periods=hb.max_periods)
-            xs_hill = np.array([hb._full(x, float(w)).ravel() for x, w in zip(xs, omegas)])
-        else:
-            hill, xs_hill = hb, xs
-        stable, leading = stable_points(hill, xs_hill, omegas)
-        result = replace(result, stable=stable,
-                         bifurcations=bifurcations(omegas, result.amplitude(0, 1), leading, stable))
+    if stability:
+        result = _with_stability(result, hb, xs, omegas)
     report.done(f"frequency response: {omegas.size} points")
     if not complete:
         warnings.warn(incomplete_message(result, hi, control or StepControl()), IncompleteCurveWarning,
@@ -608,7 +610,8 @@ def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, redu
 
 def frequency_point(structure: Structure, force, omega: float, *, harmonics: int = 5, samples: int | None = None,
                     max_periods: int = MAX_PERIODS, reduction: str = "auto",
-                    modes: int | None = None, engine_order: int | None = None) -> FrequencyResponse:
+                    modes: int | None = None, engine_order: int | None = None,
+                    stability: bool = True) -> FrequencyResponse:
     """The harmonic balance solution at one frequency, reached from the static state by Newton's method.
 
     Where the response has several solutions at ``omega`` (past a fold) this is
@@ -617,7 +620,7 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
 
     Parameters
     ----------
-    structure, force, harmonics, samples, max_periods, reduction, modes, engine_order
+    structure, force, harmonics, samples, max_periods, reduction, modes, engine_order, stability
         As in :func:`frequency_response`.
     omega : float
         Excitation frequency (rad/s).
@@ -629,10 +632,21 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
     """
     start = time.perf_counter()
     omega = HarmonicBalance._omega(omega)
+    stability = _checks.flag("stability", stability)
     hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega, reduction,
                                        modes, engine_order)
     result = _collect(hb, x[None, :], np.array([omega]), np.array([0]), static, True)
+    if stability:
+        result = _with_stability(result, hb, x[None, :], np.array([omega]))
     return replace(result, elapsed=time.perf_counter() - start)
+
+
+def _with_stability(result: FrequencyResponse, hb, xs, omegas) -> FrequencyResponse:
+    """``result`` with the stability of its points and the bifurcations between them (not for a cyclic sector)."""
+    if isinstance(result.structure, CyclicStructure):
+        return result
+    stable, leading, found = assess(hb, xs, omegas)
+    return replace(result, stable=stable, leading_exponent=leading, bifurcations=found)
 
 
 def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> float:

@@ -1,93 +1,476 @@
-"""Stability of harmonic balance solutions: Hill's method.
+"""Stability of harmonic balance solutions: Hill's method, folds and other bifurcations.
 
-A perturbation ``y(time) = exp(lambda time) p(tau)`` of a periodic solution, ``p``
-periodic and expanded in the same harmonics, obeys ``Delta(lambda) p = 0`` with
+A periodic solution ``q*(time)`` is perturbed by ``y = exp(lambda time) p(time)``
+with ``p`` periodic (period ``2 pi / omega``), expanded on the same harmonics as
+``q*`` (harmonic-major coefficients ``[c0, a1, b1, ..., aH, bH]``, see
+:mod:`~microslip.frequency.hbm`). With ``d/dtime = omega D`` on the coefficients
+(``D``: the harmonic derivative of :func:`~microslip.frequency.hbm.harmonic_operators`),
+``y' = exp(lambda time) (lambda + omega D) p`` and ``y'' = exp(lambda time)
+(lambda + omega D)^2 p``, so ``M y'' + C y' + K y + (dF/dq) y = 0`` becomes the
+quadratic eigenproblem of Hill's method
 
-``Delta(lambda) = J + lambda Delta1 + lambda^2 Delta2``,
+``(Jx + lambda Delta1 + lambda^2 Delta2) p = 0``,
 ``Delta1 = I (x) C + 2 omega D (x) M``, ``Delta2 = I (x) M``,
 
-``J`` the harmonic balance Jacobian at the solution (contacts included: friction
-is rate independent, so the contact forces depend on the displacements only) and
-``D`` the harmonic derivative ``d/dtau`` (:func:`~.hbm.harmonic_operators`); this is
-``(lambda + omega d/dtau)`` substituted for ``d/dtime`` in ``M q'' + C q' + K q``.
-The quadratic eigenproblem is solved through its companion form. Its ``(2H+1)
-ndof`` pairs repeat the Floquet exponents shifted by ``i k omega``; the ``2 ndof``
-with the smallest ``|Im lambda|`` are taken as the exponents (the principal
-strip ``|Im lambda| <= omega / 2``, the usual sorting), and the solution is stable
-when all have a negative real part.
+where ``Jx = Kx + omega Cx - omega^2 Mx + Jc`` is the harmonic balance Jacobian at the
+solution (``(omega D)^2 = -omega^2 W``). The contact part ``Jc`` does not depend on
+``lambda``: the friction law is rate independent, and its linearisation is the
+periodic one of the alternating frequency--time Jacobian, as is usual with Hill's
+method for friction (exact at ``lambda = 0``, where folds are decided).
+
+The ``2 (2H+1) m`` eigenvalues of the truncated problem (``m`` unknowns per
+harmonic) approximate the Floquet exponents, each of which appears ``2H+1`` times,
+shifted by ``i k omega``: ``lambda + i k omega`` is an eigenvalue too, with the
+eigenvector's harmonics shifted by ``k``. The truncation resolves best the copy
+whose eigenvector lies in the middle of the kept harmonics, which is the copy with
+the smallest ``|Im lambda|``; the copies near the edge of the truncation are
+inaccurate. So the eigenvalues with the smallest ``|Im|`` are kept as the Floquet
+exponents (Lazarus & Thomas 2010), at most ``2 m`` of them, copies of one another
+removed, and only those of the strip ``|Im| <= omega / 2`` where every exponent has
+its representative: a mode above ``(H + 1/2) omega`` has no copy there (its
+nearest copy is an inaccurate edge one, which can even show a spurious positive
+real part), so the verdict rests on the exponents the kept harmonics resolve (a
+point with none is stable, its leading exponent NaN). The multipliers are
+``exp(lambda 2 pi / omega)``. A point is stable when every kept exponent has a
+real part below ``TOLERANCE * omega`` (a growth of less than ``2 pi TOLERANCE``
+per period).
+
+Forms of the equations:
+
+* every DOF an unknown (:class:`~microslip.frequency.hbm.HarmonicBalance`): the
+  problem above;
+* ``reduction="exact"``: the condensation is exact, so the Hill problem is that of
+  the whole structure with the contact Jacobian of the retained DOFs (``Jc`` of the
+  reduced equations placed at the retained DOFs; no recovery of the interior);
+* ``reduction="modal"``: the reduced equations are the exact harmonic balance of the
+  modal model (kept modes ``eta`` plus the quasi-static residual flexibility ``R``
+  of the omitted ones: ``q_r = Phi_r eta + R f_r``); the massless residual part is
+  eliminated exactly, giving the quadratic problem in the modal coordinates
+
+  ``(Lambda + omega Cm D - omega^2 W + lambda (Cm + 2 omega D) + lambda^2
+  + Phi_r^T Jc (I + R Jc)^-1 Phi_r) p_eta = 0`` (each term ``(x)`` over the harmonics).
+
+  Its static term is the modal model's, which differs from the exact static
+  condensation the reduced equations use by the modal shift (a relative 1e-6).
+
+Stability is computed while the Hill problem has at most :data:`HILL_LIMIT`
+unknowns (``(2H+1)`` times the DOFs, or the modes of a modal reduction), and not
+for a cyclic sector. Up to :data:`DENSE_LIMIT` unknowns the companion linearisation
+is solved densely (:func:`numpy.linalg.eigvals`: every eigenvalue); above, the
+eigenvalues nearest to 0 are found by shift-invert Arnoldi
+(:func:`scipy.sparse.linalg.eigs` on a factorisation of ``Jx``), starting from
+:data:`NEAREST_START` and doubling until they cover the disc ``|lambda| <= omega``
+(hence every exponent of the strip ``|Im| <= omega / 2`` whose real part is below
+``0.87 omega`` in size). Dense LAPACK runs with one BLAS thread here: on a loaded
+machine OpenBLAS's threads make calls of this size a hundred times slower.
+
+Limit: where a contact element just reaches its slip limit somewhere on the orbit
+(the onset of microslip, a contact dissipating almost nothing), the friction force
+has a kink on the orbit and its linearisation depends on which side of it the AFT
+samples fall. The verdict there can change with the samples and ``H``: on a blade
+with platform contacts near the onset of slip, the leading exponent moved between
++45 and -55 1/s with 128, 512 and 2048 samples and H = 5 or 9, while time
+integration from the solution showed no growth over 400 periods. Check such
+stretches by time integration (:class:`~microslip.frequency.transient.PeriodMap`).
 """
 
 from __future__ import annotations
 
+import warnings
+from contextlib import contextmanager
+from dataclasses import dataclass
+from functools import cache
+
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from .hbm import HarmonicBalance, harmonic_operators
 
-#: unknowns up to which Hill's eigenproblem is solved (a dense eigensolution of twice that size per point)
-HILL_LIMIT = 300
+#: unknowns of the quadratic eigenproblem up to which it is solved densely (every eigenvalue); above, the
+#: iterative solver is faster (a 40-mode blade model, H = 3, 280 unknowns: 194 ms dense, 6 ms iterative)
+DENSE_LIMIT = 64
+#: unknowns of the Hill problem up to which stability is computed
+HILL_LIMIT = 20000
+#: eigenvalues the iterative solver asks for first (doubled until the disc |lambda| <= omega is covered)
+NEAREST_START = 8
+#: eigenvalues the iterative solver asks for at most
+NEAREST_LIMIT = 400
+#: two eigenvalues whose real parts and imaginary parts modulo omega agree to this share of omega are
+#: copies of one Floquet exponent (at the two edges of the strip)
+COPY_TOLERANCE = 1e-3
+#: a Floquet exponent is unstable when its real part exceeds ``TOLERANCE * omega``
+TOLERANCE = 1e-7
+#: an exponent with ``|Im| >= (1 - PD_BAND) omega / 2`` gives negative multipliers (period doubling)
+PD_BAND = 1e-6
 
 
-def floquet_exponents(hb: HarmonicBalance, x, omega: float) -> np.ndarray:
-    """The ``2 ndof`` Floquet exponents (1/s) of the solution ``x`` at ``omega``, complex, by real part, largest first.
+@dataclass(frozen=True)
+class Bifurcation:
+    """A bifurcation located between two points of a curve.
+
+    Attributes
+    ----------
+    kind : str
+        ``"fold"`` (a real Floquet multiplier crosses +1 where the curve turns back
+        in frequency), ``"branch point"`` (the same crossing where it does not turn),
+        ``"Neimark-Sacker"`` (a complex pair crosses the unit circle) or
+        ``"period doubling"`` (a multiplier crosses -1).
+    omega : float
+        Excitation frequency (rad/s), by linear interpolation between the points.
+    point : float
+        Position along the curve as a fractional point index (``3.25``: a quarter
+        of the way from point 3 to point 4).
+    """
+
+    kind: str
+    omega: float
+    point: float
+
+    def interpolate(self, values) -> float:
+        """A per-point quantity ``values`` (shape ``(points,)``) at :attr:`point` (linear)."""
+        values = np.asarray(values, dtype=float)
+        return float(np.interp(self.point, np.arange(values.size), values))
+
+
+@cache
+def _controller():
+    from threadpoolctl import ThreadpoolController
+
+    return ThreadpoolController()
+
+
+@contextmanager
+def one_blas_thread():
+    """Dense LAPACK with one BLAS thread inside the block (the previous limits restored after)."""
+    with _controller().limit(limits=1, user_api="blas"):
+        yield
+
+
+class HillProblem:
+    """``(J0, Delta1, Delta2)`` of Hill's method for one solution, and its Floquet exponents.
 
     Parameters
     ----------
-    hb : HarmonicBalance
-        The equations (every DOF an unknown).
-    x : ndarray, shape (n,)
-        A solution (m).
+    J0, D1, D2 : ndarray or scipy.sparse matrix, shape (n, n)
+        The matrices of ``(J0 + lambda D1 + lambda^2 D2) p = 0`` (``D2`` positive definite).
+    per_harmonic : int
+        Unknowns per harmonic ``m`` (``n = (2H+1) m``): ``2 m`` exponents are kept.
     omega : float
-        Its excitation frequency (rad/s).
+        Excitation frequency (rad/s).
+    solve_D2 : callable, optional
+        ``solve_D2(B)``: ``D2^-1 B`` for a dense ``B`` (default: a Cholesky factorisation of ``D2``).
+    start : int, optional
+        Eigenvalues the iterative solver asks for first (default :data:`NEAREST_START`).
+
+    Attributes
+    ----------
+    needed : int
+        After :meth:`eigenvalues` by the iterative solver: how many eigenvalues
+        the disc ``|lambda| <= omega`` held (a start for the next point of a curve).
     """
-    x = hb._unknowns(x)
-    omega = hb._omega(omega)
-    _, J, _ = hb._evaluate(x, omega)
-    J = J.toarray() if sp.issparse(J) else np.asarray(J)
-    s = hb.structure
-    M, C = (A.toarray() if sp.issparse(A) else np.asarray(A, dtype=float) for A in (s.M, s.C))
-    D, _ = harmonic_operators(hb.H)
-    eye = np.eye(hb.nb)
-    D1 = np.kron(eye, C) + 2.0 * omega * np.kron(D, M)
-    D2 = np.kron(eye, M)
-    n = hb.n
-    # companion form: [[0, I], [-D2^-1 J, -D2^-1 D1]] [p; lambda p] = lambda [p; lambda p]
-    lu = sla.lu_factor(D2)
-    A = np.zeros((2 * n, 2 * n))
-    A[:n, n:] = np.eye(n)
-    A[n:, :n] = -sla.lu_solve(lu, J)
-    A[n:, n:] = -sla.lu_solve(lu, D1)
-    lam = sla.eigvals(A)
-    principal = lam[np.argsort(np.abs(lam.imag), kind="stable")[:2 * hb.ndof]]
-    return principal[np.argsort(-principal.real)]
+
+    def __init__(self, J0, D1, D2, per_harmonic: int, omega: float, solve_D2=None, start: int | None = None):
+        self.J0, self.D1, self.D2 = J0, D1, D2
+        self.m = per_harmonic
+        self.n = J0.shape[0]
+        self.omega = float(omega)
+        self._solve_D2 = solve_D2
+        self.start = NEAREST_START if start is None else start
+        self.needed = 0
+
+    def eigenvalues(self) -> np.ndarray:
+        """Eigenvalues of the quadratic problem (1/s): all of them (dense) or those nearest 0 (iterative)."""
+        if self.n > DENSE_LIMIT:
+            return self._nearest()
+        J0, D1 = (A.toarray() if sp.issparse(A) else np.asarray(A) for A in (self.J0, self.D1))
+        solve = self._solve_D2
+        if solve is None:
+            cho = sla.cho_factor(self.D2.toarray() if sp.issparse(self.D2) else self.D2)
+            solve = lambda B: sla.cho_solve(cho, B, check_finite=False)  # noqa: E731
+        n = self.n
+        A = np.zeros((2 * n, 2 * n))
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -solve(J0)
+        A[n:, n:] = -solve(D1)
+        return np.linalg.eigvals(A)
+
+    def _nearest(self) -> np.ndarray:
+        """Shift-invert Arnoldi on ``[[0, I], [-J0, -D1]] z = lambda [[I, 0], [0, D2]] z``, at 0.
+
+        At a point exactly on a fold ``J0`` is singular: the shift is then moved
+        off 0 by ``1e-6 omega``, which changes nothing else.
+        """
+        n = self.n
+        D1, D2 = (sp.csr_matrix(A) for A in (self.D1, self.D2))  # block-sparse: cheap products
+        for sigma in (0.0, 1e-6 * self.omega):
+            solve = _factor(self.J0 + sigma * D1 + sigma ** 2 * D2 if sigma else self.J0)
+            if solve is not None:
+                break
+        else:
+            raise np.linalg.LinAlgError("Hill's problem is singular at and near 0")
+        shifted = D1 + sigma * D2
+
+        def op(z):  # (A - sigma B)^-1 B z
+            a, b = z[:n], D2 @ z[n:]
+            y = -solve(b + shifted @ a)
+            return np.concatenate([y, a + sigma * y])
+
+        linear = spla.LinearOperator((2 * n, 2 * n), matvec=op, dtype=float)
+        most = min(2 * n - 2, NEAREST_LIMIT)
+        k = min(max(self.start, 1), most)
+        while True:
+            mu = spla.eigs(linear, k=k, which="LM", return_eigenvectors=False, tol=1e-10)
+            lam = sigma + 1.0 / mu
+            if np.max(np.abs(lam - sigma)) >= self.omega or k >= most:
+                self.needed = int(np.count_nonzero(np.abs(lam - sigma) < self.omega))
+                return lam
+            k = min(2 * k, most)
+
+    def exponents(self) -> np.ndarray:
+        """The Floquet exponents (1/s), by decreasing real part (see :func:`principal_exponents`)."""
+        return principal_exponents(self.eigenvalues(), self.omega, 2 * self.m)
 
 
-def stable_points(hb: HarmonicBalance, xs, omegas, *, tolerance: float = 1e-9):
-    """``(stable, leading)``: a bool per point and the largest real part of its exponents (1/s).
+def _factor(A):
+    """``solve(b)`` with a factorisation of ``A`` (sparse or dense), None when ``A`` is exactly singular."""
+    if sp.issparse(A):
+        # the pattern of J0 is symmetric but for the contacts' normal-on-tangential blocks: a minimum degree
+        # ordering of A^T + A fills half as much as SuperLU's default (COLAMD) on finite-element structures
+        try:
+            return spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A").solve
+        except RuntimeError:  # exactly singular
+            return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)  # a zero pivot: refused just below
+        lu, piv = sla.lu_factor(np.asarray(A), check_finite=False)
+    if not np.all(np.diag(lu)):
+        return None
+    return lambda b: sla.lu_solve((lu, piv), b, check_finite=False)
 
-    A point is stable when that real part is below ``tolerance * omega``.
+
+def principal_exponents(lam, omega: float, count: int) -> np.ndarray:
+    """The Floquet exponents among Hill's eigenvalues ``lam`` (1/s), by decreasing real part.
+
+    At most ``count`` eigenvalues of the strip ``|Im| <= omega / 2`` (with
+    :data:`COPY_TOLERANCE` of slack), by increasing ``|Im|``, a copy shifted by
+    ``i k omega`` (``k != 0``) of one already kept left out.
     """
-    leading = np.array([floquet_exponents(hb, x, w)[0].real for x, w in zip(xs, omegas)])
-    return leading < tolerance * np.asarray(omegas), leading
+    lam = np.asarray(lam, dtype=complex)
+    lam = lam[np.isfinite(lam) & (np.abs(lam.imag) <= (0.5 + COPY_TOLERANCE) * omega)]
+    lam = lam[np.argsort(np.abs(lam.imag), kind="stable")]
+    tol = COPY_TOLERANCE * omega
+    keep = np.empty(0, dtype=complex)
+    for v in lam:
+        if keep.size == count:
+            break
+        d = (v.imag - keep.imag) / omega
+        shift = np.round(d)
+        if np.any((np.abs(v.real - keep.real) <= tol) & (np.abs(d - shift) * omega <= tol) & (shift != 0)):
+            continue
+        keep = np.append(keep, v)
+    return keep[np.argsort(-keep.real, kind="stable")]
 
 
-def bifurcations(omegas, amplitude, leading, stable) -> list:
-    """Where stability changes along a curve: ``[(kind, omega, amplitude), ...]``.
+def _kron(a, b, sparse: bool):
+    if sparse:
+        return sp.kron(sp.csr_matrix(a), sp.csr_matrix(b), format="csr")
+    return np.kron(a, b)
 
-    ``kind`` is ``"fold"`` where the frequency turns back (``d omega`` changes sign)
-    and ``"neimark-sacker"`` where stability is lost or regained without a turn;
-    the place is interpolated linearly on the leading exponent's real part.
+
+def _dense(A) -> np.ndarray:
+    return A.toarray() if sp.issparse(A) else np.asarray(A, dtype=float)
+
+
+class _Builder:
+    """The parts of the Hill problems of one set of equations that do not change along a curve.
+
+    ``hb`` is a :class:`~microslip.frequency.hbm.HarmonicBalance` or a
+    :class:`~microslip.frequency.reduced.ReducedHarmonicBalance` (exact or modal).
+    :attr:`assessed` is False when the Hill problem has more than :data:`HILL_LIMIT` unknowns.
     """
-    out = []
-    omegas, amplitude = np.asarray(omegas), np.asarray(amplitude)
-    turn = np.sign(np.diff(omegas))
-    for k in np.flatnonzero(stable[:-1] != stable[1:]):
-        a, b = leading[k], leading[k + 1]
-        f = a / (a - b) if a != b else 0.5
-        w = omegas[k] + f * (omegas[k + 1] - omegas[k])
-        amp = amplitude[k] + f * (amplitude[k + 1] - amplitude[k])
-        near = turn[max(k - 1, 0):k + 2]
-        kind = "fold" if near.size and (np.any(near != near[0])) else "neimark-sacker"
-        out.append((kind, float(w), float(amp)))
-    return out
+
+    def __init__(self, hb: HarmonicBalance):
+        self.hb = hb
+        self.start = NEAREST_START  # the iterative solver's first request, from the point before
+        nb = hb.nb
+        self.D, self.W = harmonic_operators(hb.H)
+        linear = getattr(hb, "linear", None)
+        self.kind = "none" if linear is None else ("modal" if hasattr(linear, "modes") else "exact")
+        s = hb.structure
+        if self.kind == "modal":
+            M, C, m = np.eye(linear.modes), linear.modal_damping, linear.modes
+        else:
+            M, C, m = s.M, s.C, s.ndof
+        self.m = m
+        self.n = n = nb * m
+        self.assessed = n <= HILL_LIMIT
+        if not self.assessed:
+            return
+        sparse = self.sparse = n > DENSE_LIMIT
+        if not sparse:
+            M, C = _dense(M), _dense(C)
+        I = np.eye(nb)
+        self.C1, self.M1, self.D2 = (_kron(I, C, sparse), _kron(self.D, M, sparse), _kron(I, M, sparse))
+        self.solve_D2 = None
+        if not sparse:
+            Minv = np.linalg.inv(_dense(M))  # D2^-1 = I (x) M^-1, applied block by block
+            self.solve_D2 = lambda B: np.einsum("ij,hjk->hik", Minv, B.reshape(nb, m, -1)).reshape(B.shape)
+        if self.kind == "modal":
+            self.Phi = np.kron(I, linear.phi_r)  # (nb m_r, nb modes)
+            self.R = np.kron(I, linear.residual)
+            self.Lam = np.kron(I, np.diag(linear.eigenvalues))
+            self.DC = np.kron(self.D, linear.modal_damping)
+            self.WI = np.kron(self.W, np.eye(m))
+        elif self.kind == "exact":
+            K = s.K if sparse else _dense(s.K)
+            self.Kx, self.Cx, self.Mx = (_kron(I, K, sparse), _kron(self.D, C, sparse), _kron(self.W, M, sparse))
+            self.rows = (np.arange(nb)[:, None] * m + hb.retained[None, :]).ravel()  # the retained unknowns
+
+    def problem(self, x, omega: float) -> HillProblem:
+        """The Hill problem at the solution ``x`` (m) of ``hb`` at ``omega`` (rad/s)."""
+        hb = self.hb
+        if self.kind == "none":
+            _, J0, _ = hb._evaluate(x, omega)
+            J0 = J0.tocsc() if sp.issparse(J0) else J0
+        else:
+            hb._aft(x)
+            Jc = np.asarray(hb._contact_jacobian()) if hb.nc else np.zeros((hb.n, hb.n))  # on the retained DOFs
+            if self.kind == "modal":
+                X = np.linalg.solve(np.eye(Jc.shape[0]) + self.R @ Jc, self.Phi)
+                J0 = self.Lam + omega * self.DC - omega ** 2 * self.WI + self.Phi.T @ (Jc @ X)
+            else:
+                J0 = self._whole(Jc, omega)
+        return HillProblem(J0, self.C1 + (2.0 * omega) * self.M1, self.D2, self.m, omega, self.solve_D2, self.start)
+
+    def exponents(self, x, omega: float) -> np.ndarray:
+        """The Floquet exponents at the solution ``x`` (m) at ``omega`` (rad/s); the next point's solver starts from
+        a few more eigenvalues than this one's disc ``|lambda| <= omega`` held (the curve changes little)."""
+        problem = self.problem(x, omega)
+        lam = problem.exponents()
+        self.start = max(NEAREST_START, problem.needed + problem.needed // 4 + 2)
+        return lam
+
+    def _whole(self, Jc, omega: float):
+        """The whole structure's ``J0`` with the contact Jacobian ``Jc`` of the retained DOFs (exact reduction)."""
+        linear = self.Kx + omega * self.Cx - omega ** 2 * self.Mx
+        if self.sparse:
+            Jc = sp.coo_matrix(Jc)
+            contact = sp.csr_matrix((Jc.data, (self.rows[Jc.row], self.rows[Jc.col])), shape=linear.shape)
+            return (linear + contact).tocsc()
+        linear[np.ix_(self.rows, self.rows)] += Jc
+        return linear
+
+
+def hill_problem(hb: HarmonicBalance, x, omega: float) -> HillProblem | None:
+    """The Hill problem of a harmonic balance solution ``x`` (m) at ``omega`` (rad/s).
+
+    ``hb`` is a :class:`~microslip.frequency.hbm.HarmonicBalance` or a
+    :class:`~microslip.frequency.reduced.ReducedHarmonicBalance`. None when
+    stability is not computed: more than :data:`HILL_LIMIT` unknowns.
+    """
+    x, omega = hb._point(x, omega)
+    builder = _Builder(hb)
+    return builder.problem(x, omega) if builder.assessed else None
+
+
+def floquet_exponents(hb: HarmonicBalance, x, omega: float) -> np.ndarray | None:
+    """The Floquet exponents (1/s) of the solution ``x`` at ``omega``, by decreasing real part.
+
+    Parameters
+    ----------
+    hb : HarmonicBalance or ReducedHarmonicBalance
+        The equations ``x`` solves.
+    x : array_like, shape (n,)
+        A solution (m), harmonic-major.
+    omega : float
+        Excitation frequency (rad/s).
+
+    Returns
+    -------
+    ndarray of complex, shape (k,) with k <= 2 m, or None
+        ``m`` the unknowns per harmonic (DOFs; modes with a modal reduction;
+        every DOF with an exact one); fewer than ``2 m`` when modes lie above the
+        kept harmonics (see the module docstring). None when not computed (see
+        :func:`hill_problem`).
+    """
+    problem = hill_problem(hb, x, omega)
+    if problem is None:
+        return None
+    with one_blas_thread():
+        return problem.exponents()
+
+
+def _kinds(lam: np.ndarray, omega: float) -> dict:
+    """Masks of the exponents on the real axis, in complex pairs, and at ``|Im| = omega / 2`` (period doubling)."""
+    im = np.abs(lam.imag)
+    real = im <= 1e-9 * omega
+    doubling = im >= (1 - PD_BAND) * omega / 2
+    return {"real": real, "complex": ~real & ~doubling, "doubling": doubling}
+
+
+def _leading(lam: np.ndarray, mask: np.ndarray, nearest_zero: bool = False) -> float:
+    """Largest real part (1/s) of the exponents in ``mask`` (or the one nearest 0); 0 when there is none."""
+    vals = lam.real[mask]
+    if not vals.size:
+        return 0.0
+    return float(vals[np.argmin(np.abs(vals))] if nearest_zero else np.max(vals))
+
+
+def _crossing(a: float, b: float) -> float:
+    """Fraction in [0, 1] where a quantity going linearly from ``a`` to ``b`` crosses 0 (0.5 if it does not)."""
+    return float(np.clip(a / (a - b), 0.0, 1.0)) if a != b and a * b <= 0 else 0.5
+
+
+def assess(hb: HarmonicBalance, xs, omegas) -> tuple[np.ndarray | None, np.ndarray | None, list[Bifurcation]]:
+    """Stability of every point of a curve and the bifurcations between them.
+
+    Parameters
+    ----------
+    hb : HarmonicBalance or ReducedHarmonicBalance
+        The equations.
+    xs : ndarray, shape (points, n)
+        Solutions (m) along the curve, in its order.
+    omegas : ndarray, shape (points,)
+        Their frequencies (rad/s).
+
+    Returns
+    -------
+    stable : ndarray of bool, shape (points,), or None
+        None when stability is not computed for these equations (see :func:`hill_problem`).
+    leading : ndarray of complex, shape (points,), or None
+        The Floquet exponent with the largest real part at each point (1/s;
+        NaN where no exponent is resolved).
+    bifurcations : list of Bifurcation
+        Where the number of unstable exponents changes: a real one (fold or
+        branch point), a complex pair (Neimark--Sacker) or a pair at
+        ``|Im| = omega / 2`` (period doubling).
+    """
+    xs = np.asarray(xs, dtype=float)
+    omegas = np.asarray(omegas, dtype=float)
+    builder = _Builder(hb)
+    if not builder.assessed:
+        return None, None, []
+    with one_blas_thread():
+        exponents = [builder.exponents(x, float(w)) for x, w in zip(xs, omegas)]
+    stable = np.array([not np.any(lam.real > TOLERANCE * w) for lam, w in zip(exponents, omegas)])
+    leading = np.array([lam[0] if lam.size else complex(np.nan, np.nan) for lam in exponents])
+    kinds = [_kinds(lam, w) for lam, w in zip(exponents, omegas)]
+    unstable = [{k: int(np.count_nonzero(m & (lam.real > TOLERANCE * w))) for k, m in kind.items()}
+                for lam, w, kind in zip(exponents, omegas, kinds)]
+    found = []
+    for k in range(len(omegas) - 1):
+        a, b = exponents[k], exponents[k + 1]
+        if (unstable[k]["real"] - unstable[k + 1]["real"]) % 2:  # a real multiplier crosses +1
+            f = _crossing(_leading(a, kinds[k]["real"], True), _leading(b, kinds[k + 1]["real"], True))
+            # a fold where the curve turns back in frequency within two points of the crossing
+            steps = np.diff(omegas[max(k - 2, 0):k + 4])
+            found.append(("fold" if np.any(steps > 0) and np.any(steps < 0) else "branch point", k, f))
+        for kind, name in (("complex", "Neimark-Sacker"), ("doubling", "period doubling")):
+            if unstable[k][kind] != unstable[k + 1][kind]:
+                f = _crossing(_leading(a, kinds[k][kind]), _leading(b, kinds[k + 1][kind]))
+                found.append((name, k, f))
+    bifurcations = [Bifurcation(kind, float(omegas[k] + f * (omegas[k + 1] - omegas[k])), k + f)
+                    for kind, k, f in found]
+    return stable, leading, bifurcations

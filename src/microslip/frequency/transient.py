@@ -142,6 +142,90 @@ def _periodic_start(structure: Structure, coefficients, steps: int):
     return q[-1].copy(), q[0].copy(), sliders
 
 
+class PeriodMap:
+    """The explicit central-difference scheme of :func:`steady_state`, one period at a time.
+
+    Its state is ``(q_prev, q, sliders)``: the displacements (m) one step before
+    and at the start of a period, ``(ndof,)`` each, and the sliders of every contact
+    element (m), ``(elements,)``. :meth:`period` maps a state to the state one
+    period later (the Poincare map of shooting and Floquet analyses).
+
+    Parameters
+    ----------
+    structure, force, omega
+        As in :func:`steady_state` (checked there).
+    steps : int
+        Time steps per period, raised when the scheme would be unstable.
+    harmonics : int, optional
+        ``H`` of the steady state's Fourier analysis, which bounds ``steps``.
+
+    Attributes
+    ----------
+    steps : int
+        Time steps per period.
+    dt : float
+        Time step (s).
+    """
+
+    def __init__(self, structure: Structure, force, omega: float, steps: int, harmonics: int | None = None):
+        M, C, K = (A.toarray() if sp.issparse(A) else np.asarray(A) for A in (structure.M, structure.C, structure.K))
+        self.structure = structure
+        self.force = force
+        self.K = K
+        self.Bt, self.Bn, self.n0 = structure.contact_directions()
+        # stability: dt < 2 / omega_max with every contact element closed and stuck
+        K_max = structure.stuck_stiffness()
+        K_max = K_max.toarray() if sp.issparse(K_max) else K_max
+        w_max = float(np.sqrt(np.max(np.abs(sla.eigvals(K_max, M)))))
+        period = 2 * np.pi / omega
+        steps = max(steps, int(np.ceil(period * w_max / 1.8)))
+        # the steady state's Fourier table holds steps x (2H+1) values
+        limit = _checks.MAX_SIZE if harmonics is None else MAX_TABLE // (2 * harmonics + 1)
+        if steps > limit:
+            raise ValueError(f"omega = {omega:g} rad/s is too low: a stable step needs {steps:.3g} steps per period "
+                             f"(at most {limit}" + ("" if harmonics is None else f" with harmonics = {harmonics}") + ")")
+        self.steps = steps
+        self.dt = dt = period / steps
+        self.A_inv = np.linalg.inv(M / dt**2 + C / (2 * dt))
+        self.B1 = 2 * M / dt**2
+        self.B0 = M / dt**2 - C / (2 * dt)
+        keys = [h for h in force if isinstance(h, (int, np.integer))] if isinstance(force, Mapping) else []
+        coef = excitation(structure, force, max(keys, default=1))
+        coef[0] += structure.preload_force()
+        # forcing (steps, ndof) at tau_k = 2 pi k / steps: aft.synthesise's cached table, without its
+        # samples >= 2H+1 check (steps_per_period is raised for stability only, never refused here)
+        self.f = _aft.tables((coef.shape[0] - 1) // 2, steps)[0] @ coef
+        self.packed = structure.packed_models()
+
+    def start(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(q_prev, q, sliders)`` at rest at the static equilibrium, the contacts loaded statically."""
+        q = static_solution(self.structure, self.force)
+        kt, kn, gaps, offsets, mu = self.packed
+        sliders = np.zeros(kt.size)
+        for i in range(len(self.structure.contacts)):
+            lo, hi = offsets[i], offsets[i + 1]
+            march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([self.Bt[:, i] @ q]),
+                  np.array([self.Bn[:, i] @ q + self.n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), NO_WORK,
+                  NO_ELEMENTS, NO_CONDITIONS)
+        return q.copy(), q, sliders
+
+    def integrate(self, q_prev, q, sliders, out) -> None:
+        """March ``out.shape[0]`` steps from the start of a period, updating ``q_prev, q, sliders`` in place.
+
+        ``out`` (shape ``(steps, ndof)``) receives the displacements (m) at times ``dt, 2 dt, ...``.
+        """
+        _transient.integrate(self.A_inv, self.K, self.B1, self.B0, self.f, self.Bt, self.Bn, self.n0,
+                             *self.packed, sliders, q_prev, q, out.shape[0], out)
+
+    def period(self, state) -> np.ndarray:
+        """The state ``[q_prev, q, sliders]`` (shape ``(2 ndof + elements,)``) one period later."""
+        ndof = self.structure.ndof
+        state = np.array(state, dtype=float)
+        q_prev, q, sliders = state[:ndof], state[ndof:2 * ndof], state[2 * ndof:]
+        self.integrate(q_prev, q, sliders, np.empty((self.steps, ndof)))
+        return state
+
+
 def steady_state(structure: Structure, force, omega: float, *, steps_per_period: int = 4096,
                  harmonics: int = 7, tolerance: float = 1e-7, max_periods: int = 5000,
                  progress: bool = False, start: FrequencyResponse | None = None) -> SteadyState:
@@ -191,51 +275,19 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     tolerance = _checks.positive_scalar("tolerance", tolerance)
     max_periods = _checks.positive_int("max_periods", max_periods)
     coefficients = None if start is None else _start_coefficients(structure, start)
-    dense = [A.toarray() if sp.issparse(A) else np.asarray(A) for A in (structure.M, structure.C, structure.K)]
-    M, C, K = dense
-    contacts = structure.contacts
-    ndof = structure.ndof
-    Bt, Bn, n0 = structure.contact_directions()
-    # stability: dt < 2 / omega_max with every contact element closed and stuck
-    K_max = structure.stuck_stiffness()
-    K_max = K_max.toarray() if sp.issparse(K_max) else K_max
-    w_max = float(np.sqrt(np.max(np.abs(sla.eigvals(K_max, M)))))
-    period = 2 * np.pi / omega
-    steps = max(steps, int(np.ceil(period * w_max / 1.8)))
-    limit = MAX_TABLE // (2 * H + 1)
-    if steps > limit:
-        raise ValueError(f"omega = {omega:g} rad/s is too low: a stable step needs {steps:.3g} steps per period "
-                         f"(at most {limit} with harmonics = {H})")
-    dt = period / steps
-    A_inv = np.linalg.inv(M / dt**2 + C / (2 * dt))
-    B1 = 2 * M / dt**2
-    B0 = M / dt**2 - C / (2 * dt)
-    keys = [h for h in force if isinstance(h, (int, np.integer))] if isinstance(force, Mapping) else []
-    coef = excitation(structure, force, max(keys, default=1))
-    coef[0] += structure.preload_force()
-    # forcing (steps, ndof) at tau_k = 2 pi k / steps: aft.synthesise's cached table, without its
-    # samples >= 2H+1 check (steps_per_period is raised for stability only, never refused here)
-    f = _aft.tables((coef.shape[0] - 1) // 2, steps)[0] @ coef
-    kt, kn, gaps, offsets, mu = structure.packed_models()
+    scheme = PeriodMap(structure, force, omega, steps, harmonics=H)
+    steps, ndof = scheme.steps, structure.ndof
     if coefficients is not None:  # on a harmonic balance solution
         q_prev, q, sliders = _periodic_start(structure, coefficients, steps)
     else:  # at rest at the static equilibrium, contacts loaded statically from the virgin state
-        q = static_solution(structure, force)
-        q_prev = q.copy()
-        sliders = np.zeros(kt.size)
-        for i, c in enumerate(contacts):
-            lo, hi = offsets[i], offsets[i + 1]
-            march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([Bt[:, i] @ q]),
-                  np.array([Bn[:, i] @ q + n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), NO_WORK,
-                  NO_ELEMENTS, NO_CONDITIONS)
+        q_prev, q, sliders = scheme.start()
     out = np.empty((steps, ndof))
     report = Progress(max_periods, enabled=progress)
     previous = None
     change = np.inf
     done = 0
     while done < max_periods:
-        _transient.integrate(A_inv, K, B1, B0, f, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sliders,
-                             q_prev, q, steps, out)
+        scheme.integrate(q_prev, q, sliders, out)
         done += 1
         first = _fourier(out, 1)[1:3]
         if previous is not None:
@@ -247,5 +299,5 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
                 break
         previous = first
     # the recorded samples are at times dt, 2 dt, ..., period
-    return SteadyState(structure, omega, dt * (np.arange(steps) + 1), out.copy(), _fourier(out, H), done,
+    return SteadyState(structure, omega, scheme.dt * (np.arange(steps) + 1), out.copy(), _fourier(out, H), done,
                        change, change < tolerance)
