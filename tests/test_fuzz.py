@@ -655,6 +655,7 @@ CASES += [
     case("CyclicStructure.phase", lambda: disk().phase, harmonic=1, engine_order=1),
     case("CyclicStructure.constraint", lambda: disk().constraint, phi=0.5),
     case("CyclicStructure.matrices", lambda: disk().matrices, phi=0.5),
+    case("CyclicStructure.travelling_wave", lambda: disk().travelling_wave, force=[0.0, 1.0, 0.0], engine_order=3),
     case("UnderPlatformDamper", lambda: microslip.frequency.UnderPlatformDamper, mass=0.02, inertia=1e-6,
          centrifugal_load=300.0),
     case("UnderPlatformDamper.add_interface", lambda: damper().add_interface,

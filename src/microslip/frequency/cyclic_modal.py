@@ -1,0 +1,219 @@
+"""Modal condensation of a cyclic sector: each nodal diameter's modes plus the residual flexibility of the rest.
+
+Harmonic ``h`` of an engine-order response lives in nodal diameter ``h EO mod N``,
+where the sector's matrices are the complex Hermitian ``M_phi, C_phi, K_phi`` of
+:meth:`~.cyclic.CyclicStructure.matrices`. For each diameter the harmonics use,
+the ``modes`` lowest modes ``K_phi psi = lambda M_phi psi`` (``psi^H M_phi psi = 1``)
+are found once (sparse shift-invert Arnoldi, cleaned by a Rayleigh--Ritz step so
+that they are exactly orthonormal), and the receptance of the retained DOFs is
+
+``G(Omega) = Psi_r (Lambda - Omega^2 I + i Omega Psi^H C_phi Psi)^-1 Psi_r^H + R``,
+
+``R = F_r + (Omega^2 - s) F^H M_phi F - i Omega F^H C_phi F``,
+
+``F = [(K_phi - s M_phi)^-1]_{:r} - Psi (Lambda - s I)^-1 Psi_r^H``
+
+(``F``: the residual flexibility of the omitted modes, ``s < 0`` a shift tiny
+against them that keeps a free damper body invertible; the two further terms
+carry their inertia and damping to first order, so that the error falls like
+``(Omega / omega_omitted)^4`` and the damping of the omitted modes -- large for
+stiffness-proportional damping -- is not lost). The condensed stiffness is ``S = G^-1``; the static term (diameter 0) is condensed
+exactly, so the static contact state is exact. A sector without boundary DOFs
+(blades clamped in a rigid disk, joined only through their contacts) has the same
+matrices in every diameter: one real eigensolution then serves every harmonic.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .condensation import Condensation, SingularInteriorError
+from .modal import DENSE_EIGEN, SHIFT
+
+
+class DiameterModes:
+    """The modes of one nodal diameter and the residual receptance of the omitted ones.
+
+    Parameters
+    ----------
+    M, C, K : scipy.sparse matrix, shape (n, n)
+        The sector's matrices in the diameter (kg, N s/m, N/m), real symmetric
+        or complex Hermitian, on its independent DOFs.
+    retained : ndarray of int, shape (m,)
+        The retained DOFs (independent numbering).
+    modes : int
+        Modes kept, ``1 <= modes < n``.
+
+    Attributes
+    ----------
+    eigenvalues : ndarray, shape (modes,)
+        Squared natural frequencies ((rad/s)^2) of the kept modes, ascending.
+    cutoff : float
+        Natural frequency of the first omitted mode (rad/s).
+    """
+
+    def __init__(self, M, C, K, retained, modes: int):
+        n = M.shape[0]
+        self.retained = retained
+        k = min(modes + 1, n - 1)
+        if n <= DENSE_EIGEN:
+            lam, phi = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, k - 1])
+        else:  # shift-invert about a target below the lowest modes, then Rayleigh-Ritz in the vectors found
+            diag_k, diag_m = np.abs(K.diagonal()), np.abs(M.diagonal())
+            target = -SHIFT * float(np.median(diag_k[diag_k > 0]) if np.any(diag_k > 0) else 1.0) \
+                / float(np.median(diag_m))
+            lu = spla.splu(sp.csc_matrix(K - target * M))
+            op = spla.LinearOperator(K.shape, matvec=lu.solve, dtype=lu.U.dtype)
+            vectors = spla.eigsh(K, k=k, M=M, sigma=target, which="LM", OPinv=op)[1]
+            lam, phi = self._rayleigh_ritz(M, K, np.linalg.qr(vectors)[0])
+        lam = np.maximum(lam, 0.0)
+        self.cutoff = float(np.sqrt(lam[modes])) if lam.size > modes else np.inf
+        self.eigenvalues, self.phi = lam[:modes], phi[:, :modes]
+        self.phi_r = self.phi[retained]
+        Cm = self.phi.conj().T @ (C @ self.phi)
+        self.modal_damping = 0.5 * (Cm + Cm.conj().T)
+        # the flexibility of the omitted modes, from K - s M: s < 0 keeps a free damper body invertible and is
+        # tiny against the omitted modes
+        self.shift = s = -SHIFT * float(lam[-1] if lam[-1] > 0 else 1.0)
+        E = np.zeros((n, retained.size))
+        E[retained, np.arange(retained.size)] = 1.0
+        shifted = sp.csc_matrix(K - s * M)
+        if n <= DENSE_EIGEN:
+            factor = sla.lu_factor(shifted.toarray())
+            solve = lambda b: sla.lu_solve(factor, b)  # noqa: E731
+        else:
+            solve = spla.splu(shifted).solve
+        # a real factor solves a complex right-hand side in two parts
+        self._solve = solve if np.iscomplexobj(shifted.data) else lambda b: solve(b.real) + 1j * solve(b.imag)
+        F = solve(E.astype(shifted.dtype)) - (self.phi / (self.eigenvalues - s)) @ self.phi_r.conj().T
+        self.M, self.C = M, C
+        self.omitted = F  # (n, m): the omitted modes' flexibility at Omega^2 = s, every row
+        self.residual = F[retained]
+        self.residual_mass = F.conj().T @ (M @ F)
+        self.residual_damping = F.conj().T @ (C @ F)
+
+    @staticmethod
+    def _rayleigh_ritz(M, K, basis):
+        """``(lambda, phi)``: the modes of ``K``, ``M`` in the span of ``basis`` (orthonormal columns), M-orthonormal."""
+        Kr = basis.conj().T @ (K @ basis)
+        Mr = basis.conj().T @ (M @ basis)
+        lam, y = sla.eigh(0.5 * (Kr + Kr.conj().T), 0.5 * (Mr + Mr.conj().T))
+        return lam, basis @ y
+
+    def _dynamic(self, Omega: float):
+        """``D = Lambda - Omega^2 I + i Omega Psi^H C Psi`` (modes x modes, complex)."""
+        return np.diag(self.eigenvalues - Omega * Omega).astype(complex) + (1j * Omega) * self.modal_damping
+
+    def _omitted(self, Omega: float):
+        """The omitted modes' receptance on the retained DOFs at ``Omega`` (m/N), ``(m, m)``, to first order."""
+        return self.residual + (Omega * Omega - self.shift) * self.residual_mass - (1j * Omega) * self.residual_damping
+
+    def harmonic(self, h: int, omega: float, derivative: bool):
+        """``(S, S')`` at ``Omega = h omega`` (complex ``(m, m)``; N/m, N s/m; ``S'`` None without ``derivative``)."""
+        Omega = h * omega
+        D = self._dynamic(Omega)
+        phi_rh = self.phi_r.conj().T
+        try:
+            Y = np.linalg.solve(D, phi_rh)  # D^-1 Psi_r^H
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
+                                        f"({Omega:.6g} rad/s); add damping") from None
+        try:
+            S = np.linalg.inv(self.phi_r @ Y + self._omitted(Omega))
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at harmonic {h} "
+                                        f"({Omega:.6g} rad/s); keep more modes") from None
+        if not derivative:
+            return S, None
+        dD = np.diag(np.full(self.eigenvalues.size, -2.0 * h * h * omega)).astype(complex) \
+            + (1j * h) * self.modal_damping
+        # G' = -Psi_r D^-1 D' D^-1 Psi_r^H + the omitted modes' derivative
+        dG = -self.phi_r @ np.linalg.solve(D, dD @ Y) + (2.0 * h * h * omega) * self.residual_mass \
+            - (1j * h) * self.residual_damping
+        return S, -S @ dG @ S
+
+    def response(self, Omega: float, f) -> np.ndarray:
+        """Complex amplitudes of every DOF (m), ``(n,)``, under the force ``f`` (N) on the retained DOFs, ``(m,)``."""
+        eta = np.linalg.solve(self._dynamic(Omega), self.phi_r.conj().T @ f)
+        u = self.omitted @ f
+        w = (Omega * Omega - self.shift) * (self.M @ u) - (1j * Omega) * (self.C @ u)
+        v = self._solve(np.asarray(w, dtype=complex)) - self.phi @ ((self.phi.conj().T @ w) / (self.eigenvalues - self.shift))
+        return self.phi @ eta + u + v
+
+
+class CyclicModalCondensation:
+    """A sector condensed onto its retained DOFs from the modes of each harmonic's nodal diameter.
+
+    Parameters
+    ----------
+    exact : Condensation
+        The exact condensation of the sector (from
+        :func:`~.cyclic_balance.cyclic_linear_part`): the static term and the
+        error estimate.
+    matrices : callable
+        ``h -> (M, C, K)``: the sector's matrices in harmonic ``h``'s diameter.
+    diameter : callable
+        ``h -> key``: harmonics with the same key share their matrices (the
+        phase lag ``phi_h``, or one key for all when the sector has no boundary).
+    harmonics : int
+        ``H``: the modes of the diameters of harmonics ``1..H`` are computed now.
+    modes : int
+        Modes kept per diameter, ``1 <= modes < n`` (``n`` independent DOFs).
+
+    Attributes
+    ----------
+    modes : int
+        Modes per diameter.
+    cutoff : float
+        The lowest natural frequency among the first omitted mode of every
+        diameter used (rad/s): the error grows like ``(Omega / cutoff)^2``.
+    """
+
+    operator = Condensation.operator
+
+    def __init__(self, exact: Condensation, matrices, diameter, harmonics: int, modes: int):
+        self.exact = exact
+        self.retained, self.m = exact.retained, exact.m
+        self.modes = modes
+        self._matrices, self._key = matrices, diameter
+        self.diameters: dict[float, DiameterModes] = {}
+        for h in range(1, harmonics + 1):
+            self._diameter(h)
+        self.cutoff = min((d.cutoff for d in self.diameters.values()), default=np.inf)
+        self._cache = (None, None, None)
+        self._static = None
+
+    def _diameter(self, h: int) -> DiameterModes:
+        """The modes of harmonic ``h``'s diameter (computed once per distinct phase)."""
+        key = self._key(h)
+        if key not in self.diameters:
+            self.diameters[key] = DiameterModes(*self._matrices(h), self.retained, self.modes)
+        return self.diameters[key]
+
+    def harmonic(self, h: int, omega: float, *, derivative: bool = True):
+        """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`."""
+        if h == 0:
+            S, _ = self.exact.harmonic(0, omega, derivative=False)
+            return S, (np.zeros_like(S) if derivative else None)
+        return self._diameter(h).harmonic(h, omega, derivative)
+
+    def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
+        """Real coefficients ``(2H+1, n)`` (m) of every independent DOF from the retained ones ``(2H+1, m)``."""
+        coefficients = np.asarray(coefficients, dtype=float)
+        out = np.empty((2 * H + 1, self.m + self.exact.interior.size))
+        out[0] = self.exact.recover(coefficients[:1], omega, 0)[0]
+        for h in range(1, H + 1):
+            z = coefficients[2 * h - 1] - 1j * coefficients[2 * h]
+            S, _ = self.harmonic(h, omega, derivative=False)
+            q = self._diameter(h).response(h * omega, S @ z)
+            out[2 * h - 1], out[2 * h] = q.real, -q.imag
+        return out
+
+    def error(self, omega: float) -> float:
+        """Relative difference (Frobenius) of the modal and the exact first-harmonic stiffness at ``omega``."""
+        exact, _ = self.exact.harmonic(1, omega, derivative=False)
+        modal, _ = self.harmonic(1, omega, derivative=False)
+        return float(np.linalg.norm(modal - exact) / np.linalg.norm(exact))
