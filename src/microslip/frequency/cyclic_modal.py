@@ -75,6 +75,9 @@ class DiameterModes:
         self.phi_r = self.phi[retained]
         Cm = self.phi.conj().T @ (C @ self.phi)
         self.modal_damping = 0.5 * (Cm + Cm.conj().T)
+        off = self.modal_damping - np.diag(np.diagonal(self.modal_damping))
+        #: whether the modal damping is diagonal (to rounding): proportional damping
+        self.diagonal = bool(np.abs(off).max(initial=0.0) <= 1e-12 * np.abs(self.modal_damping).max(initial=0.0))
         # the flexibility of the omitted modes, from K - s M: s < 0 keeps a free damper body invertible and is
         # tiny against the omitted modes
         self.shift = s = -SHIFT * float(lam[-1] if lam[-1] > 0 else 1.0)
@@ -107,33 +110,10 @@ class DiameterModes:
         """``D = Lambda - Omega^2 I + i Omega Psi^H C Psi`` (modes x modes, complex)."""
         return np.diag(self.eigenvalues - Omega * Omega).astype(complex) + (1j * Omega) * self.modal_damping
 
-    def _omitted(self, Omega: float):
-        """The omitted modes' receptance on the retained DOFs at ``Omega`` (m/N), ``(m, m)``, to first order."""
-        return self.residual + (Omega * Omega - self.shift) * self.residual_mass - (1j * Omega) * self.residual_damping
-
     def harmonic(self, h: int, omega: float, derivative: bool):
         """``(S, S')`` at ``Omega = h omega`` (complex ``(m, m)``; N/m, N s/m; ``S'`` None without ``derivative``)."""
-        Omega = h * omega
-        D = self._dynamic(Omega)
-        phi_rh = self.phi_r.conj().T
-        try:
-            Y = np.linalg.solve(D, phi_rh)  # D^-1 Psi_r^H
-        except np.linalg.LinAlgError:
-            raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
-                                        f"({Omega:.6g} rad/s); add damping") from None
-        try:
-            S = np.linalg.inv(self.phi_r @ Y + self._omitted(Omega))
-        except np.linalg.LinAlgError:
-            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at harmonic {h} "
-                                        f"({Omega:.6g} rad/s); keep more modes") from None
-        if not derivative:
-            return S, None
-        dD = np.diag(np.full(self.eigenvalues.size, -2.0 * h * h * omega)).astype(complex) \
-            + (1j * h) * self.modal_damping
-        # G' = -Psi_r D^-1 D' D^-1 Psi_r^H + the omitted modes' derivative
-        dG = -self.phi_r @ np.linalg.solve(D, dD @ Y) + (2.0 * h * h * omega) * self.residual_mass \
-            - (1j * h) * self.residual_damping
-        return S, -S @ dG @ S
+        S, dS = ModalStack([self], [h])(omega, derivative)
+        return S[0], (dS[0] if derivative else None)
 
     def response(self, Omega: float, f) -> np.ndarray:
         """Complex amplitudes of every DOF (m), ``(n,)``, under the force ``f`` (N) on the retained DOFs, ``(m,)``."""
@@ -142,6 +122,64 @@ class DiameterModes:
         w = (Omega * Omega - self.shift) * (self.M @ u) - (1j * Omega) * (self.C @ u)
         v = self._solve(np.asarray(w, dtype=complex)) - self.phi @ ((self.phi.conj().T @ w) / (self.eigenvalues - self.shift))
         return self.phi @ eta + u + v
+
+
+class ModalStack:
+    """The modal data of several harmonics stacked, to condense them all in one batched evaluation.
+
+    ``diameters``: one :class:`DiameterModes` per harmonic of ``harmonics`` (``(B,)`` int).
+    """
+
+    def __init__(self, diameters, harmonics):
+        self.h = np.asarray(harmonics, dtype=float)
+        self.phi_r = np.stack([d.phi_r for d in diameters])  # (B, m, k)
+        self.phi_rh = self.phi_r.conj().transpose(0, 2, 1)
+        self.lam = np.stack([d.eigenvalues for d in diameters])
+        damping = np.stack([d.modal_damping for d in diameters])
+        # modal damping diagonal in every diameter (proportional damping): D is diagonal, solved elementwise
+        self.diagonal = all(d.diagonal for d in diameters)
+        self.damping = np.diagonal(damping, axis1=1, axis2=2).copy() if self.diagonal else damping
+        self.residual = np.stack([d.residual for d in diameters])
+        self.mass = np.stack([d.residual_mass for d in diameters])
+        self.viscous = np.stack([d.residual_damping for d in diameters])
+        self.shift = np.array([d.shift for d in diameters])
+
+    def __call__(self, omega: float, derivative: bool):
+        """``(S, S')``, ``(B, m, m)`` complex each (N/m, N s/m; ``S'`` None without ``derivative``)."""
+        h = self.h
+        Omega = h * omega
+        w2, iw = (Omega * Omega)[:, None], (1j * Omega)[:, None]
+        eye = np.eye(self.lam.shape[1])
+        if self.diagonal:
+            D = self.lam - w2 + iw * self.damping
+            solve = lambda A: A / D[:, :, None]  # noqa: E731
+        else:
+            D = (self.lam - w2)[:, :, None] * eye + iw[:, :, None] * self.damping
+            solve = lambda A: np.linalg.solve(D, A)  # noqa: E731
+        try:
+            if self.diagonal and not np.all(D):
+                raise np.linalg.LinAlgError
+            Y = solve(self.phi_rh)  # D^-1 Psi_r^H, (B, k, m)
+            G = self.phi_r @ Y + self.residual + (w2 - self.shift[:, None])[:, :, None] * self.mass \
+                - iw[:, :, None] * self.viscous
+            S = np.linalg.inv(G)
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(
+                f"the modal receptance of the retained DOFs is singular at one of harmonics "
+                f"{h.astype(int).tolist()} of {omega:.6g} rad/s (an undamped kept mode resonates exactly there, "
+                f"or too few modes are kept); add damping or keep more modes") from None
+        if not derivative:
+            return S, None
+        if self.diagonal:
+            dD = (-2.0 * h * h * omega)[:, None] + (1j * h)[:, None] * self.damping
+            DdD = solve(dD[:, :, None] * Y)
+        else:
+            dD = (-2.0 * h * h * omega)[:, None, None] * eye + (1j * h)[:, None, None] * self.damping
+            DdD = solve(dD @ Y)
+        # G' = -Psi_r D^-1 D' D^-1 Psi_r^H plus the omitted modes' inertia and damping terms
+        dG = -self.phi_r @ DdD + (2.0 * h * h * omega)[:, None, None] * self.mass \
+            - (1j * h)[:, None, None] * self.viscous
+        return S, -S @ dG @ S
 
 
 class CyclicModalCondensation:
@@ -172,8 +210,6 @@ class CyclicModalCondensation:
         diameter used (rad/s): the error grows like ``(Omega / cutoff)^2``.
     """
 
-    operator = Condensation.operator
-
     def __init__(self, exact: Condensation, matrices, diameter, harmonics: int, modes: int):
         self.exact = exact
         self.retained, self.m = exact.retained, exact.m
@@ -184,7 +220,8 @@ class CyclicModalCondensation:
             self._diameter(h)
         self.cutoff = min((d.cutoff for d in self.diameters.values()), default=np.inf)
         self._cache = (None, None, None)
-        self._static = None
+        self._static = self.exact.harmonic(0, 0.0, derivative=False)[0].real
+        self._stacks: dict[int, ModalStack] = {}
 
     def _diameter(self, h: int) -> DiameterModes:
         """The modes of harmonic ``h``'s diameter (computed once per distinct phase)."""
@@ -199,6 +236,32 @@ class CyclicModalCondensation:
             S, _ = self.exact.harmonic(0, omega, derivative=False)
             return S, (np.zeros_like(S) if derivative else None)
         return self._diameter(h).harmonic(h, omega, derivative)
+
+    def operator(self, omega: float, H: int):
+        """Real block-diagonal ``Z(omega)`` and ``dZ/domega`` (N/m, N s/m), as :meth:`Condensation.operator`.
+
+        Every harmonic in one batched evaluation; cached for the last ``(omega, H)``.
+        """
+        if self._cache[0] == (omega, H):
+            return self._cache[1], self._cache[2]
+        m = self.m
+        n = (2 * H + 1) * m
+        Z = np.zeros((n, n))
+        dZ = np.zeros((n, n))
+        Z[:m, :m] = self._static
+        if H:
+            if H not in self._stacks:
+                self._stacks[H] = ModalStack([self._diameter(h) for h in range(1, H + 1)], range(1, H + 1))
+            S, dS = self._stacks[H](omega, True)
+            for h in range(1, H + 1):
+                a = slice((2 * h - 1) * m, 2 * h * m)
+                b = slice(2 * h * m, (2 * h + 1) * m)
+                for target, A in ((Z, S[h - 1]), (dZ, dS[h - 1])):
+                    target[a, a] = target[b, b] = A.real
+                    target[a, b] = A.imag
+                    target[b, a] = -A.imag
+        self._cache = ((omega, H), Z, dZ)
+        return Z, dZ
 
     def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
         """Real coefficients ``(2H+1, n)`` (m) of every independent DOF from the retained ones ``(2H+1, m)``."""
