@@ -164,16 +164,21 @@ def test_the_assembled_disk_is_the_whole_disk_built_by_hand():
 
 
 # -- modal reduction of a sector ---------------------------------------------------------------------
-def chain_sector(n, *, sparse=False):
-    """A sector: ring DOFs 0 (left) and 1 (right), a blade chain 2..n-1 (2 the platform, rubbing on the next's)."""
+def chain_sector(n, *, sparse=False, dashpot=0.0):
+    """A sector: ring DOFs 0 (left) and 1 (right), a blade chain 2..n-1 (2 the platform, rubbing on the next's).
+
+    ``dashpot`` (N s/m) grounds the middle of the chain: damping that is not proportional to M and K.
+    """
     springs = [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (0, None, 1e6), (1, None, 1e6)]
     K = springs_matrix(n, springs + [(i, i + 1, 3e7 * n / 40) for i in range(2, n - 1)])  # the same chain for any n
     M = np.diag([0.05, 0.05] + [0.2 / (n - 2)] * (n - 2))
+    C = 1e-6 * K + 2.0 * M
+    C[n // 2, n // 2] += dashpot
     if sparse:
         import scipy.sparse as sps
 
-        M, K = sps.csr_matrix(M), sps.csr_matrix(K)
-    d = CyclicStructure(M, 1e-6 * K + 2.0 * M, K, sectors=SECTORS, left=[0], right=[1])
+        M, C, K = sps.csr_matrix(M), sps.csr_matrix(C), sps.csr_matrix(K)
+    d = CyclicStructure(M, C, K, sectors=SECTORS, left=[0], right=[1])
     d.add_contact(MODEL, tangential={2: 1.0, d.next(2): -1.0}, approach=SPHERE.approach(20.0))
     f = np.zeros(n)
     f[n - 1] = 3.0
@@ -206,6 +211,34 @@ def test_a_modal_sector_converges_to_the_exact_cyclic_condensation(engine_order)
     # (measured: 3 to 28 times below it; the higher harmonics, nearer the cutoff, carry the rest)
     for error, estimate in errors:
         assert error / 50 < estimate < error * 50
+
+
+def test_non_proportional_damping_couples_the_modes_and_still_converges():
+    from microslip.frequency.cyclic_balance import cyclic_linear_part
+    from microslip.frequency.hbm import excitation
+
+    # a dashpot halfway up the chain: 20 % damping of the highest mode, coupling every mode to the others
+    d, f = chain_sector(40, dashpot=300.0)
+    linear = cyclic_linear_part(d, excitation(d, f, 3), 2, "modal", 6, 3)
+    assert not any(m.diagonal for m in linear.diameters.values())  # the modal damping matrix is full
+    errors = [modal_error(d, f, 2, m)[0] for m in (6, 12, 38)]
+    # the kept-omitted coupling through C is carried to second order: measured 6.9e-4, 1.2e-4, 2.0e-6 (without
+    # it 3e-2, 1e-2, 6e-4)
+    assert errors[1] < errors[0] / 4 and errors[2] < 1e-5
+
+
+def test_the_frequency_derivative_of_the_modal_stiffness_is_exact():
+    from microslip.frequency.cyclic_modal import DiameterModes, ModalStack
+
+    for dashpot in (0.0, 300.0):  # the diagonal and the coupled evaluation
+        d, f = chain_sector(40, dashpot=dashpot)
+        retained = np.array([1, 38])  # the platform and the tip, numbered among the independent DOFs
+        stack = ModalStack([DiameterModes(*d.matrices(d.phase(h, 2)), retained, 10) for h in (1, 2, 3)], [1, 2, 3])
+        assert stack.diagonal == (dashpot == 0.0)
+        S, dS = stack(3000.0, True)
+        step = 1e-3  # rad/s: central differences, truncation (1e-3 / 3000)^2 and rounding 1e-16 / 3e-7
+        fd = (stack(3000.0 + step, False)[0] - stack(3000.0 - step, False)[0]) / (2 * step)
+        np.testing.assert_allclose(dS, fd, rtol=0, atol=1e-8 * np.abs(dS).max())  # measured 5e-10
 
 
 def test_a_large_modal_sector_uses_the_sparse_eigensolver_and_its_modes_are_exact():

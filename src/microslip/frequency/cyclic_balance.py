@@ -55,7 +55,7 @@ def cyclic_retained(disk: CyclicStructure, loads: np.ndarray) -> np.ndarray:
 
 
 def cyclic_reduction(disk: CyclicStructure, reduction: str, modes) -> tuple[str, int | None]:
-    """``(reduction, modes)`` of a sector, checked; ``"auto"``: exact up to ``EXACT_LIMIT`` independent DOFs, else modal.
+    """``(reduction, modes)`` of a sector, checked; ``"auto"``: exact up to ``EXACT_LIMIT`` independent DOFs.
 
     A sector is always condensed onto its retained DOFs (``"none"`` is refused).
     """

@@ -17,7 +17,13 @@ that they are exactly orthonormal), and the receptance of the retained DOFs is
 against them that keeps a free damper body invertible; the two further terms
 carry their inertia and damping to first order, so that the error falls like
 ``(Omega / omega_omitted)^4`` and the damping of the omitted modes -- large for
-stiffness-proportional damping -- is not lost). The condensed stiffness is ``S = G^-1``; the static term (diameter 0) is condensed
+stiffness-proportional damping -- is not lost). Damping that is not
+proportional couples the kept modes to the omitted ones; that coupling enters
+through ``W = Psi^H C_phi F`` and ``X = Psi^H C_phi P C_phi Psi`` (``P`` the
+omitted modes' flexibility) as ``G = (Psi_r - i Omega W^H) D^-1 (Psi_r^H - i Omega W) + R``
+with ``D = Lambda - Omega^2 + i Omega Psi^H C_phi Psi + Omega^2 X`` (``W`` and
+``X`` vanish for proportional damping, where the plain form above is used). The
+condensed stiffness is ``S = G^-1``; the static term (diameter 0) is condensed
 exactly, so the static contact state is exact. A sector without boundary DOFs
 (blades clamped in a rigid disk, joined only through their contacts) has the same
 matrices in every diameter: one real eigensolution then serves every harmonic.
@@ -75,9 +81,6 @@ class DiameterModes:
         self.phi_r = self.phi[retained]
         Cm = self.phi.conj().T @ (C @ self.phi)
         self.modal_damping = 0.5 * (Cm + Cm.conj().T)
-        off = self.modal_damping - np.diag(np.diagonal(self.modal_damping))
-        #: whether the modal damping is diagonal (to rounding): proportional damping
-        self.diagonal = bool(np.abs(off).max(initial=0.0) <= 1e-12 * np.abs(self.modal_damping).max(initial=0.0))
         # the flexibility of the omitted modes, from K - s M: s < 0 keeps a free damper body invertible and is
         # tiny against the omitted modes
         self.shift = s = -SHIFT * float(lam[-1] if lam[-1] > 0 else 1.0)
@@ -97,10 +100,24 @@ class DiameterModes:
         self.residual = F[retained]
         self.residual_mass = F.conj().T @ (M @ F)
         self.residual_damping = F.conj().T @ (C @ F)
+        # damping that couples the kept modes to the omitted ones (zero for proportional damping):
+        # W = Psi^H C F, (modes, m), and X = Psi^H C P C Psi, (modes, modes), P the omitted modes' flexibility
+        C_phi = C @ self.phi
+        self.coupling = C_phi.conj().T @ F
+        X = C_phi.conj().T @ self._solve(np.asarray(C_phi, dtype=complex)) \
+            - (self.modal_damping / (self.eigenvalues - s)) @ self.modal_damping
+        self.coupling_damping = 0.5 * (X + X.conj().T)
+        off = self.modal_damping - np.diag(np.diagonal(self.modal_damping))
+        scale = np.abs(self.modal_damping).max(initial=0.0)
+        top = np.sqrt(lam[-1]) if lam[-1] > 0 else 1.0  # beyond the first omitted mode nothing is modal
+        #: whether the damping leaves the modes uncoupled (to rounding): proportional damping
+        self.diagonal = bool(np.abs(off).max(initial=0.0) <= 1e-12 * scale
+                             and top * np.abs(self.coupling).max(initial=0.0) <= 1e-10 * np.abs(self.phi_r).max()
+                             and top * np.abs(self.coupling_damping).max(initial=0.0) <= 1e-10 * scale)
 
     @staticmethod
     def _rayleigh_ritz(M, K, basis):
-        """``(lambda, phi)``: the modes of ``K``, ``M`` in the span of ``basis`` (orthonormal columns), M-orthonormal."""
+        """``(lambda, phi)``: the M-orthonormal modes of ``K``, ``M`` in the span of ``basis`` (orthonormal columns)."""
         Kr = basis.conj().T @ (K @ basis)
         Mr = basis.conj().T @ (M @ basis)
         lam, y = sla.eigh(0.5 * (Kr + Kr.conj().T), 0.5 * (Mr + Mr.conj().T))
@@ -116,11 +133,17 @@ class DiameterModes:
         return S[0], (dS[0] if derivative else None)
 
     def response(self, Omega: float, f) -> np.ndarray:
-        """Complex amplitudes of every DOF (m), ``(n,)``, under the force ``f`` (N) on the retained DOFs, ``(m,)``."""
-        eta = np.linalg.solve(self._dynamic(Omega), self.phi_r.conj().T @ f)
+        """Complex amplitudes of every DOF (m), ``(n,)``, under the force ``f`` (N) on the retained DOFs, ``(m,)``.
+
+        The kept modes' amplitudes, the omitted modes' static response and, to first order, their
+        inertia, their damping and their damping coupling to the kept modes (as in :meth:`harmonic`).
+        """
+        D = self._dynamic(Omega) + (Omega * Omega) * self.coupling_damping
+        eta = np.linalg.solve(D, (self.phi_r.conj().T - (1j * Omega) * self.coupling) @ f)
         u = self.omitted @ f
-        w = (Omega * Omega - self.shift) * (self.M @ u) - (1j * Omega) * (self.C @ u)
-        v = self._solve(np.asarray(w, dtype=complex)) - self.phi @ ((self.phi.conj().T @ w) / (self.eigenvalues - self.shift))
+        w = (Omega * Omega - self.shift) * (self.M @ u) - (1j * Omega) * (self.C @ (u + self.phi @ eta))
+        v = self._solve(np.asarray(w, dtype=complex)) \
+            - self.phi @ ((self.phi.conj().T @ w) / (self.eigenvalues - self.shift))
         return self.phi @ eta + u + v
 
 
@@ -143,24 +166,36 @@ class ModalStack:
         self.mass = np.stack([d.residual_mass for d in diameters])
         self.viscous = np.stack([d.residual_damping for d in diameters])
         self.shift = np.array([d.shift for d in diameters])
+        self.coupling = np.stack([d.coupling for d in diameters])  # W, (B, k, m)
+        self.coupling_h = self.coupling.conj().transpose(0, 2, 1)
+        self.coupling_damping = np.stack([d.coupling_damping for d in diameters])  # X, (B, k, k)
 
     def __call__(self, omega: float, derivative: bool):
-        """``(S, S')``, ``(B, m, m)`` complex each (N/m, N s/m; ``S'`` None without ``derivative``)."""
+        """``(S, S')``, ``(B, m, m)`` complex each (N/m, N s/m; ``S'`` None without ``derivative``).
+
+        ``G = B D^-1 A + G_omitted``, ``A = Psi_r^H - i Omega W``, ``B = Psi_r - i Omega W^H``,
+        ``D = Lambda - Omega^2 + i Omega Psi^H C Psi + Omega^2 X`` (:class:`DiameterModes`);
+        ``S = G^-1``.
+        """
         h = self.h
         Omega = h * omega
         w2, iw = (Omega * Omega)[:, None], (1j * Omega)[:, None]
         eye = np.eye(self.lam.shape[1])
         if self.diagonal:
             D = self.lam - w2 + iw * self.damping
-            solve = lambda A: A / D[:, :, None]  # noqa: E731
+            A, B = self.phi_rh, self.phi_r
+            solve = lambda Q: Q / D[:, :, None]  # noqa: E731
         else:
-            D = (self.lam - w2)[:, :, None] * eye + iw[:, :, None] * self.damping
-            solve = lambda A: np.linalg.solve(D, A)  # noqa: E731
+            D = (self.lam - w2)[:, :, None] * eye + iw[:, :, None] * self.damping \
+                + w2[:, :, None] * self.coupling_damping
+            A = self.phi_rh - iw[:, :, None] * self.coupling
+            B = self.phi_r - iw[:, :, None] * self.coupling_h
+            solve = lambda Q: np.linalg.solve(D, Q)  # noqa: E731
         try:
             if self.diagonal and not np.all(D):
                 raise np.linalg.LinAlgError
-            Y = solve(self.phi_rh)  # D^-1 Psi_r^H, (B, k, m)
-            G = self.phi_r @ Y + self.residual + (w2 - self.shift[:, None])[:, :, None] * self.mass \
+            Y = solve(A)  # D^-1 A, (B, k, m)
+            G = B @ Y + self.residual + (w2 - self.shift[:, None])[:, :, None] * self.mass \
                 - iw[:, :, None] * self.viscous
             S = np.linalg.inv(G)
         except np.linalg.LinAlgError:
@@ -170,15 +205,16 @@ class ModalStack:
                 f"or too few modes are kept); add damping or keep more modes") from None
         if not derivative:
             return S, None
+        two_h2w, ih = (2.0 * h * h * omega)[:, None], (1j * h)[:, None]
         if self.diagonal:
-            dD = (-2.0 * h * h * omega)[:, None] + (1j * h)[:, None] * self.damping
-            DdD = solve(dD[:, :, None] * Y)
+            dD = -two_h2w + ih * self.damping
+            dG = -B @ solve(dD[:, :, None] * Y)
         else:
-            dD = (-2.0 * h * h * omega)[:, None, None] * eye + (1j * h)[:, None, None] * self.damping
-            DdD = solve(dD @ Y)
-        # G' = -Psi_r D^-1 D' D^-1 Psi_r^H plus the omitted modes' inertia and damping terms
-        dG = -self.phi_r @ DdD + (2.0 * h * h * omega)[:, None, None] * self.mass \
-            - (1j * h)[:, None, None] * self.viscous
+            dD = -two_h2w[:, :, None] * eye + ih[:, :, None] * self.damping \
+                + two_h2w[:, :, None] * self.coupling_damping
+            # (B D^-1 A)' = B' D^-1 A + B D^-1 A' - B D^-1 D' D^-1 A, with A' = -i h W, B' = -i h W^H
+            dG = -ih[:, :, None] * (self.coupling_h @ Y + B @ solve(self.coupling)) - B @ solve(dD @ Y)
+        dG = dG + two_h2w[:, :, None] * self.mass - ih[:, :, None] * self.viscous
         return S, -S @ dG @ S
 
 
