@@ -89,3 +89,20 @@ def test_contact_cycle_arguments_are_checked(lifting, kwargs, error, message):
     args.update(kwargs)
     with pytest.raises(error, match=message):
         contact_cycle(args.pop("result"), args.pop("contact"), args.pop("point"), **args)
+
+
+def test_the_cycles_of_several_contacts_in_one_figure(lifting):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from microslip.frequency import plot_contact_cycles
+
+    cycle = contact_cycle(lifting, 0, 0)
+    fig = plot_contact_cycles([cycle, cycle], "two")
+    assert len(fig.axes) == 4 and fig.axes[3].get_xlabel() == "time / period" and fig.axes[1].get_xlabel() == ""
+    assert [t.get_text() for t in fig.legends[0].get_texts()] == list(SLIP_STATES) + ["T", "± μN"]
+    with pytest.raises(TypeError, match="cycles must be a non-empty sequence of ContactCycle"):
+        plot_contact_cycles([])
+    plt.close("all")

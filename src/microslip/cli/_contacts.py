@@ -65,34 +65,6 @@ def cycle_columns(cycles_at_peak) -> dict:
     return cols
 
 
-def cycle_figure(cycles_at_peak, title: str):
-    """Normal and tangential force of each contact (up to :data:`MAX_DRAWN`) over the period, states shaded."""
-    import matplotlib.pyplot as plt
-
-    drawn = cycles_at_peak[:MAX_DRAWN]
-    fig, axes = plt.subplots(len(drawn), 2, figsize=(10, 2.1 * len(drawn) + 0.6), sharex=True, squeeze=False)
-    for row, cy in zip(axes, drawn):
-        cy.plot(row, legend=False)
-        row[0].set_title("")
-        row[0].set_title(cy.name, fontsize=9, loc="left")
-        row[1].set_title(cy.summary(), fontsize=8, loc="right")
-        if row is not axes[-1]:
-            row[0].set_xlabel("")
-            row[1].set_xlabel("")
-    axes[-1, 0].set_xlabel("time / period")
-    from matplotlib.patches import Patch
-
-    from ..frequency.contact_cycle import SLIP_STATES, STATE_COLOURS
-
-    handles = [Patch(color=c, alpha=0.3, label=s) for s, c in zip(SLIP_STATES, STATE_COLOURS)]
-    handles += axes[0, 1].get_lines()[:2]
-    fig.legend(handles=handles, labels=list(SLIP_STATES) + ["T", "± μN"], loc="upper center", ncol=6, fontsize=8,
-               bbox_to_anchor=(0.5, 1.0))
-    fig.suptitle(title, y=1.03, fontsize=10)
-    fig.tight_layout()
-    return fig
-
-
 def add_section(report, result, cfg, out) -> list[str]:
     """The contacts' section of the report (tables, figure, CSV); returns the lines to print."""
     from ..common._io import write_csv
@@ -115,7 +87,9 @@ def add_section(report, result, cfg, out) -> list[str]:
                  caption=f"Each contact over one period {where}: the share of the period in each slip state "
                          f"(stuck: every closed element sticks; microslip: some slip; gross slip: all slip, "
                          f"|T| = μN; lift-off: the contact is open)")
-    fig = cycle_figure(at_peak, f"Contact forces over one period {where}")
+    from ..frequency import plot_contact_cycles
+
+    fig = plot_contact_cycles(at_peak[:MAX_DRAWN], f"Contact forces over one period {where}")
     shown = "" if len(at_peak) <= MAX_DRAWN else f" (the first {MAX_DRAWN} of {len(at_peak)} contacts)"
     report.figure(fig, "contact_cycle", f"Normal force (left) and tangential force within ±μN (right) of each "
                   f"contact{shown} over one period {where}; the background shows the slip state. Samples: "

@@ -34,7 +34,7 @@ from .cyclic import CyclicStructure
 from .damper import DamperContact, UnderPlatformDamper
 from .design import DesignCurve, damper_design_curve
 from .condensation import SingularInteriorError
-from .contact_cycle import ContactCycle, contact_cycle
+from .contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
 from .hbm import HarmonicBalance
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
@@ -68,6 +68,7 @@ __all__ = [
     "default_samples",
     "frequency_point",
     "frequency_response",
+    "plot_contact_cycles",
     "static_solution",
     "steady_state",
     "synthesise",

@@ -117,6 +117,46 @@ class ContactCycle:
         return ax_n, ax_t
 
 
+def plot_contact_cycles(cycles, title: str = ""):
+    """One row per contact: its normal force (left) and tangential force within ``+-mu N`` (right), states shaded.
+
+    Parameters
+    ----------
+    cycles : sequence of ContactCycle
+        From :func:`contact_cycle` (e.g. every contact at one point).
+    title : str
+        Title of the figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
+
+    cycles = list(cycles)
+    if not cycles or not all(isinstance(c, ContactCycle) for c in cycles):
+        raise TypeError(f"cycles must be a non-empty sequence of ContactCycle, got {cycles!r}")
+    fig, axes = plt.subplots(len(cycles), 2, figsize=(10, 2.1 * len(cycles) + 0.8), sharex=True, squeeze=False)
+    for i, cy in enumerate(cycles):
+        row = axes[i]
+        cy.plot(row, legend=False)
+        row[0].set_title("")
+        row[0].set_title(cy.name, fontsize=9, loc="left")
+        row[1].set_title(cy.summary(), fontsize=8, loc="right")
+        if i < len(cycles) - 1:
+            row[1].set_xlabel("")
+    axes[-1, 0].set_xlabel("time / period")
+    handles = [Patch(color=c, alpha=0.3, label=s) for s, c in zip(SLIP_STATES, STATE_COLOURS)]
+    handles += axes[0, 1].get_lines()[:2]
+    fig.legend(handles=handles, labels=list(SLIP_STATES) + ["T", "± μN"], loc="upper center", ncol=6, fontsize=8,
+               bbox_to_anchor=(0.5, 1.0))
+    if title:
+        fig.suptitle(title, y=1.03, fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
 def _runs(mask) -> list[tuple[int, int]]:
     """``(start, stop)`` of every run of True in ``mask``."""
     edges = np.diff(np.concatenate([[0], np.asarray(mask, dtype=np.int8), [0]]))
