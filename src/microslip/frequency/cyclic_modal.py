@@ -257,7 +257,10 @@ class CyclicModalCondensation:
         self.cutoff = min((d.cutoff for d in self.diameters.values()), default=np.inf)
         self._cache = (None, None, None)
         self._static = self.exact.harmonic(0, 0.0, derivative=False)[0].real
-        self._stacks: dict[int, ModalStack] = {}
+        self.harmonics = harmonics
+        self._stack = ModalStack([self._diameter(h) for h in range(1, harmonics + 1)], range(1, harmonics + 1)) \
+            if harmonics else None
+        self._batch = (None, None, None)
 
     def _diameter(self, h: int) -> DiameterModes:
         """The modes of harmonic ``h``'s diameter (computed once per distinct phase)."""
@@ -266,38 +269,23 @@ class CyclicModalCondensation:
             self.diameters[key] = DiameterModes(*self._matrices(h), self.retained, self.modes)
         return self.diameters[key]
 
+    #: the real block-diagonal operator of the harmonic balance, from :meth:`harmonic`
+    operator = Condensation.operator
+
     def harmonic(self, h: int, omega: float, *, derivative: bool = True):
-        """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`."""
+        """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`.
+
+        With ``derivative`` (the harmonic balance's call, harmonic after harmonic at one frequency) every
+        harmonic ``1..H`` is evaluated at once at a new ``omega`` (:class:`ModalStack`) and served from there.
+        """
         if h == 0:
             S, _ = self.exact.harmonic(0, omega, derivative=False)
             return S, (np.zeros_like(S) if derivative else None)
-        return self._diameter(h).harmonic(h, omega, derivative)
-
-    def operator(self, omega: float, H: int):
-        """Real block-diagonal ``Z(omega)`` and ``dZ/domega`` (N/m, N s/m), as :meth:`Condensation.operator`.
-
-        Every harmonic in one batched evaluation; cached for the last ``(omega, H)``.
-        """
-        if self._cache[0] == (omega, H):
-            return self._cache[1], self._cache[2]
-        m = self.m
-        n = (2 * H + 1) * m
-        Z = np.zeros((n, n))
-        dZ = np.zeros((n, n))
-        Z[:m, :m] = self._static
-        if H:
-            if H not in self._stacks:
-                self._stacks[H] = ModalStack([self._diameter(h) for h in range(1, H + 1)], range(1, H + 1))
-            S, dS = self._stacks[H](omega, True)
-            for h in range(1, H + 1):
-                a = slice((2 * h - 1) * m, 2 * h * m)
-                b = slice(2 * h * m, (2 * h + 1) * m)
-                for target, A in ((Z, S[h - 1]), (dZ, dS[h - 1])):
-                    target[a, a] = target[b, b] = A.real
-                    target[a, b] = A.imag
-                    target[b, a] = -A.imag
-        self._cache = ((omega, H), Z, dZ)
-        return Z, dZ
+        if not (derivative and h <= self.harmonics):
+            return self._diameter(h).harmonic(h, omega, derivative)
+        if self._batch[0] != omega:
+            self._batch = (omega, *self._stack(omega, True))
+        return self._batch[1][h - 1], self._batch[2][h - 1]
 
     def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
         """Real coefficients ``(2H+1, n)`` (m) of every independent DOF from the retained ones ``(2H+1, m)``."""
