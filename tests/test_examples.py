@@ -12,6 +12,7 @@ from microslip.frequency import frequency_point
 
 sys.path.insert(0, str(EXAMPLES))
 
+import bladed_disk  # noqa: E402
 import fe_blade  # noqa: E402
 import variable_normal_load  # noqa: E402
 
@@ -102,3 +103,33 @@ def test_fe_blade_example(tmp_path):
     force[tip] = fe_blade.FORCE
     whole = frequency_point(structure, force, omega[2], harmonics=11, reduction="modal", modes=40)
     assert whole.amplitude(tip, 1)[0] == pytest.approx(hb[2], rel=1e-4)
+
+
+def test_bladed_disk_example(tmp_path):
+    result = bladed_disk.main(out=tmp_path, quick=True)  # 40 N and 320 N: the full run adds 5 to 160 N
+    for name in ("bladed_disk.png", "bladed_disk_contacts.png"):
+        assert (tmp_path / name).stat().st_size > 50_000
+    curve, limits, s = result["curve"], result["limits"], result["sector"]
+    assert list(curve.loads) == bladed_disk.QUICK_LOADS and s.sectors == 24
+    for load, r in zip(curve.loads, curve.responses):
+        d = bladed_disk.damper(s, result["laws"], load)
+        d.attach(s)  # names the damper's contacts as in the response
+        assert d.static_balance(r) < 1e-10  # Newton's static tolerance, relative to the load
+        assert r.engine_order == 3 and r.complete
+    free, stuck = (limits[k].peak(bladed_disk.TIP) for k in ("no damper", "damper stuck"))
+    # the blade alone resonates at its first natural frequency (a linear response: to the continuation's
+    # resolution of the peak, 1e-4)
+    assert free[0] == pytest.approx(result["free"], rel=1e-4)
+    # at 320 N the damper sticks along the whole curve: the response is the linear one with friction that never
+    # slips (their static states differ, the one sliding into place, hence 1e-2; measured 5e-4)
+    w, a = curve.peak_frequency[-1], curve.peak_amplitude[-1]
+    assert w == pytest.approx(stuck[0], rel=1e-3) and a == pytest.approx(stuck[1], rel=1e-2)
+    assert curve.responses[-1].contact_dissipation.max() < 1e-3 * curve.responses[-1].excitation_work.max()
+    # at 40 N the damper slips and dissipates: the peak falls far below both limits, between their frequencies
+    assert curve.peak_amplitude[0] < 0.5 * min(free[1], stuck[1]) and free[0] < curve.peak_frequency[0] < stuck[0]
+    # the contacts at that peak: the flat face rocks (one contact lifts off part of the cycle), the curved face's
+    # holds; every sample in one state
+    cycles = {cy.name: cy for cy in result["cycles"]}
+    assert cycles["flat1"].fractions()["lift-off"] > 0.1 and cycles["curved2"].fractions()["lift-off"] == 0
+    for cy in cycles.values():
+        assert sum(cy.fractions().values()) == pytest.approx(1.0, abs=1e-12)

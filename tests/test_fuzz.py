@@ -664,6 +664,9 @@ CASES += [
     case("CyclicStructure.phase", lambda: disk().phase, harmonic=1, engine_order=1),
     case("CyclicStructure.constraint", lambda: disk().constraint, phi=0.5),
     case("CyclicStructure.matrices", lambda: disk().matrices, phi=0.5),
+    case("frequency.contact_cycle", lambda: microslip.frequency.contact_cycle, result=L(a_point), contact=0, point=0,
+         samples=16),
+    case("CyclicStructure.travelling_wave", lambda: disk().travelling_wave, force=[0.0, 1.0, 0.0], engine_order=3),
     case("UnderPlatformDamper", lambda: microslip.frequency.UnderPlatformDamper, mass=0.02, inertia=1e-6,
          centrifugal_load=300.0),
     case("UnderPlatformDamper.add_interface", lambda: damper().add_interface,
@@ -729,6 +732,8 @@ NOT_FUZZED = {
     "HarmonicBalance.curve_quantities": "a step of the solver on its own solutions",
     "UnderPlatformDamper.static_balance": "checks a solved FrequencyResponse of an attached structure",
     "DesignCurve.plot": "draws",
+    "ContactCycle.plot": "draws",
+    "frequency.plot_contact_cycles": "draws",
     "ContactReference": "a protocol: what a reference provides, nothing to call",
 }
 
@@ -736,7 +741,7 @@ NOT_FUZZED = {
 RESULTS = {"AccuracyReport", "AFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
-           "DesignCurve", "FEBlade", "FEMatrices"}
+           "DesignCurve", "FEBlade", "FEMatrices", "ContactCycle"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",
                   "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe")

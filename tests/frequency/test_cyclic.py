@@ -109,8 +109,14 @@ def test_next_dofs_and_boundaries_are_checked():
         frequency_point(whole_disk(1)[0], np.ones(3 * SECTORS), 9000.0, harmonics=3, engine_order=1)
     with pytest.raises(ValueError, match="force: DOF 1 is on the right boundary"):
         frequency_point(d, [0, 1.0, 0, 0], 9000.0, harmonics=3, engine_order=1)
-    with pytest.raises(ValueError, match="a CyclicStructure is solved with reduction='exact'"):
+    with pytest.raises(ValueError, match="a CyclicStructure is solved with reduction=.exact. or .modal."):
         frequency_point(d, [0, 0, 0, 1.0], 9000.0, harmonics=3, engine_order=1, reduction="none")
+    with pytest.raises(ValueError, match="engine_order must be"):
+        d.travelling_wave([0, 0, 0, 1.0], -1)
+    with pytest.raises(TypeError, match="force \\(a harmonic as key\\) must be an integer"):
+        d.travelling_wave({"h1": [0, 0, 0, 1.0]}, 1)
+    with pytest.raises(ValueError, match="force\\[1\\] must have one entry per DOF \\(4\\)"):
+        d.travelling_wave([0, 1.0], 1)
 
 
 def test_a_craig_bampton_sector_keeps_its_boundaries_and_equals_the_full_sector(tmp_path):
@@ -137,3 +143,159 @@ def test_a_craig_bampton_sector_keeps_its_boundaries_and_equals_the_full_sector(
         scale = np.abs(ref.coefficients).max()
         for k, dof in enumerate(keep):
             np.testing.assert_allclose(r.dof_coefficients(k), ref.dof_coefficients(dof), rtol=0, atol=1e-8 * scale)
+
+
+def test_the_assembled_disk_is_the_whole_disk_built_by_hand():
+    d = disk()
+    whole = d.assembled()
+    full, f, g = whole_disk(1)
+    # assembled numbering: sector s's independent DOFs (ring 0, platform 2, tip 3) at 3s, 3s + 1, 3s + 2
+    perm = np.array([g(s, i) for s in range(SECTORS) for i in (0, 2, 3)])
+    for A, B in ((whole.M, full.M), (whole.C, full.C), (whole.K, full.K)):
+        np.testing.assert_array_equal(A, B[np.ix_(perm, perm)])
+    for A, B in zip(whole.contact_directions(), full.contact_directions()):
+        np.testing.assert_array_equal(A, B[perm] if A.ndim == 2 else B)
+    assert [c.name for c in whole.contacts[:3]] == ["contact0@0", "contact1@0", "contact0@1"]
+    force = np.zeros(4)
+    force[3] = F_TIP
+    wave = d.travelling_wave(force, 1)
+    assert list(wave) == [1]
+    np.testing.assert_allclose(wave[1], f[perm], rtol=0, atol=1e-15 * F_TIP)  # exp(-i s phi), rounding only
+
+
+# -- modal reduction of a sector ---------------------------------------------------------------------
+def chain_sector(n, *, sparse=False, dashpot=0.0):
+    """A sector: ring DOFs 0 (left) and 1 (right), a blade chain 2..n-1 (2 the platform, rubbing on the next's).
+
+    ``dashpot`` (N s/m) grounds the middle of the chain: damping that is not proportional to M and K.
+    """
+    springs = [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (0, None, 1e6), (1, None, 1e6)]
+    K = springs_matrix(n, springs + [(i, i + 1, 3e7 * n / 40) for i in range(2, n - 1)])  # the same chain for any n
+    M = np.diag([0.05, 0.05] + [0.2 / (n - 2)] * (n - 2))
+    C = 1e-6 * K + 2.0 * M
+    C[n // 2, n // 2] += dashpot
+    if sparse:
+        import scipy.sparse as sps
+
+        M, C, K = sps.csr_matrix(M), sps.csr_matrix(C), sps.csr_matrix(K)
+    d = CyclicStructure(M, C, K, sectors=SECTORS, left=[0], right=[1])
+    d.add_contact(MODEL, tangential={2: 1.0, d.next(2): -1.0}, approach=SPHERE.approach(20.0))
+    f = np.zeros(n)
+    f[n - 1] = 3.0
+    return d, f
+
+
+def modal_error(d, f, engine_order, modes, omega=3000.0):
+    """``(response error, estimate)``: a modal sector against the exact one at one point, every DOF (relative)."""
+    ref = frequency_point(d, f, omega, harmonics=3, engine_order=engine_order, samples=SAMPLES)
+    r = frequency_point(d, f, omega, harmonics=3, engine_order=engine_order, samples=SAMPLES, reduction="modal",
+                        modes=modes)
+    assert r.reduction == "modal" and r.modes == modes and ref.reduction == "exact"
+    scale = np.abs(ref.coefficients).max()
+    error = max(np.abs(r.dof_coefficients(k) - ref.dof_coefficients(k)).max() for k in range(d.ndof)) / scale
+    return error, r.reduction_error
+
+
+@pytest.mark.parametrize("engine_order", [2, 5])  # 5 of 7 sectors: harmonics 1..3 in diameters 5, 3, 1
+def test_a_modal_sector_converges_to_the_exact_cyclic_condensation(engine_order):
+    d, f = chain_sector(40)
+    errors = [modal_error(d, f, engine_order, m) for m in (3, 6, 12, 38)]
+    # measured 3.2e-3, 6.3e-5, 1.1e-6: each doubling of the modes gains at least 20x (the omitted modes'
+    # inertia and damping are carried to first order, so the error falls like (omega / cutoff)^4)
+    for (coarse, _), (fine, _) in zip(errors[:2], errors[1:3]):
+        assert fine < coarse / 20
+    # every mode but the highest (38 of the 39 independent DOFs): the residual carries the last one, to
+    # (omega / its frequency)^4 -- measured 1.9e-10
+    assert errors[-1][0] < 1e-9
+    # the estimate (the first harmonic's condensed stiffness at the point) follows the error within 50x
+    # (measured: 3 to 28 times below it; the higher harmonics, nearer the cutoff, carry the rest)
+    for error, estimate in errors:
+        assert error / 50 < estimate < error * 50
+
+
+def test_non_proportional_damping_couples_the_modes_and_still_converges():
+    from microslip.frequency.cyclic_balance import cyclic_linear_part
+    from microslip.frequency.hbm import excitation
+
+    # a dashpot halfway up the chain: 20 % damping of the highest mode, coupling every mode to the others
+    d, f = chain_sector(40, dashpot=300.0)
+    linear = cyclic_linear_part(d, excitation(d, f, 3), 2, "modal", 6, 3)
+    assert not any(m.diagonal for m in linear.diameters.values())  # the modal damping matrix is full
+    errors = [modal_error(d, f, 2, m)[0] for m in (6, 12, 38)]
+    # the kept-omitted coupling through C is carried to second order: measured 6.9e-4, 1.2e-4, 2.0e-6 (without
+    # it 3e-2, 1e-2, 6e-4)
+    assert errors[1] < errors[0] / 4 and errors[2] < 1e-5
+
+
+def test_the_frequency_derivative_of_the_modal_stiffness_is_exact():
+    from microslip.frequency.cyclic_modal import DiameterModes, ModalStack
+
+    for dashpot in (0.0, 300.0):  # the diagonal and the coupled evaluation
+        d, f = chain_sector(40, dashpot=dashpot)
+        retained = np.array([1, 38])  # the platform and the tip, numbered among the independent DOFs
+        stack = ModalStack([DiameterModes(*d.matrices(d.phase(h, 2)), retained, 10) for h in (1, 2, 3)], [1, 2, 3])
+        assert stack.diagonal == (dashpot == 0.0)
+        S, dS = stack(3000.0, True)
+        step = 1e-3  # rad/s: central differences, truncation (1e-3 / 3000)^2 and rounding 1e-16 / 3e-7
+        fd = (stack(3000.0 + step, False)[0] - stack(3000.0 - step, False)[0]) / (2 * step)
+        np.testing.assert_allclose(dS, fd, rtol=0, atol=1e-8 * np.abs(dS).max())  # measured 5e-10
+
+
+def test_a_large_modal_sector_uses_the_sparse_eigensolver_and_its_modes_are_exact():
+    from microslip.frequency.cyclic_balance import cyclic_linear_part
+    from microslip.frequency.hbm import excitation
+    from microslip.frequency.modal import DENSE_EIGEN
+    import scipy.linalg as sla
+
+    d, f = chain_sector(DENSE_EIGEN + 100, sparse=True)
+    linear = cyclic_linear_part(d, excitation(d, f, 3), 2, "modal", 10, 3)
+    assert len(linear.diameters) == 3  # diameters 2, 3 (4 folded) and 1 (6 folded)
+    for phi, modes in linear.diameters.items():
+        M, _, K = d.matrices(phi)
+        lam = sla.eigh(K.toarray(), M.toarray(), eigvals_only=True, subset_by_index=[0, 9])
+        np.testing.assert_allclose(modes.eigenvalues, lam, rtol=1e-9)  # ARPACK's tolerance is machine precision
+        Mm = modes.phi.conj().T @ (M @ modes.phi)
+        np.testing.assert_allclose(Mm, np.eye(10), rtol=0, atol=1e-12)  # mass-normalised after Rayleigh-Ritz
+    error, estimate = modal_error(d, f, 2, 10)
+    assert error < 3e-5 and estimate < 3e-5  # measured 3.2e-6 and 1.6e-6
+
+
+def test_a_modal_sector_with_a_damper_equals_the_exact_one():
+    from microslip.frequency import UnderPlatformDamper
+
+    d, f = chain_sector(30)
+    upd = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=40.0, damping=200.0)
+    a = np.radians(135.0)
+    upd.add_interface(MODEL, points=[(-3e-3, 1e-3), (-2e-3, 2e-3)], angle=a, platform={"x": 2, "y": 3})
+    upd.add_interface(MODEL, points=[(3e-3, 2e-3)], angle=np.radians(45.0), platform={"x": d.next(2), "y": d.next(3)})
+    s = upd.attach(d)
+    fs = np.zeros(s.ndof)
+    fs[:f.size] = f
+    # the damper body has no stiffness of its own: three zero eigenvalues in every diameter, kept as modes
+    error, estimate = modal_error(s, fs, 2, s.independent.size - 1, omega=2500.0)
+    assert error < 1e-8 and estimate < 1e-7  # every mode but the highest: measured 1.3e-9 and 6.7e-9
+    r = frequency_point(s, fs, 2500.0, harmonics=3, engine_order=2, samples=SAMPLES, reduction="modal", modes=8)
+    assert upd.static_balance(r) < 1e-10  # the static term is condensed exactly
+
+
+def test_auto_chooses_modal_for_a_large_sector(monkeypatch):
+    import microslip.frequency.cyclic_balance as cb
+
+    d, f = chain_sector(40)
+    monkeypatch.setattr(cb, "EXACT_LIMIT", 30)
+    r = frequency_point(d, f, 3000.0, harmonics=2, engine_order=2)
+    assert r.reduction == "modal" and r.modes == 38  # min(60, independent DOFs - 1)
+    monkeypatch.setattr(cb, "EXACT_LIMIT", 39)
+    assert frequency_point(d, f, 3000.0, harmonics=2, engine_order=2).reduction == "exact"
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"reduction": "none"}, "a CyclicStructure is solved with reduction='exact' or 'modal'"),
+    ({"reduction": "exact", "modes": 5}, "modes is used only with reduction='modal'"),
+    ({"modes": 39}, "modes must be below the sector's 39 independent DOFs"),
+    ({"modes": 0}, "modes"),
+])
+def test_modal_arguments_of_a_sector_are_checked(kwargs, message):
+    d, f = chain_sector(40)
+    with pytest.raises(ValueError, match=message):
+        frequency_point(d, f, 3000.0, harmonics=2, engine_order=2, **kwargs)

@@ -19,8 +19,11 @@ def add_parser(sub) -> None:
                     "configuration gives the matrices (inline or .npz), the contacts (model JSON files from "
                     "'microslip tune'), the excitation and the sweep; its format is documented in "
                     "microslip.frequency.config (python -c 'import microslip.frequency.config as c; "
-                    "print(c.__doc__)'). Writes frf.csv, frf.png, contacts.png, report.html and report.md, and prints "
-                    "each contact's static state (normal and tangential force, elements closed) and the curve's "
+                    "print(c.__doc__)'). Writes frf.csv, frf.png, contacts.png, report.html and report.md, and, with "
+                    "contacts, contact_cycle.png and contact_cycle.csv (each contact's normal and tangential force "
+                    "over one period at the peak, with its slip state: stuck, microslip, gross slip, lift-off); "
+                    "prints each contact's static state (normal and tangential force, elements closed), each "
+                    "damper's static balance, each contact's forces and slip states at the peak and the curve's "
                     "unstable stretches (Hill's method; dashed in the plot). Exit status: "
                     "0 on success, 1 when the solution fails or the curve stops at [continuation] max_points "
                     "before the end of the range (the results up to there are written), 2 for an invalid "
@@ -76,6 +79,7 @@ def run(args) -> int:
     from ..frequency.response import incomplete_message
     from ..frequency.config import load_config
     from ..common.report import Report, plural
+    from ._contacts import add_section
 
     cfg = load_config(args.config)
     out = Path(args.out)
@@ -145,6 +149,9 @@ def run(args) -> int:
         print(_static_text(result, c))
     for name, fig, caption in _plots(result, cfg):
         report.figure(fig, name, caption, out)
+    if result.structure.contacts:
+        for line in add_section(report, result, cfg, out):
+            print(line)
     report.write(out)
     print(f"wrote {csv}, {out / 'frf.png'} and {out / 'report.html'} ({result.points} points, "
           f"{result.elapsed:.3g} s)")

@@ -17,6 +17,9 @@
   its interfaces given by geometry, attached to a structure or a sector;
 * :func:`damper_design_curve` -- peak response against the damper's
   centrifugal load, the curve used to choose a damper;
+* :func:`contact_cycle` -- a contact's forces over one steady period at a
+  point of a response, with its slip state (stuck, microslip, gross slip,
+  lift-off) at every sample;
 * :func:`craig_bampton` -- a smaller :class:`Structure` on kept DOFs plus
   fixed-interface modes, with its recovery matrix;
 * :func:`steady_state` -- direct time integration
@@ -31,6 +34,7 @@ from .cyclic import CyclicStructure
 from .damper import DamperContact, UnderPlatformDamper
 from .design import DesignCurve, damper_design_curve
 from .condensation import SingularInteriorError
+from .contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
 from .hbm import HarmonicBalance
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
@@ -39,6 +43,7 @@ from .transient import SteadyState, steady_state
 __all__ = [
     "AFTResult",
     "Contact",
+    "ContactCycle",
     "ConvergenceError",
     "CraigBampton",
     "CyclicStructure",
@@ -56,12 +61,14 @@ __all__ = [
     "Structure",
     "aft",
     "aft_batch",
+    "contact_cycle",
     "craig_bampton",
     "cycle_work",
     "damper_design_curve",
     "default_samples",
     "frequency_point",
     "frequency_response",
+    "plot_contact_cycles",
     "static_solution",
     "steady_state",
     "synthesise",

@@ -207,6 +207,86 @@ class CyclicStructure(Structure):
             out = [A.real.tocsr() if np.iscomplexobj(A.data) else A for A in out]
         return tuple(out)
 
+    # -- the whole disk, assembled (to check a sector solution against) -----------------------
+    def _whole_index(self, sector: int, dofs) -> np.ndarray:
+        """DOF numbers in :meth:`assembled` of this sector's ``dofs`` placed in sector ``sector``."""
+        ni = self.independent.size
+        local = np.empty(self.ndof, dtype=np.int64)
+        local[self.independent] = np.arange(ni)
+        local[self.right] = local[self.left]
+        owner = np.zeros(self.ndof, dtype=np.int64)
+        owner[self.right] = 1  # the right boundary is the next sector's left one
+        dofs = np.asarray(dofs, dtype=np.int64)
+        return ((sector + owner[dofs]) % self.sectors) * ni + local[dofs]
+
+    def assembled(self) -> Structure:
+        """The whole disk as one :class:`Structure`: every sector's matrices, contacts and static forces.
+
+        Sector ``s``'s independent DOFs (:attr:`independent`, in order) are
+        DOFs ``s * n + k`` (``n = len(independent)``); its right boundary is
+        sector ``s + 1``'s left one. Contact ``c`` of sector ``s`` is named
+        ``"<name>@<s>"``. Sparse when the sector's matrices are, else dense.
+        Solved with the force of :meth:`travelling_wave`, it gives the response
+        a sector solution with ``engine_order`` stands for, at ``N`` times the
+        cost (a check, or a baseline).
+        """
+        N, ni = self.sectors, self.independent.size
+        mats = []
+        for A in (self.M, self.C, self.K):
+            A = sp.coo_matrix(A)
+            rows = np.concatenate([self._whole_index(s, A.row) for s in range(N)])
+            cols = np.concatenate([self._whole_index(s, A.col) for s in range(N)])
+            whole = sp.csr_matrix((np.tile(A.data, N), (rows, cols)), shape=(N * ni, N * ni))
+            mats.append(whole if self.sparse else whole.toarray())
+        out = Structure(*mats)
+        everything = np.arange(self.ndof)
+        for s in range(N):
+            np.add.at(out.static_force, self._whole_index(s, everything), self.static_force)
+            for i, c in enumerate(self.contacts):
+                tangential, normal = contact_terms(self, i)
+                out.add_contact(c.model, tangential=self._whole_terms(s, tangential),
+                                normal=self._whole_terms(s, normal) or None, preload=c.preload or None,
+                                approach=c.approach, name=f"{c.name}@{s}")
+        return out
+
+    def _whole_terms(self, sector: int, terms) -> dict:
+        """``{whole-disk DOF: coefficient}`` of :func:`contact_terms` ``terms`` of a contact of sector ``sector``."""
+        out: dict = {}
+        for dof, coef, nxt in terms:
+            key = int(self._whole_index(sector + 1 if nxt else sector, [dof])[0])
+            out[key] = out.get(key, 0.0) + coef
+        return out
+
+    def travelling_wave(self, force, engine_order: int) -> dict:
+        """The force on every sector of :meth:`assembled` for this sector's ``force`` and an engine order.
+
+        Parameters
+        ----------
+        force : array_like or mapping
+            This sector's excitation (N), as :func:`~microslip.frequency.frequency_response`
+            takes it: ``ndof`` amplitudes at the first harmonic, or ``{h: vector}``.
+        engine_order : int
+            ``EO >= 0``: sector ``s`` lags sector 0 by ``s phi_h`` in harmonic ``h``.
+
+        Returns
+        -------
+        dict of int to ndarray
+            ``{h: amplitudes}`` (complex, N), shape ``(sectors * len(independent),)`` each.
+        """
+        eo = _checks.positive_int("engine_order", engine_order, minimum=0)
+        spec = force if isinstance(force, Mapping) else {1: force}
+        out = {}
+        everything = np.arange(self.ndof)
+        for h, f in spec.items():
+            h = _checks.positive_int("force (a harmonic as key)", h, minimum=0)
+            f = self.force_vector(f, f"force[{h}]")
+            whole = np.zeros(self.sectors * self.independent.size, dtype=complex)
+            phi = self.phase(h, eo)
+            for s in range(self.sectors):
+                np.add.at(whole, self._whole_index(s, everything), f * np.exp(-1j * s * phi))
+            out[h] = whole
+        return out
+
 
 def contact_terms(structure: Structure, index: int) -> tuple[list, list]:
     """Contact ``index``'s directions as terms ``(dof, coefficient, next_sector)``: ``(tangential, normal)``.

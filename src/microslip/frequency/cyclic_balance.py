@@ -2,9 +2,13 @@
 
 The unknowns are the coefficients of the sector's retained DOFs (those its
 contacts, the excitation and the preloads use; never a right-boundary DOF), the
-rest of the sector condensed exactly per harmonic in that harmonic's nodal
-diameter (:class:`~.condensation.Condensation` on the complex Hermitian sector
-matrices of :meth:`~.cyclic.CyclicStructure.matrices`). A contact's displacement
+rest of the sector condensed per harmonic in that harmonic's nodal diameter,
+on the complex Hermitian sector matrices of
+:meth:`~.cyclic.CyclicStructure.matrices`: exactly
+(:class:`~.condensation.Condensation`, a sparse factorisation per harmonic and
+frequency) or from that diameter's modes plus the residual flexibility of the
+others (:class:`~.cyclic_modal.CyclicModalCondensation`, one eigensolution per
+diameter, then small dense algebra). A contact's displacement
 is ``G x`` with ``G = I (x) b_own^T + P (x) b_next^T``, ``P`` the phase lag from one
 sector to the next in the real harmonic layout (blocks ``[[c, -s], [s, c]]`` with
 ``c, s = cos, sin(phi_h)``); its force acts on the sector through ``G^T`` (the
@@ -20,8 +24,9 @@ from ..common import _checks
 from .aft import MAX_PERIODS
 from .condensation import Condensation
 from .cyclic import CyclicStructure
+from .cyclic_modal import CyclicModalCondensation
 from .hbm import excitation
-from .reduced import ReducedHarmonicBalance
+from .reduced import DEFAULT_MODES, EXACT_LIMIT, ReducedHarmonicBalance
 
 
 def phase_operator(disk: CyclicStructure, H: int, engine_order: int) -> np.ndarray:
@@ -49,20 +54,56 @@ def cyclic_retained(disk: CyclicStructure, loads: np.ndarray) -> np.ndarray:
     return np.flatnonzero(used)
 
 
-def cyclic_linear_part(disk: CyclicStructure, loads: np.ndarray, engine_order: int) -> Condensation:
-    """The sector condensed onto its retained DOFs, in each harmonic's nodal diameter (independent numbering)."""
+def cyclic_reduction(disk: CyclicStructure, reduction: str, modes) -> tuple[str, int | None]:
+    """``(reduction, modes)`` of a sector, checked; ``"auto"``: exact up to ``EXACT_LIMIT`` independent DOFs.
+
+    A sector is always condensed onto its retained DOFs (``"none"`` is refused).
+    """
+    if not isinstance(reduction, str) or reduction not in ("auto", "exact", "modal"):
+        raise ValueError(f"a CyclicStructure is solved with reduction='exact' or 'modal' (the sector condensed in "
+                         f"each harmonic's nodal diameter) or 'auto'; got reduction={reduction!r}")
+    n = disk.independent.size
+    if modes is not None:
+        modes = _checks.positive_int("modes", modes)
+        if modes >= n:
+            raise ValueError(f"modes must be below the sector's {n} independent DOFs (all but the right boundary), "
+                             f"got {modes}")
+        if reduction == "exact":
+            raise ValueError("modes is used only with reduction='modal', got reduction='exact'")
+        reduction = "modal"
+    if reduction == "auto":
+        reduction = "exact" if n <= EXACT_LIMIT else "modal"
+    if reduction == "modal" and modes is None:
+        modes = min(DEFAULT_MODES, n - 1)
+    return reduction, modes
+
+
+def cyclic_linear_part(disk: CyclicStructure, loads: np.ndarray, engine_order: int, reduction: str = "exact",
+                       modes: int | None = None, harmonics: int = 0):
+    """The sector condensed onto its retained DOFs, in each harmonic's nodal diameter (independent numbering).
+
+    ``reduction="exact"``: a :class:`Condensation`; ``"modal"``: a
+    :class:`~.cyclic_modal.CyclicModalCondensation` with ``modes`` modes per
+    diameter, those of harmonics ``1..harmonics`` computed now.
+    """
     retained = cyclic_retained(disk, loads)
     position = np.searchsorted(disk.independent, retained)
     phases = {}
 
+    def diameter(h):  # without boundary DOFs the sector's matrices are those of diameter 0 in every diameter
+        return disk.phase(h, engine_order) if disk.left.size else 0.0
+
     def matrices(h):
-        phi = disk.phase(h, engine_order)
+        phi = diameter(h)
         if phi not in phases:
             phases[phi] = disk.matrices(phi)
         return phases[phi]
 
     M0 = matrices(0)[0]
-    return Condensation(M0, None, None, position, harmonic_matrices=matrices)
+    exact = Condensation(M0, None, None, position, harmonic_matrices=matrices)
+    if reduction == "exact":
+        return exact
+    return CyclicModalCondensation(exact, matrices, diameter, harmonics, modes)
 
 
 class CyclicHarmonicBalance(ReducedHarmonicBalance):
@@ -78,7 +119,7 @@ class CyclicHarmonicBalance(ReducedHarmonicBalance):
         ``H``.
     engine_order : int
         ``EO >= 0``: harmonic ``h`` lives in nodal diameter ``h EO mod N``.
-    linear : Condensation
+    linear : Condensation or CyclicModalCondensation
         From :func:`cyclic_linear_part` (shared by the static and dynamic problems).
     samples, max_periods
         As for :class:`~microslip.frequency.hbm.HarmonicBalance`.
@@ -158,10 +199,13 @@ def check_engine_order(structure, engine_order):
     return _checks.positive_int("engine_order", engine_order, minimum=0)
 
 
-def cyclic_equations(disk: CyclicStructure, force, static_force, H, engine_order, samples, max_periods):
-    """``(static, dynamic)`` equations of a sector, sharing one condensation."""
+def cyclic_equations(disk: CyclicStructure, force, static_force, H, engine_order, samples, max_periods,
+                     reduction: str = "exact", modes: int | None = None):
+    """``(static, dynamic, (reduction, modes))``: the equations of a sector, sharing one condensation."""
+    reduction, modes = cyclic_reduction(disk, reduction, modes)
     loads = excitation(disk, force, H)
     loads[0] += disk.preload_force()
-    linear = cyclic_linear_part(disk, loads, engine_order)
+    linear = cyclic_linear_part(disk, loads, engine_order, reduction, modes, H)
     return (CyclicHarmonicBalance(disk, static_force, 0, engine_order, linear),
-            CyclicHarmonicBalance(disk, force, H, engine_order, linear, samples=samples, max_periods=max_periods))
+            CyclicHarmonicBalance(disk, force, H, engine_order, linear, samples=samples, max_periods=max_periods),
+            (reduction, modes))

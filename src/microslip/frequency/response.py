@@ -94,11 +94,12 @@ class FrequencyResponse:
     reduction : str
         How the linear structure was condensed: ``"none"``, ``"exact"`` or ``"modal"``.
     modes : int or None
-        Normal modes kept by a modal reduction.
+        Normal modes kept by a modal reduction (per nodal diameter for a cyclic sector).
     reduction_error : float or None
         With ``"modal"``: an estimate of its error, the relative difference
         (Frobenius norm) between the modal and the exact condensed dynamic
-        stiffness of the first harmonic at the peak frequency.
+        stiffness of the first harmonic at the peak frequency (in its nodal
+        diameter for a cyclic sector).
     engine_order : int or None
         For a cyclic structure: the engine order solved; the DOFs are this
         sector's (:meth:`sector_coefficients` gives any other sector).
@@ -401,12 +402,8 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     _check_determined(structure)
     static_force = _static_force(force) if force is not None else {}
     if isinstance(structure, CyclicStructure):
-        if reduction not in ("auto", "exact") or modes is not None:
-            raise ValueError(f"a CyclicStructure is solved with reduction='exact' (the sector condensed in each "
-                             f"harmonic's nodal diameter); got reduction={reduction!r}"
-                             + (f", modes={modes!r}" if modes is not None else ""))
-        return (*cyclic_equations(structure, force, static_force, H, engine_order, samples, max_periods),
-                ("exact", None))
+        return cyclic_equations(structure, force, static_force, H, engine_order, samples, max_periods, reduction,
+                                modes)
     reduction, modes = choose_reduction(structure, H, reduction, modes)
     if reduction == "none":
         return (HarmonicBalance(structure, static_force, 0), HarmonicBalance(structure, force, H, samples=samples,
@@ -519,10 +516,12 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         of the omitted ones (``"modal"``); ``"none"``: every DOF is an
         unknown. ``"auto"`` chooses by size (``"none"`` for small dense
         problems, ``"exact"`` up to 5000 DOFs, ``"modal"`` above) and the
-        result says which (:attr:`FrequencyResponse.reduction`).
+        result says which (:attr:`FrequencyResponse.reduction`). A cyclic
+        sector is condensed in each harmonic's nodal diameter, exactly or from
+        that diameter's modes (``"auto"``: exact up to 5000 independent DOFs).
     modes : int, optional
-        Normal modes of a modal reduction (default 60); implies ``"modal"``
-        with ``reduction="auto"``.
+        Normal modes of a modal reduction (default 60; per nodal diameter for
+        a cyclic sector); implies ``"modal"`` with ``reduction="auto"``.
     stability : bool, default True
         Mark each point stable or unstable (Hill's method on the harmonic
         balance Jacobian: the whole structure's with ``"exact"``, the modal
@@ -704,7 +703,9 @@ def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> 
                      recovery=lambda k: hb._full(xs[k], float(omegas[k])))
         if extra["reduction"] == "modal":
             peak = int(np.argmax(np.abs(xs[:, hb.ndof:]).max(axis=1)))
-            extra["reduction_error"] = modal_error(hb.structure, linear, float(omegas[peak]))
+            estimate = getattr(linear, "error", None)  # a cyclic sector's, in its diameters
+            extra["reduction_error"] = (estimate(float(omegas[peak])) if estimate
+                                        else modal_error(hb.structure, linear, float(omegas[peak])))
     return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(omegas.size, hb.nb, hb.ndof),
                              q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters,
                              *static, complete=complete, **extra)
