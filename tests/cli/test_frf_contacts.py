@@ -75,3 +75,18 @@ def cycle_at_the_peak(run, api):
         np.testing.assert_array_equal([float(row[f"{cy.name} N [N]"]) for row in rows], cy.N)
         np.testing.assert_array_equal([float(row[f"{cy.name} T [N]"]) for row in rows], cy.T)
         assert [row[f"{cy.name} state [-]"] for row in rows] == [SLIP_STATES[s] for s in cy.state]
+
+
+def test_a_sector_configuration_takes_a_modal_reduction_and_refuses_none(config):  # noqa: F811
+    from microslip.frequency.config import ConfigError, load_config
+
+    text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = [0]\nright = [3]\n'
+                                      'engine_order = 2\n\n[excitation]')
+    text = text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = 4}')
+    config.write_text(text.replace("harmonics = 3", 'harmonics = 3\nreduction = "modal"\nmodes = 4'))
+    cfg = load_config(config)
+    assert cfg.reduction == "modal" and cfg.modes == 4
+    config.write_text(text.replace("harmonics = 3", 'harmonics = 3\nreduction = "none"'))
+    with pytest.raises(ConfigError, match="\\[sweep\\] a CyclicStructure is solved with reduction='exact' or "
+                                          "'modal'"):
+        load_config(config)
