@@ -48,8 +48,9 @@ def test_the_report_gives_the_contacts_static_state_the_dampers_balance_and_the_
 def static_state_and_balance(run, api):
     out, report, printed = run
     d, r, _, _ = api
-    assert ("| contact | normal load N0 (N) | tangential force T0 (N) | share of the slip force μN0 | elements closed |"
-            in report)
+    header = ["contact", "normal load N0 (N)", "tangential force T0 (N)", "share of the slip force μN0",
+              "elements closed"]
+    assert "| " + " | ".join(header) + " |" in report
     for c, name in enumerate(["flat0", "flat1", "curved2"]):
         N0, T0 = r.static_normal_force[c], r.static_tangential_force[c]
         row = f"| {name} | {N0:.4g} | {T0:.4g} | {abs(T0) / (0.4 * N0):.3g} | {r.static_closed_elements[c]} of 4 |"
@@ -74,3 +75,18 @@ def cycle_at_the_peak(run, api):
         np.testing.assert_array_equal([float(row[f"{cy.name} N [N]"]) for row in rows], cy.N)
         np.testing.assert_array_equal([float(row[f"{cy.name} T [N]"]) for row in rows], cy.T)
         assert [row[f"{cy.name} state [-]"] for row in rows] == [SLIP_STATES[s] for s in cy.state]
+
+
+def test_a_sector_configuration_takes_a_modal_reduction_and_refuses_none(config):  # noqa: F811
+    from microslip.frequency.config import ConfigError, load_config
+
+    text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = [0]\nright = [3]\n'
+                                      'engine_order = 2\n\n[excitation]')
+    text = text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = 4}')
+    config.write_text(text.replace("harmonics = 3", 'harmonics = 3\nreduction = "modal"\nmodes = 4'))
+    cfg = load_config(config)
+    assert cfg.reduction == "modal" and cfg.modes == 4
+    config.write_text(text.replace("harmonics = 3", 'harmonics = 3\nreduction = "none"'))
+    with pytest.raises(ConfigError, match="\\[sweep\\] a CyclicStructure is solved with reduction='exact' or "
+                                          "'modal'"):
+        load_config(config)

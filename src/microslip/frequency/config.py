@@ -429,9 +429,14 @@ def load_config(path) -> FrfConfig:
 
     reduction = sw.get("reduction", "auto")
     modes = sw.get("modes")
+    from .cyclic import CyclicStructure
+    from .cyclic_balance import cyclic_reduction
     from .reduced import choose_reduction
 
-    _checked(path, "[sweep] ", choose_reduction, structure, harmonics, reduction, modes)
+    if isinstance(structure, CyclicStructure):  # a sector is always condensed, in each harmonic's diameter
+        _checked(path, "[sweep] ", cyclic_reduction, structure, reduction, modes)
+    else:
+        _checked(path, "[sweep] ", choose_reduction, structure, harmonics, reduction, modes)
 
     # -- continuation and output -----------------------------------------------------------
     cont = _table(data.get("continuation", {}), "[continuation]", path)
