@@ -20,6 +20,15 @@ needs many, and a step is refused (and halved) when the corrector fails or
 the secant turns by more than ``max_angle`` (which keeps points dense where
 the curve bends, at peaks and folds) -- unless halving does not reduce the
 turn, which marks a kink.
+
+Corners. Where the Jacobian jumps and its determinant, bordered by the
+direction of travel, changes sign, the curve turns back by more than a right
+angle at the kink (a fold without a smooth turning point: a lightly loaded
+damper whose contacts open or stick there). No hyperplane ahead meets the
+curve; when the corrector fails twice at one point, the branch beyond the
+corner is taken along the Jacobian's null direction on the far side, oriented
+so that ``det [[Jx, R_omega], [tangent]]`` keeps the sign it had at the start
+(the orientation of the whole curve, as on a piecewise-linear curve).
 """
 
 from __future__ import annotations
@@ -27,6 +36,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from ..common import _checks
 
@@ -155,6 +166,66 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl):
     return None, it
 
 
+def _orientation(problem, Jx, R_omega, row, scale) -> float:
+    """Sign of ``det [[Jx, R_omega], [row]]`` (scaled columns): the side of the curve ``row`` points to."""
+    A = _scaled_system(problem, Jx, R_omega, row, scale)
+    if not sp.issparse(A):
+        return float(np.linalg.slogdet(A)[0])
+    try:
+        lu = spla.splu(A.tocsc())
+    except RuntimeError:  # exactly singular
+        return 0.0
+    sign = np.prod(np.sign(lu.U.diagonal()))  # L has a unit diagonal
+    for perm in (lu.perm_r, lu.perm_c):  # each permutation's parity: (-1)^(size - cycles)
+        seen = np.zeros(perm.size, dtype=bool)
+        cycles = 0
+        for i in range(perm.size):
+            if not seen[i]:
+                cycles += 1
+                while not seen[i]:
+                    seen[i] = True
+                    i = perm[i]
+        sign *= -1.0 if (perm.size - cycles) % 2 else 1.0
+    return float(sign)
+
+
+def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
+    """A point about ``ds`` past a corner just ahead of ``y``: ``(y, iterations, direction)`` or ``(None, k, None)``.
+
+    Where an element starts to slip or to open, the Jacobian jumps. When the jump
+    reverses the orientation of the curve (the sign of ``det [[Jx, R_omega], [tau]]``)
+    the branch beyond turns back by more than a right angle -- a fold at a kink, where
+    a floating body's contacts change state -- so the hyperplane ahead of ``y`` meets no
+    solution and halving the step only creeps towards the corner. The branch beyond
+    leaves the corner along the null direction of the Jacobian on the far side,
+    oriented so that the determinant keeps its sign (as on a piecewise-linear curve).
+    """
+    probe = y + ds * tau * scale
+    _, Jx, Rw = problem._evaluate(probe[:-1], probe[-1])
+    far = _tangent(problem, Jx, Rw, tau, scale)  # far . tau > 0
+    there = _orientation(problem, Jx, Rw, tau, scale)
+    if not np.all(np.isfinite(far)) or here * there == 0 or (here == there and far @ tau > np.cos(ctl.max_angle)):
+        return None, 0, None  # nothing turns there: not a corner
+    if here != there:
+        far = -far
+    yc, it = _correct(problem, y + ds * far * scale, far, scale, r_scale, ctl)
+    if yc is None:
+        return None, it, None
+    secant = (yc - y) / scale
+    length = np.linalg.norm(secant)
+    if length > 2 * ds:
+        return None, it, None  # converged elsewhere than near the corner
+    # the curve's direction there, oriented as the whole curve (the determinant's sign)
+    _, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
+    ahead = _tangent(problem, Jx, Rw, far, scale)
+    if _orientation(problem, Jx, Rw, ahead, scale) != here:
+        ahead = -ahead
+    behind = np.cos(0.1 * ctl.max_angle)
+    if not np.all(np.isfinite(ahead)) or (ahead @ tau > behind and secant @ tau < -behind * length):
+        return None, it, None  # back on the branch already followed, behind y
+    return yc, it, ahead
+
+
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
                  control: StepControl | None = None, callback=None):
     """Follow the solution curve of ``R(x, omega) = 0`` from ``omega_start`` to ``omega_end``.
@@ -201,18 +272,26 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     tau = _tangent(problem, Jx, Rw, e_w, scale)
     if tau[-1] * direction < 0:
         tau = -tau
+    orientation = _orientation(problem, Jx, Rw, tau, scale)  # the same all along the curve
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
     complete = False
     while len(omegas) < ctl.max_points:
         refused_angle = np.inf  # turn at the last step refused for turning too much
+        failed = False  # the corrector failed at this point already
         while True:
             if ds < ctl.ds_min:
                 raise ConvergenceError(
                     f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
                     f"ds_min = {ctl.ds_min:g}")
             yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl)
+            if yc is None and failed:  # failing again, nearer: look for a corner within the step
+                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation)
+                if yc is not None:  # its turn is the corner's: no reason to shrink the next step
+                    secant, angle, kink = ahead, 0.0, True
+                    break
             if yc is None:
+                failed = True
                 ds *= 0.5
                 continue
             secant = (yc - y) / scale
