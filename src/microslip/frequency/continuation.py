@@ -28,7 +28,10 @@ damper whose contacts open or stick there). No hyperplane ahead meets the
 curve; when the corrector fails twice at one point, the branch beyond the
 corner is taken along the Jacobian's null direction on the far side, oriented
 so that ``det [[Jx, R_omega], [tangent]]`` keeps the sign it had at the start
-(the orientation of the whole curve, as on a piecewise-linear curve).
+(the orientation of the whole curve, as on a piecewise-linear curve). A step
+whose new point has that sign reversed along the secant has jumped past a
+corner onto the branch that comes back from it, and is refused (one
+determinant per point, from the corrector's last Jacobian).
 """
 
 from __future__ import annotations
@@ -146,14 +149,19 @@ def _tangent(problem, Jx, R_omega, row, scale) -> np.ndarray:
     return z / np.linalg.norm(z)
 
 
-def _correct(problem, y_pred, tau, scale, r_scale, ctl):
-    """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``."""
+def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None):
+    """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``.
+
+    ``last``, a list, receives ``[Jx, R_omega]`` at the converged point.
+    """
     yc = y_pred.copy()
     step = np.inf
     for it in range(ctl.max_iterations + 1):
         R, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
         res = np.linalg.norm(R) / r_scale
         if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
+            if last is not None:
+                last[:] = [Jx, Rw]
             return yc, it
         if it == ctl.max_iterations or not np.isfinite(res):
             break
@@ -196,24 +204,39 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
     reverses the orientation of the curve (the sign of ``det [[Jx, R_omega], [tau]]``)
     the branch beyond turns back by more than a right angle -- a fold at a kink, where
     a floating body's contacts change state -- so the hyperplane ahead of ``y`` meets no
-    solution and halving the step only creeps towards the corner. The branch beyond
-    leaves the corner along the null direction of the Jacobian on the far side,
-    oriented so that the determinant keeps its sign (as on a piecewise-linear curve).
+    solution and halving the step only creeps towards the corner. The corner is found
+    on the straight line the curve follows from ``y`` (where the residual leaves zero);
+    the branch beyond leaves it along the null direction of the Jacobian on the far
+    side, oriented so that the determinant keeps its sign ``here`` (as on a
+    piecewise-linear curve).
     """
-    probe = y + ds * tau * scale
+    _, Jx, Rw = problem._evaluate(y[:-1], y[-1])
+    along = _tangent(problem, Jx, Rw, tau, scale)  # the curve's direction at y
+
+    def off(s):  # y + s along has left the curve
+        p = y + s * along * scale
+        return np.linalg.norm(problem._evaluate(p[:-1], p[-1], jacobian=False)) > ctl.tolerance * r_scale
+
+    if not np.all(np.isfinite(along)) or not off(ds):
+        return None, 0, None
+    a, b = 0.0, ds
+    while b - a > 1e-6 * ds:
+        m = 0.5 * (a + b)
+        a, b = (a, m) if off(m) else (m, b)
+    corner, probe = y + a * along * scale, y + b * along * scale
     _, Jx, Rw = problem._evaluate(probe[:-1], probe[-1])
-    far = _tangent(problem, Jx, Rw, tau, scale)  # far . tau > 0
-    there = _orientation(problem, Jx, Rw, tau, scale)
-    if not np.all(np.isfinite(far)) or here * there == 0 or (here == there and far @ tau > np.cos(ctl.max_angle)):
+    far = _tangent(problem, Jx, Rw, along, scale)  # far . along > 0
+    there = _orientation(problem, Jx, Rw, along, scale)
+    if not np.all(np.isfinite(far)) or here * there == 0 or (here == there and far @ along > np.cos(ctl.max_angle)):
         return None, 0, None  # nothing turns there: not a corner
     if here != there:
         far = -far
-    yc, it = _correct(problem, y + ds * far * scale, far, scale, r_scale, ctl)
+    yc, it = _correct(problem, corner + ds * far * scale, far, scale, r_scale, ctl)
     if yc is None:
         return None, it, None
     secant = (yc - y) / scale
     length = np.linalg.norm(secant)
-    if length > 2 * ds:
+    if length > 2 * ds + a:
         return None, it, None  # converged elsewhere than near the corner
     # the curve's direction there, oriented as the whole curve (the determinant's sign)
     _, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
@@ -273,6 +296,7 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     if tau[-1] * direction < 0:
         tau = -tau
     orientation = _orientation(problem, Jx, Rw, tau, scale)  # the same all along the curve
+    last = []  # the Jacobian at the corrector's last point
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
     complete = False
@@ -284,7 +308,7 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 raise ConvergenceError(
                     f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
                     f"ds_min = {ctl.ds_min:g}")
-            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl)
+            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last)
             if yc is None and failed:  # failing again, nearer: look for a corner within the step
                 yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation)
                 if yc is not None:  # its turn is the corner's: no reason to shrink the next step
@@ -296,6 +320,10 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 continue
             secant = (yc - y) / scale
             secant /= np.linalg.norm(secant)
+            if _orientation(problem, *last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
+                failed = True  # past a corner, on the branch that comes back from it: shorter
+                ds *= 0.5
+                continue
             angle = float(np.arccos(np.clip(secant @ tau, -1.0, 1.0)))
             # On a smooth curve the turn shrinks with the step; where it does not, the
             # step crosses a kink (an element starts to slip or to open: the contact
