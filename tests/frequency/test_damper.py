@@ -56,6 +56,22 @@ def test_the_static_state_balances_the_damper():
     assert np.all(N0 > 0) and abs(N0[:2].sum() - N0[2]) < 0.5 * N0[2]  # both interfaces carry load
 
 
+def test_the_rotation_dof_is_the_arc_of_the_farthest_contact():
+    d = damper()
+    s = d.attach(blade_pair())
+    assert d.arm == max(np.hypot(*c.point) for c in d.contacts)
+    # a rotation theta (rad) moves the damper's point p by theta (-py, px): the contact directions carry 1/arm
+    theta, q = 1e-4, np.zeros(s.ndof)
+    q[d.dofs[2]] = d.arm * theta
+    Bt, Bn, _ = s.contact_directions()
+    for c, contact in enumerate(d.contacts):
+        move = theta * np.array([-contact.point[1], contact.point[0]])
+        assert Bn[:, c] @ q == pytest.approx(np.dot(contact.normal, move), rel=1e-12)
+        assert Bt[:, c] @ q == pytest.approx(np.dot(contact.tangent, move), rel=1e-12)
+    # and its inertia is the moment of inertia over arm^2: the kinetic energy of theta' is I theta'^2 / 2
+    assert s.M[d.dofs[2], d.dofs[2]] * d.arm**2 == pytest.approx(d.inertia, rel=1e-12)
+
+
 def test_a_stuck_damper_is_the_linear_structure_with_its_stick_stiffnesses():
     sticky = MicroslipModel(FLAT.kt, FLAT.kn, FLAT.gaps, 1e3)  # friction that never slips
     d = damper(sticky, MicroslipModel(CURVED.kt, CURVED.kn, CURVED.gaps, 1e3))
