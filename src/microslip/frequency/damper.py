@@ -91,6 +91,15 @@ class UnderPlatformDamper:
         * M`` on its DOFs. Without it a mode of the damper on its stuck contacts
         is undamped, and the response is unbounded where a harmonic of the
         excitation meets it (the harmonic balance then has no solution there).
+    retention : float, default 0
+        Stiffness of the features that keep the damper in its pocket (N/m): a
+        spring from each of ``X``, ``Y`` and the arc ``R`` to the disk (a
+        torsional ``retention * arm**2`` N m/rad). Where one contact stays open
+        over the whole cycle and the others slide, nothing but friction holds
+        the damper's mean position, and the continuation creeps through nearly
+        singular points; a retention far below the contacts' normal stiffness
+        (1e3 N/m against 2.3e7 N/m in ``tests/frequency/test_damper.py``) holds
+        it without changing the response.
 
     Examples
     --------
@@ -104,10 +113,12 @@ class UnderPlatformDamper:
     """
 
     def __init__(self, mass: float, inertia: float, *, centrifugal_load: float | None = None,
-                 speed: float | None = None, radius: float | None = None, damping: float = 0.0):
+                 speed: float | None = None, radius: float | None = None, damping: float = 0.0,
+                 retention: float = 0.0):
         self.mass = _checks.positive_scalar("mass", mass)
         self.inertia = _checks.positive_scalar("inertia", inertia)
         self.damping = _checks.positive_scalar("damping", damping, allow_zero=True)
+        self.retention = _checks.positive_scalar("retention", retention, allow_zero=True)
         if centrifugal_load is not None:
             if speed is not None or radius is not None:
                 raise ValueError("give centrifugal_load, or speed and radius, not both")
@@ -212,7 +223,7 @@ class UnderPlatformDamper:
         n = structure.ndof
         extra = np.array([self.mass, self.mass, self.inertia / self.arm**2])  # R = arm theta
         M, C, K = (_grow(A, d) for A, d in ((structure.M, extra), (structure.C, self.damping * extra),
-                                            (structure.K, np.zeros(3))))
+                                            (structure.K, np.full(3, self.retention))))
         if cyclic:
             out = CyclicStructure(M, C, K, sectors=structure.sectors, left=structure.left, right=structure.right)
         else:
