@@ -668,7 +668,7 @@ CASES += [
          samples=16),
     case("CyclicStructure.travelling_wave", lambda: disk().travelling_wave, force=[0.0, 1.0, 0.0], engine_order=3),
     case("UnderPlatformDamper", lambda: microslip.frequency.UnderPlatformDamper, mass=0.02, inertia=1e-6,
-         centrifugal_load=300.0),
+         centrifugal_load=300.0, retention=1e3),
     case("UnderPlatformDamper.add_interface", lambda: damper().add_interface,
          kinds={"platform": "object", "points": "array"}, models=L(lambda: MicroslipModel([1e6], [1e8], [0.0], 0.5)),
          points=[[-4e-3, 2e-3], [-2e-3, 4e-3]], angle=2.356, platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}],

@@ -20,6 +20,18 @@ needs many, and a step is refused (and halved) when the corrector fails or
 the secant turns by more than ``max_angle`` (which keeps points dense where
 the curve bends, at peaks and folds) -- unless halving does not reduce the
 turn, which marks a kink.
+
+Corners. Where the Jacobian jumps and its determinant, bordered by the
+direction of travel, changes sign, the curve turns back by more than a right
+angle at the kink (a fold without a smooth turning point: a lightly loaded
+damper whose contacts open or stick there). No hyperplane ahead meets the
+curve; when the corrector fails twice at one point, the branch beyond the
+corner is taken along the Jacobian's null direction on the far side, oriented
+so that ``det [[Jx, R_omega], [tangent]]`` keeps the sign it had at the start
+(the orientation of the whole curve, as on a piecewise-linear curve). A step
+whose new point has that sign reversed along the secant has jumped past a
+corner onto the branch that comes back from it, and is refused (one
+determinant per point, from the corrector's last Jacobian).
 """
 
 from __future__ import annotations
@@ -27,6 +39,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from ..common import _checks
 
@@ -135,14 +149,19 @@ def _tangent(problem, Jx, R_omega, row, scale) -> np.ndarray:
     return z / np.linalg.norm(z)
 
 
-def _correct(problem, y_pred, tau, scale, r_scale, ctl):
-    """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``."""
+def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None):
+    """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``.
+
+    ``last``, a list, receives ``[Jx, R_omega]`` at the converged point.
+    """
     yc = y_pred.copy()
     step = np.inf
     for it in range(ctl.max_iterations + 1):
         R, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
         res = np.linalg.norm(R) / r_scale
         if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
+            if last is not None:
+                last[:] = [Jx, Rw]
             return yc, it
         if it == ctl.max_iterations or not np.isfinite(res):
             break
@@ -153,6 +172,81 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl):
         yc = yc + dz * scale
         step = float(np.max(np.abs(dz)))
     return None, it
+
+
+def _orientation(problem, Jx, R_omega, row, scale) -> float:
+    """Sign of ``det [[Jx, R_omega], [row]]`` (scaled columns): the side of the curve ``row`` points to."""
+    A = _scaled_system(problem, Jx, R_omega, row, scale)
+    if not sp.issparse(A):
+        return float(np.linalg.slogdet(A)[0])
+    try:
+        lu = spla.splu(A.tocsc())
+    except RuntimeError:  # exactly singular
+        return 0.0
+    sign = np.prod(np.sign(lu.U.diagonal()))  # L has a unit diagonal
+    for perm in (lu.perm_r, lu.perm_c):  # each permutation's parity: (-1)^(size - cycles)
+        seen = np.zeros(perm.size, dtype=bool)
+        cycles = 0
+        for i in range(perm.size):
+            if not seen[i]:
+                cycles += 1
+                while not seen[i]:
+                    seen[i] = True
+                    i = perm[i]
+        sign *= -1.0 if (perm.size - cycles) % 2 else 1.0
+    return float(sign)
+
+
+def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
+    """A point about ``ds`` past a corner just ahead of ``y``: ``(y, iterations, direction)`` or ``(None, k, None)``.
+
+    Where an element starts to slip or to open, the Jacobian jumps. When the jump
+    reverses the orientation of the curve (the sign of ``det [[Jx, R_omega], [tau]]``)
+    the branch beyond turns back by more than a right angle -- a fold at a kink, where
+    a floating body's contacts change state -- so the hyperplane ahead of ``y`` meets no
+    solution and halving the step only creeps towards the corner. The corner is found
+    on the straight line the curve follows from ``y`` (where the residual leaves zero);
+    the branch beyond leaves it along the null direction of the Jacobian on the far
+    side, oriented so that the determinant keeps its sign ``here`` (as on a
+    piecewise-linear curve).
+    """
+    _, Jx, Rw = problem._evaluate(y[:-1], y[-1])
+    along = _tangent(problem, Jx, Rw, tau, scale)  # the curve's direction at y
+
+    def off(s):  # y + s along has left the curve
+        p = y + s * along * scale
+        return np.linalg.norm(problem._evaluate(p[:-1], p[-1], jacobian=False)) > ctl.tolerance * r_scale
+
+    if not np.all(np.isfinite(along)) or not off(ds):
+        return None, 0, None
+    a, b = 0.0, ds
+    while b - a > 1e-6 * ds:
+        m = 0.5 * (a + b)
+        a, b = (a, m) if off(m) else (m, b)
+    corner, probe = y + a * along * scale, y + b * along * scale
+    _, Jx, Rw = problem._evaluate(probe[:-1], probe[-1])
+    far = _tangent(problem, Jx, Rw, along, scale)  # far . along > 0
+    there = _orientation(problem, Jx, Rw, along, scale)
+    if not np.all(np.isfinite(far)) or here * there == 0 or (here == there and far @ along > np.cos(ctl.max_angle)):
+        return None, 0, None  # nothing turns there: not a corner
+    if here != there:
+        far = -far
+    yc, it = _correct(problem, corner + ds * far * scale, far, scale, r_scale, ctl)
+    if yc is None:
+        return None, it, None
+    secant = (yc - y) / scale
+    length = np.linalg.norm(secant)
+    if length > 2 * ds + a:
+        return None, it, None  # converged elsewhere than near the corner
+    # the curve's direction there, oriented as the whole curve (the determinant's sign)
+    _, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
+    ahead = _tangent(problem, Jx, Rw, far, scale)
+    if _orientation(problem, Jx, Rw, ahead, scale) != here:
+        ahead = -ahead
+    behind = np.cos(0.1 * ctl.max_angle)
+    if not np.all(np.isfinite(ahead)) or (ahead @ tau > behind and secant @ tau < -behind * length):
+        return None, it, None  # back on the branch already followed, behind y
+    return yc, it, ahead
 
 
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
@@ -201,22 +295,35 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     tau = _tangent(problem, Jx, Rw, e_w, scale)
     if tau[-1] * direction < 0:
         tau = -tau
+    orientation = _orientation(problem, Jx, Rw, tau, scale)  # the same all along the curve
+    last = []  # the Jacobian at the corrector's last point
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
     complete = False
     while len(omegas) < ctl.max_points:
         refused_angle = np.inf  # turn at the last step refused for turning too much
+        failed = False  # the corrector failed at this point already
         while True:
             if ds < ctl.ds_min:
                 raise ConvergenceError(
                     f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
                     f"ds_min = {ctl.ds_min:g}")
-            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl)
+            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last)
+            if yc is None and failed:  # failing again, nearer: look for a corner within the step
+                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation)
+                if yc is not None:  # its turn is the corner's: no reason to shrink the next step
+                    secant, angle, kink = ahead, 0.0, True
+                    break
             if yc is None:
+                failed = True
                 ds *= 0.5
                 continue
             secant = (yc - y) / scale
             secant /= np.linalg.norm(secant)
+            if _orientation(problem, *last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
+                failed = True  # past a corner, on the branch that comes back from it: shorter
+                ds *= 0.5
+                continue
             angle = float(np.arccos(np.clip(secant @ tau, -1.0, 1.0)))
             # On a smooth curve the turn shrinks with the step; where it does not, the
             # step crosses a kink (an element starts to slip or to open: the contact

@@ -2,8 +2,13 @@
 
 In the plane of the disk (``x`` circumferential, ``y`` radial, outwards) the damper
 has three DOFs, the translations ``X``, ``Y`` of its centre of mass and the small
-rotation ``R`` (rad, anticlockwise). A point ``(px, py)`` of the damper (m, from its
-centre of mass) moves by ``(X - R py, Y + R px)``. Each interface has a normal
+rotation ``theta`` (rad, anticlockwise), carried as the arc ``R = arm * theta`` (m)
+that it moves the contact farthest from the centre of mass (``arm``, its distance):
+every unknown is then a length of the same order, so that the solver's one
+displacement scale fits the rotation too (in radians it would be ``1 / arm`` times
+larger, and its wanderings would dominate the continuation's steps). A point
+``(px, py)`` of the damper (m, from its centre of mass) moves by
+``(X - theta py, Y + theta px)``. Each interface has a normal
 at the angle ``angle`` (rad, from ``x``), pointing from the damper into the
 platform, ``nu = (cos, sin)``, and the tangent ``tau = (-sin, cos)``; its contacts
 sit at given points of the damper, each a :class:`~microslip.model.MicroslipModel`
@@ -86,6 +91,15 @@ class UnderPlatformDamper:
         * M`` on its DOFs. Without it a mode of the damper on its stuck contacts
         is undamped, and the response is unbounded where a harmonic of the
         excitation meets it (the harmonic balance then has no solution there).
+    retention : float, default 0
+        Stiffness of the features that keep the damper in its pocket (N/m): a
+        spring from each of ``X``, ``Y`` and the arc ``R`` to the disk (a
+        torsional ``retention * arm**2`` N m/rad). Where one contact stays open
+        over the whole cycle and the others slide, nothing but friction holds
+        the damper's mean position, and the continuation creeps through nearly
+        singular points; a retention far below the contacts' normal stiffness
+        (1e3 N/m against 2.3e7 N/m in ``tests/frequency/test_damper.py``) holds
+        it without changing the response.
 
     Examples
     --------
@@ -99,10 +113,12 @@ class UnderPlatformDamper:
     """
 
     def __init__(self, mass: float, inertia: float, *, centrifugal_load: float | None = None,
-                 speed: float | None = None, radius: float | None = None, damping: float = 0.0):
+                 speed: float | None = None, radius: float | None = None, damping: float = 0.0,
+                 retention: float = 0.0):
         self.mass = _checks.positive_scalar("mass", mass)
         self.inertia = _checks.positive_scalar("inertia", inertia)
         self.damping = _checks.positive_scalar("damping", damping, allow_zero=True)
+        self.retention = _checks.positive_scalar("retention", retention, allow_zero=True)
         if centrifugal_load is not None:
             if speed is not None or radius is not None:
                 raise ValueError("give centrifugal_load, or speed and radius, not both")
@@ -166,11 +182,16 @@ class UnderPlatformDamper:
             self.contacts.append(DamperContact(name, models[i], (float(pts[i, 0]), float(pts[i, 1])), nu, tau,
                                                plats[i]))
 
+    @property
+    def arm(self) -> float:
+        """Distance of the contact farthest from the centre of mass (m): the rotation DOF is ``arm * theta``."""
+        return max((float(np.hypot(*c.point)) for c in self.contacts), default=0.0) or 1.0
+
     def _direction(self, contact: DamperContact, axis, dofs) -> dict:
         """``{dof: coefficient}`` of ``axis . (u_damper(point) - u_platform)``."""
         X, Y, R = dofs
         px, py = contact.point
-        out = {X: axis[0], Y: axis[1], R: axis[1] * px - axis[0] * py}
+        out = {X: axis[0], Y: axis[1], R: (axis[1] * px - axis[0] * py) / self.arm}
         for coef, ax in zip(axis, _AXES):
             dof = contact.platform[ax]
             out[dof] = out.get(dof, 0.0) - coef
@@ -182,7 +203,8 @@ class UnderPlatformDamper:
         Works on a plain :class:`Structure` (one blade pair, a rig with two
         platforms) and on a :class:`CyclicStructure` (the damper joins a sector to
         the next: name the next sector's platform DOFs with ``disk.next(j)``).
-        The damper's DOFs are ``new.ndof - 3 + (0, 1, 2)`` (:attr:`dofs` after the call).
+        The damper's DOFs are ``new.ndof - 3 + (0, 1, 2)`` (:attr:`dofs` after the call):
+        ``X``, ``Y`` (m) and ``R = arm * theta`` (m; the rotation is ``R / arm`` rad).
         """
         if not isinstance(structure, Structure):
             raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
@@ -199,9 +221,9 @@ class UnderPlatformDamper:
                     raise ValueError(f"interface {c.interface!r}: platform DOF {index} is out of range for a structure "
                                      f"with {structure.ndof} DOFs")
         n = structure.ndof
-        extra = np.array([self.mass, self.mass, self.inertia])
+        extra = np.array([self.mass, self.mass, self.inertia / self.arm**2])  # R = arm theta
         M, C, K = (_grow(A, d) for A, d in ((structure.M, extra), (structure.C, self.damping * extra),
-                                            (structure.K, np.zeros(3))))
+                                            (structure.K, np.full(3, self.retention))))
         if cyclic:
             out = CyclicStructure(M, C, K, sectors=structure.sectors, left=structure.left, right=structure.right)
         else:
@@ -233,7 +255,7 @@ class UnderPlatformDamper:
         Returns
         -------
         float
-            ``max(|F_x|, |F_y|, |M_z| / L) / load``, with ``L`` the largest
+            ``max(|F_x|, |F_y|, |M_z| / arm) / load``, with :attr:`arm` the largest
             distance of a contact from the centre of mass: zero at equilibrium.
         """
         names = [c.name for c in result.structure.contacts]
@@ -245,8 +267,7 @@ class UnderPlatformDamper:
             f = -(N0 * np.array(c.normal) + T0 * np.array(c.tangent))  # the platform pushes back on the damper
             F += f
             Mz += c.point[0] * f[1] - c.point[1] * f[0]
-        L = max(np.hypot(*c.point) for c in self.contacts) or 1.0
-        return float(max(abs(F[0]), abs(F[1]), abs(Mz) / L) / max(self.centrifugal_load, 1e-300))
+        return float(max(abs(F[0]), abs(F[1]), abs(Mz) / self.arm) / max(self.centrifugal_load, 1e-300))
 
 
 def _grow(A, diagonal):

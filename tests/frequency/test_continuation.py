@@ -1,0 +1,61 @@
+"""Continuation past corners: a curve that turns back at a kink (a fold where the Jacobian jumps)."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from microslip.frequency.continuation import continuation
+
+SLOPE = 3.0  # the curve's slope in (x, omega) on each piece: it turns by 2 atan(3) = 143 degrees at a corner
+
+
+def zigzag(x):
+    """``omega = f(x)`` and ``f'(x)``: rising to 1 at the first knot, falling to 0 at the second, rising after."""
+    knots = np.array([1.0, 2.0]) / SLOPE
+    if x < knots[0]:
+        return SLOPE * x, SLOPE
+    if x < knots[1]:
+        return 1.0 - SLOPE * (x - knots[0]), -SLOPE
+    return SLOPE * (x - knots[1]), SLOPE
+
+
+class Zigzag:
+    """``R(x, omega) = omega - f(x)`` for ``x`` of size 1 (the continuation's problem interface)."""
+
+    def __init__(self, sparse=False):
+        self.sparse = sparse
+
+    def _evaluate(self, x, omega, jacobian=True):
+        f, slope = zigzag(float(x[0]))
+        R = np.array([omega - f])
+        if not jacobian:
+            return R
+        J = np.array([[-slope]])
+        return R, (sp.csc_matrix(J) if self.sparse else J), np.array([1.0])
+
+    def solve(self, A, b):
+        try:
+            return spla.splu(sp.csc_matrix(A)).solve(b) if sp.issparse(A) else np.linalg.solve(A, b)
+        except (np.linalg.LinAlgError, RuntimeError):
+            return np.full(np.shape(b), np.nan)
+
+    def augmented(self, Jx, R_omega, row):
+        if sp.issparse(Jx):
+            return sp.vstack([sp.hstack([Jx, sp.csc_matrix(R_omega[:, None])]), sp.csc_matrix(row[None, :])],
+                             format="csc")
+        return np.block([[Jx, R_omega[:, None]], [row[None, :]]])
+
+
+@pytest.mark.parametrize("sparse", [False, True])
+def test_the_continuation_turns_back_at_a_corner_and_forward_at_the_next(sparse):
+    start = -0.3
+    xs, omegas, _, complete = continuation(Zigzag(sparse), np.array([start / SLOPE]), start, 1.5, x_scale=1.0,
+                                           r_scale=1.0)
+    assert complete and omegas[-1] == 1.5
+    # every point on the curve, x never going back (the branch already followed is not retraced)
+    np.testing.assert_allclose(omegas, [zigzag(x)[0] for x in xs[:, 0]], rtol=0, atol=1e-12)
+    assert np.all(np.diff(xs[:, 0]) > 0)
+    # both corners passed: omega falls from 1 to 0 between them
+    assert omegas.max() > 1.0 - 1e-12 and np.any(np.diff(omegas) < 0)
+    assert xs[-1, 0] == pytest.approx((2.0 + 1.5) / SLOPE, abs=1e-12)
