@@ -20,6 +20,19 @@ ordering of ``Z + Z^T`` (less fill than SuperLU's default column ordering on
 these symmetric patterns: 3-5 times faster at 10^5 DOFs); a static or undamped
 harmonic is solved in real arithmetic.
 
+Along a curve (from the :data:`SPECTRAL_AFTER`-th frequency of a harmonic on)
+an interior of up to :data:`SPECTRAL_INTERIOR` DOFs whose damping the held
+structure's normal modes diagonalise (no damping, Rayleigh damping) is
+condensed through all of those modes instead: with ``M_ii Phi = K_ii Phi
+Lambda^-1``, ``Phi^H M_ii Phi = I`` and ``Phi^H C_ii Phi = diag(c)``,
+
+``Z_ii^-1 = Phi D^-1 Phi^H``,  ``D = Lambda - Omega^2 I + i Omega diag(c)``,
+
+so that ``S = Z_rr - P D^-1 Q`` with ``P = Z_ri Phi`` and ``Q = Phi^H Z_ir``
+(``m x ni``, each from three products computed once). Every mode is kept:
+this is exact, not a modal truncation; one dense eigensolution replaces a
+factorisation per frequency and harmonic.
+
 A complex amplitude ``z = a - i b`` of ``a cos + b sin`` acted on by ``S = S_r + i S_i``
 gives the real harmonic-balance block ``[[S_r, S_i], [-S_i, S_r]]`` on ``(a, b)``.
 """
@@ -33,6 +46,14 @@ import scipy.sparse.linalg as spla
 
 #: interior DOFs up to which the interior block is factorised densely
 DENSE_INTERIOR = 400
+#: interior DOFs up to which a classically damped interior is condensed through all its normal modes
+SPECTRAL_INTERIOR = 2000
+#: frequencies of a harmonic factorised before the normal modes of its interior are computed
+SPECTRAL_AFTER = 3
+#: off-diagonal modal damping, relative to its largest entry, below which damping counts as classical
+CLASSICAL = 1e-12
+#: largest ``modes x (coupling rows)^2 / 2`` kept for the spectral interior (160 MB)
+PAIRS_LIMIT = 20_000_000
 #: fill-reducing ordering of the sparse factorisations (minimum degree on the pattern of A + A^T)
 ORDERING = "MMD_AT_PLUS_A"
 
@@ -93,6 +114,134 @@ class _AlignedInterior:
         return sp.csc_matrix((data, self.indices, self.indptr), shape=self.shape)
 
 
+def _dense(A) -> np.ndarray:
+    return A.toarray() if sp.issparse(A) else np.asarray(A)
+
+
+class _SpectralInterior:
+    """The interior condensed through all normal modes of the held structure (see the module docstring).
+
+    In the coordinates ``q_i = Psi q_r + Phi eta`` (``Psi = -K_ii^-1 K_ir``, the
+    static constraint modes; ``Phi`` every fixed-interface mode) the stiffness
+    couples nothing and ``S = S0(W) - G D^-1 G^T`` with
+    ``S0 = K^_rr - W^2 M^_rr + i W C^_rr``, ``G = -W^2 M^_r,eta + i W C^_r,eta``.
+    ``G D^-1 G^T`` and its derivative are sums of ``X diag(w) X^T`` over the
+    rows ``X`` of ``M^_r,eta`` (and ``C^_r,eta`` unless it is a multiple of it, as
+    with Rayleigh damping) with weights ``w`` from ``1/d``: real products, all
+    harmonics in one.
+
+    Build with :meth:`of`, which returns None where it does not apply: ``M``,
+    ``C``, ``K`` not exactly symmetric, ``M_ii`` not positive definite, ``K_ii``
+    singular, or damping the modes do not diagonalise (off-diagonal modal
+    damping above :data:`CLASSICAL` of its largest entry).
+    """
+
+    def __init__(self, lam, c, phi, psi, rr, X, gamma):
+        self.lam, self.c, self.phi, self.psi = lam, c, phi, psi
+        self.rr = rr  # K^_rr, M^_rr, C^_rr, (m, m)
+        self.X = X  # (p, ni): M^_r,eta, then C^_r,eta unless gamma is not None (C^_r,eta = gamma M^_r,eta)
+        # X diag(w) X^T = w @ pairs, unpacked: the products X[a] X[b] (a <= b) of every mode, (ni, pairs)
+        self.upper = np.triu_indices(X.shape[0])
+        self.pairs = np.ascontiguousarray((X[self.upper[0]] * X[self.upper[1]]).T)
+        self.gamma = gamma
+        self.m = rr[0].shape[0]
+        self.damped = bool(np.any(c)) or bool(np.any(rr[2])) or gamma != 0.0
+
+    @classmethod
+    def of(cls, blocks):
+        (Mrr, Mri, Mir, Mii), (Crr, Cri, Cir, Cii), (Krr, Kri, Kir, Kii) = blocks
+        try:
+            lam, phi = sla.eigh(_dense(Kii), _dense(Mii), driver="gvd", check_finite=False)
+        except (np.linalg.LinAlgError, ValueError):  # M_ii not positive definite
+            return None
+        if lam[0] <= 1e-12 * max(abs(lam[-1]), 1e-300):  # the held structure can move freely: K_ii singular
+            return None
+        Cm = phi.T @ np.asarray(Cii @ phi)
+        off = np.abs(Cm - np.diag(np.diag(Cm)))
+        if off.size and off.max() > CLASSICAL * max(float(np.abs(Cm).max()), 1e-300):
+            return None
+        Kir, Mir, Cir = (np.asarray(A) for A in (Kir, Mir, Cir))
+        psi = -phi @ ((phi.T @ Kir) / lam[:, None])  # -K_ii^-1 K_ir through the modes
+        Mi_psi, Ci_psi = np.asarray(Mii @ psi), np.asarray(Cii @ psi)
+        rr = (np.asarray(Krr) + np.asarray(Kri) @ psi,
+              np.asarray(Mrr) + np.asarray(Mri) @ psi + psi.T @ Mir + psi.T @ Mi_psi,
+              np.asarray(Crr) + np.asarray(Cri) @ psi + psi.T @ Cir + psi.T @ Ci_psi)
+        XM = ((Mir + Mi_psi).T @ phi)  # (m, ni)
+        XC = ((Cir + Ci_psi).T @ phi)
+        gamma = float(np.sum(XC * XM) / max(np.sum(XM * XM), 1e-300))
+        # C_ir + C_ii Psi cancels (to rounding) for C = beta K: compare with the size of its two terms
+        scale = np.linalg.norm(Cir.T @ phi) + np.linalg.norm(Ci_psi.T @ phi)
+        if np.linalg.norm(XC - gamma * XM) <= CLASSICAL * scale:
+            X = XM  # Rayleigh damping (or none): C^_r,eta = gamma M^_r,eta
+        else:
+            X, gamma = np.vstack([XM, XC]), None
+        if X.shape[0] * (X.shape[0] + 1) // 2 * X.shape[1] > PAIRS_LIMIT:
+            return None
+        return cls(lam, np.real(np.diag(Cm)).copy(), phi, psi, rr, X, gamma)
+
+    def _factors(self, W):
+        """``(f, f')``, each ``(len(W), blocks)``: the coupling ``G = sum_j f_j X_j`` and ``dG/dW``."""
+        if self.gamma is not None:
+            return (-W * W + 1j * self.gamma * W)[:, None], (-2 * W + 1j * self.gamma)[:, None]
+        return np.stack([-W * W, 1j * W], axis=1), np.stack([-2 * W, np.full(W.shape, 1j)], axis=1)
+
+    def _d(self, W):
+        """The diagonal of ``D`` for each frequency, ``(len(W), ni)``; None when one is singular."""
+        d = self.lam[None] - (W * W)[:, None] + ((1j * W)[:, None] * self.c[None] if self.damped else 0.0)
+        if np.any(np.abs(d) <= 1e-14 * np.max(np.abs(d), axis=1, keepdims=True)):
+            return None
+        return d
+
+    def evaluate(self, hs, omega: float, derivative: bool):
+        """``(S, S')``, each ``(len(hs), m, m)`` complex, for harmonics ``hs`` at ``omega``; None when ``D`` is singular."""
+        hs = np.asarray(hs, dtype=float)
+        W = hs * omega
+        d = self._d(W)
+        if d is None:
+            return None
+        u = 1.0 / d
+        weights = [u] if not derivative else [u, (2 * W[:, None] - 1j * self.c[None]) * u * u]  # 1/d, d(1/d)/dW
+        parts = [w.real for w in weights] + ([w.imag for w in weights] if self.damped else [])
+        wts = np.stack(parts, axis=1)  # (H, q, ni)
+        H, q, p = W.size, wts.shape[1], self.X.shape[0]
+        Y = np.empty((H, q, p, p))
+        Y[:, :, self.upper[0], self.upper[1]] = Y[:, :, self.upper[1], self.upper[0]] = wts @ self.pairs
+        k = len(weights)
+        Yc = Y[:, :k] + (1j * Y[:, k:] if self.damped else 0.0)  # (H, k, p, p): X diag(w) X^T, complex w
+        f, fp = self._factors(W)
+        nb, m = f.shape[1], self.m
+        Kr, Mr, Cr = self.rr
+        S = np.empty((H, m, m), dtype=complex)
+        S[:] = Kr[None] - (W * W)[:, None, None] * Mr[None] + (1j * W)[:, None, None] * Cr[None]
+        dS = None
+        if derivative:
+            dS = np.empty((H, m, m), dtype=complex)
+            dS[:] = -2 * W[:, None, None] * Mr[None] + 1j * Cr[None]
+        for j in range(nb):
+            for l in range(nb):
+                Bu = Yc[:, 0, j * m:(j + 1) * m, l * m:(l + 1) * m]
+                ff = (f[:, j] * f[:, l])[:, None, None]
+                S -= ff * Bu
+                if derivative:
+                    Bd = Yc[:, 1, j * m:(j + 1) * m, l * m:(l + 1) * m]
+                    dS -= (fp[:, j] * f[:, l] + f[:, j] * fp[:, l])[:, None, None] * Bu + ff * Bd
+        if derivative:
+            dS *= hs[:, None, None]  # d/domega = h d/dW
+        return S, dS
+
+    def interior(self, W: float, q_r):
+        """Interior amplitudes ``Psi q_r - Phi D^-1 G^T q_r`` at the frequency ``W``; None when ``D`` is singular."""
+        Wa = np.array([float(W)])
+        d = self._d(Wa)
+        if d is None:
+            return None
+        f, _ = self._factors(Wa)
+        m = self.m
+        Gq = sum(f[0, j] * (self.X[j * m:(j + 1) * m].T @ q_r) for j in range(f.shape[1]))
+        eta = Gq / (d[0] if np.ndim(Gq) == 1 else d[0][:, None])
+        return self.psi @ q_r - self.phi @ eta
+
+
 class Condensation:
     """The dynamic stiffness of a linear structure condensed onto retained DOFs.
 
@@ -125,6 +274,8 @@ class Condensation:
         self._per_harmonic = harmonic_matrices is not None
         self._split_blocks = {}
         self._aligned = {}
+        self._spectral = {}  # matrices key -> _SpectralInterior, or None where it does not apply
+        self._factorisations = {}  # matrices key -> frequencies factorised so far
         self.sparse = sp.issparse(self._blocks(0)[2][3])
         # V = W when Z is complex symmetric (each harmonic's matrices are then checked once, below)
         self._symmetric = harmonic_matrices is None and all(_symmetric(A) for A in (M, C, K))
@@ -154,6 +305,20 @@ class Condensation:
         if k not in self._aligned:
             self._aligned[k] = _AlignedInterior(*(b[3] for b in blocks))
         return self._aligned[k](key)
+
+    def _spectral_for(self, h: int, omega: float):
+        """The spectral interior of harmonic ``h``'s matrices, once they were factorised at
+        :data:`SPECTRAL_AFTER` excitation frequencies (a single point never pays for the eigensolution)."""
+        k = h if self._per_harmonic else 0
+        if k in self._spectral:
+            return self._spectral[k]
+        seen = self._factorisations.setdefault(k, set())
+        if not self._symmetric or self.interior.size > SPECTRAL_INTERIOR or len(seen | {omega}) <= SPECTRAL_AFTER:
+            if h:  # the static harmonic is factorised once: it does not count
+                seen.add(omega)
+            return None
+        self._spectral[k] = _SpectralInterior.of(self._blocks(h))
+        return self._spectral[k]
 
     def _factor(self, Zii):
         """``solve(b, trans)`` with a factorisation of ``Zii`` (real or complex ``b``), None when singular."""
@@ -212,6 +377,10 @@ class Condensation:
         key = (W_omega * W_omega, W_omega)
         blocks = self._blocks(h)
         Zrr, Zri, Zir = (self._z(blocks, key, k) for k in range(3))
+        spectral = self._spectral_for(h, omega) if self.interior.size else None
+        result = spectral.evaluate([h], omega, derivative) if spectral is not None else None
+        if result is not None:
+            return result[0][0], (None if result[1] is None else result[1][0])
         if self.interior.size == 0:
             S = np.array(Zrr, dtype=complex)
             W = V = None
@@ -243,10 +412,22 @@ class Condensation:
         W_omega = h * omega
         key = (W_omega * W_omega, W_omega)
         blocks = self._blocks(h)
+        spectral = self._spectral.get(h if self._per_harmonic else 0)
+        q_i = spectral.interior(W_omega, np.asarray(q_r)) if spectral is not None else None
+        if q_i is not None:
+            return np.asarray(q_i, dtype=complex)
         solve = self._factor(self._zii(h, blocks, key))
         if solve is None:
             raise SingularInteriorError(f"the held structure is singular at harmonic {h} ({W_omega:.6g} rad/s)")
         return -np.asarray(solve(np.asarray(self._z(blocks, key, 2) @ q_r)), dtype=complex)
+
+    def _harmonics(self, omega: float, H: int):
+        """``[(S_h, S'_h) for h = 1..H]``: all at once through the spectral interior once it applies."""
+        spectral = self._spectral_for(1, omega) if self.interior.size and not self._per_harmonic else None
+        result = spectral.evaluate(np.arange(1, H + 1), omega, True) if spectral is not None else None
+        if result is not None:
+            return list(zip(*result))
+        return [self.harmonic(h, omega) for h in range(1, H + 1)]
 
     # -- the real harmonic-balance operator --------------------------------------------
     def operator(self, omega: float, H: int):
@@ -267,8 +448,7 @@ class Condensation:
         if self._static is None:
             self._static = self.harmonic(0, 0.0, derivative=False)[0].real
         Z[:m, :m] = self._static
-        for h in range(1, H + 1):
-            S, dS = self.harmonic(h, omega)
+        for h, (S, dS) in enumerate(self._harmonics(omega, H), start=1):
             a = slice((2 * h - 1) * m, 2 * h * m)
             b = slice(2 * h * m, (2 * h + 1) * m)
             for target, M in ((Z, S), (dZ, dS)):

@@ -128,6 +128,10 @@ class ModalCondensation:
 
     operator = Condensation.operator
 
+    def _harmonics(self, omega: float, H: int):
+        """``[(S_h, S'_h) for h = 1..H]`` (for :meth:`operator`)."""
+        return [self.harmonic(h, omega) for h in range(1, H + 1)]
+
     def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
         """Every DOF's real coefficients ``(2H+1, ndof)`` (m) from the retained ones ``(2H+1, m)``.
 
