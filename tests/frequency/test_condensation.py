@@ -169,3 +169,19 @@ def test_non_classical_damping_keeps_the_factorisation():
     S_ref, dS_ref = dense_reference(M, C, K, RETAINED, 1, OMEGA)
     S, dS = cond.harmonic(1, OMEGA)
     assert relative(S, S_ref) < 1e-10 and relative(dS, dS_ref) < 1e-6
+
+
+def test_the_modal_condensation_with_diagonal_damping_equals_its_general_path():
+    from microslip.frequency.modal import ModalCondensation
+
+    M, C, K = chain(NDOF, seed=9)
+    fast = ModalCondensation(M, C, K, RETAINED, 30)
+    assert fast._damping is not None  # Rayleigh damping: diagonal in the modes
+    general = ModalCondensation(M, C, K, RETAINED, 30)
+    general._damping = None  # the full modal damping matrix, one harmonic at a time
+    Z1, dZ1 = fast.operator(OMEGA, 4)
+    Z2, dZ2 = general.operator(OMEGA, 4)
+    assert relative(Z1, Z2) < 1e-11 and relative(dZ1, dZ2) < 1e-11  # the same algebra: rounding only
+    E = sp.lil_matrix(M.shape)
+    E[100, 101] = E[101, 100] = 0.5  # a dashpot between interior DOFs: no longer diagonal in the modes
+    assert ModalCondensation(M, sp.csr_matrix(C + E), K, RETAINED, 30)._damping is None

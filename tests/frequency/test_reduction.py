@@ -183,3 +183,32 @@ def test_craig_bampton_converges_with_the_modes(full_points):
 def test_craig_bampton_checks_its_arguments(keep, modes, error, message):
     with pytest.raises(error, match=message):
         craig_bampton(two_chains(), keep, modes)
+
+
+@pytest.mark.parametrize("reduction, modes", [("exact", None), ("modal", 24)])
+def test_the_reduced_jacobians_match_finite_differences(reduction, modes):
+    """Along a curve the exact condensation switches to the held structure's modes and the modal one evaluates
+    every harmonic at once: the Jacobian and the frequency derivative of the reduced equations stay exact."""
+    from microslip.frequency.reduced import ReducedHarmonicBalance, linear_part, retained_dofs
+    from microslip.frequency.hbm import excitation
+
+    s = two_chains()
+    loads = excitation(s, forcing(), 3)
+    loads[0] += s.preload_force()
+    linear = linear_part(s, retained_dofs(s, loads), reduction, modes)
+    hb = ReducedHarmonicBalance(s, forcing(), 3, linear, samples=64)
+    for omega in (900.0, 1000.0, 1100.0, 1200.0):  # from the fourth frequency on: the spectral interior
+        hb.dynamic_stiffness(omega)
+    if reduction == "exact":
+        assert linear._spectral[0] is not None
+    x = np.random.default_rng(3).normal(size=hb.n) * 2e-6
+    omega = 1150.0
+    R, J, Rw = hb.evaluate(x, omega)
+    h = 1e-12  # m: the contact forces are piecewise smooth, so a small step keeps both sides on one piece
+    fd = np.array([(hb.evaluate(x + h * e, omega, jacobian=False) - hb.evaluate(x - h * e, omega, jacobian=False))
+                   / (2 * h) for e in np.eye(hb.n)]).T
+    # stiffnesses up to ~1e7 N/m; central differences of forces ~1e2 N at h = 1e-12 m carry ~1e-2 N/m of rounding
+    np.testing.assert_allclose(J, fd, rtol=0, atol=1e-6 * np.abs(J).max())
+    dw = 1e-3  # rad/s
+    fdw = (hb.evaluate(x, omega + dw, jacobian=False) - hb.evaluate(x, omega - dw, jacobian=False)) / (2 * dw)
+    np.testing.assert_allclose(Rw, fdw, rtol=0, atol=1e-7 * np.abs(Rw).max())

@@ -64,11 +64,22 @@ class SingularInteriorError(ValueError):
 
 def _split(A, r, i):
     """Blocks ``(A_rr, A_ri, A_ir, A_ii)``: the first three dense, ``A_ii`` sparse CSC or dense."""
-    if sp.issparse(A):
-        A = sp.csr_matrix(A)
-        rows_r, rows_i = A[r], A[i]
-        Aii = rows_i[:, i].tocsc()
-        return (rows_r[:, r].toarray(), rows_r[:, i].toarray(), rows_i[:, r].toarray(),
+    if sp.issparse(A):  # each entry sent to its block in one vectorised pass (fancy indexing copies twice)
+        A = sp.coo_matrix(A)
+        n = A.shape[0]
+        side = np.zeros(n, dtype=bool)
+        side[i] = True  # True: interior
+        at = np.empty(n, dtype=np.int64)
+        at[r], at[i] = np.arange(r.size), np.arange(i.size)
+        row_i, col_i = side[A.row], side[A.col]
+        rows, cols = at[A.row], at[A.col]
+        out = []
+        for a, b, shape in ((False, False, (r.size, r.size)), (False, True, (r.size, i.size)),
+                            (True, False, (i.size, r.size)), (True, True, (i.size, i.size))):
+            keep = (row_i == a) & (col_i == b)
+            out.append(sp.coo_matrix((A.data[keep], (rows[keep], cols[keep])), shape=shape))
+        Aii = out[3].tocsc()
+        return (out[0].toarray(), out[1].toarray(), out[2].toarray(),
                 Aii if i.size > DENSE_INTERIOR else Aii.toarray())
     A = np.asarray(A)
     return A[np.ix_(r, r)], A[np.ix_(r, i)], A[np.ix_(i, r)], A[np.ix_(i, i)]
@@ -83,27 +94,46 @@ def _symmetric(A) -> bool:
     return bool(np.array_equal(A, A.T))
 
 
-def _on_pattern(pattern, A) -> np.ndarray:
-    """The entries of sparse ``A`` laid out on ``pattern`` (CSC with sorted indices, holding every entry of A)."""
-    P = pattern.tocoo()
-    keys = P.col.astype(np.int64) * P.shape[0] + P.row
-    A = sp.coo_matrix(A)
+def _canonical(A) -> sp.csc_matrix:
+    """``A`` as CSC without duplicates, its row indices sorted in each column."""
+    A = sp.csc_matrix(A)
     A.sum_duplicates()
-    A.eliminate_zeros()  # an explicit zero may be missing from the pattern
-    data = np.zeros(P.nnz, dtype=A.dtype)
-    data[np.searchsorted(keys, A.col.astype(np.int64) * P.shape[0] + A.row)] = A.data
-    return data
+    A.sort_indices()
+    return A
+
+
+def _keys(A) -> np.ndarray:
+    """Column-major position ``col * rows + row`` of every stored entry of canonical CSC ``A`` (sorted)."""
+    cols = np.repeat(np.arange(A.shape[1], dtype=np.int64), np.diff(A.indptr))
+    return cols * A.shape[0] + A.indices
 
 
 class _AlignedInterior:
-    """``Z_ii = K_ii - W^2 M_ii + i W C_ii`` assembled from data arrays on one CSC pattern (no sparse sums)."""
+    """``Z_ii = K_ii - W^2 M_ii + i W C_ii`` assembled from data arrays on one CSC pattern (no sparse sums).
+
+    Finite-element matrices usually share one pattern (then their data arrays are
+    used as they are); otherwise each is laid out on the union of the patterns.
+    """
 
     def __init__(self, bM, bC, bK):
-        bM, bC, bK = (sp.csc_matrix(A) for A in (bM, bC, bK))  # one may be dense (a dense C with sparse M, K)
-        pattern = (abs(bK) + abs(bM) + abs(bC)).tocsc()
-        pattern.sort_indices()
-        self.indptr, self.indices, self.shape = pattern.indptr, pattern.indices, pattern.shape
-        self.k, self.m, self.c = (_on_pattern(pattern, A) for A in (bK, bM, bC))
+        mats = [_canonical(A) for A in (bK, bM, bC)]  # one may be dense (a dense C with sparse M, K)
+        stored = [A for A in mats if A.nnz]
+        first = stored[0] if stored else mats[0]
+        if all(np.array_equal(A.indptr, first.indptr) and np.array_equal(A.indices, first.indices) for A in stored):
+            self.indptr, self.indices = first.indptr, first.indices
+            data = [A.data if A.nnz else np.zeros(first.nnz) for A in mats]
+        else:  # the union of the stored entries (explicit zeros included), from ones that cannot cancel
+            pattern = sum(sp.csc_matrix((np.ones(A.nnz), A.indices, A.indptr), shape=A.shape) for A in stored)
+            pattern = _canonical(pattern)
+            self.indptr, self.indices = pattern.indptr, pattern.indices
+            keys = _keys(pattern)
+            data = []
+            for A in mats:
+                d = np.zeros(pattern.nnz, dtype=A.dtype)
+                d[np.searchsorted(keys, _keys(A))] = A.data
+                data.append(d)
+        self.shape = first.shape
+        self.k, self.m, self.c = data
         self.damped = bool(np.any(self.c))
 
     def __call__(self, key):
@@ -301,6 +331,8 @@ class Condensation:
         """The interior block of ``Z`` (sparse CSC or dense) for ``key = (Omega^2, Omega)``."""
         if not self.sparse:
             return self._z(blocks, key, 3)
+        if key == (0.0, 0.0):  # the static harmonic, factorised once: K_ii as it is
+            return blocks[2][3]
         k = h if self._per_harmonic else 0
         if k not in self._aligned:
             self._aligned[k] = _AlignedInterior(*(b[3] for b in blocks))

@@ -23,7 +23,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .condensation import ORDERING, Condensation, SingularInteriorError
+from .condensation import CLASSICAL, ORDERING, Condensation, SingularInteriorError
 
 #: DOFs up to which the eigenproblem is solved densely
 DENSE_EIGEN = 600
@@ -87,6 +87,10 @@ class ModalCondensation:
         self.phi_r = phi[self.retained]
         Cm = phi.T @ (C @ phi)
         self.modal_damping = 0.5 * (Cm + Cm.T)
+        off = np.abs(self.modal_damping - np.diag(np.diag(self.modal_damping)))
+        classical = off.size == 0 or off.max() <= CLASSICAL * max(float(np.abs(self.modal_damping).max()), 1e-300)
+        # diagonal modal damping (Rayleigh, none): every harmonic from a few products of (m, modes) arrays
+        self._damping = np.diag(self.modal_damping).copy() if classical else None
         self.residual = flex[self.retained] - (self.phi_r / (lam - s)) @ self.phi_r.T
         self.flex_full = flex  # (ndof, m): the shifted static flexibility, for recovery
         self.static = Condensation(M, C, K, self.retained)  # exact for h = 0
@@ -101,11 +105,35 @@ class ModalCondensation:
             dD = np.diag(np.full(self.modes, -2.0 * h * h * omega)).astype(complex) + (1j * h) * self.modal_damping
         return D, dD
 
+    def _diagonal(self, hs, omega: float, derivative: bool):
+        """``(S, S')``, each ``(len(hs), m, m)``, for harmonics ``hs >= 1`` when the modal damping is diagonal."""
+        hs = np.asarray(hs, dtype=float)
+        W = hs * omega
+        d = self.eigenvalues[None] - (W * W)[:, None] + (1j * W)[:, None] * self._damping[None]
+        if np.any(np.abs(d) <= 1e-14 * np.max(np.abs(d), axis=1, keepdims=True)):
+            h = int(hs[np.argmin(np.min(np.abs(d), axis=1))])
+            raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
+                                        f"({h * omega:.6g} rad/s); add damping")
+        G = (self.phi_r[None] / d[:, None, :]) @ self.phi_r.T + self.residual
+        try:
+            S = np.linalg.inv(G)
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at a harmonic of "
+                                        f"{omega:.6g} rad/s; keep more modes") from None
+        if not derivative:
+            return S, None
+        dd = (-2.0 * hs * hs * omega)[:, None] + (1j * hs)[:, None] * self._damping[None]  # dD/domega
+        dG = -(self.phi_r[None] * (dd / (d * d))[:, None, :]) @ self.phi_r.T
+        return S, -S @ dG @ S
+
     def harmonic(self, h: int, omega: float, *, derivative: bool = True):
         """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`."""
         if h == 0:
             S, _ = self.static.harmonic(0, omega, derivative=False)
             return S, (np.zeros_like(S) if derivative else None)
+        if self._damping is not None:
+            S, dS = self._diagonal([h], omega, derivative)
+            return S[0], (None if dS is None else dS[0])
         Omega = h * omega
         D, dD = self._dynamic(Omega, h, omega, derivative)
         try:
@@ -130,6 +158,8 @@ class ModalCondensation:
 
     def _harmonics(self, omega: float, H: int):
         """``[(S_h, S'_h) for h = 1..H]`` (for :meth:`operator`)."""
+        if self._damping is not None:
+            return list(zip(*self._diagonal(np.arange(1, H + 1), omega, True)))
         return [self.harmonic(h, omega) for h in range(1, H + 1)]
 
     def recover(self, coefficients, omega: float, H: int) -> np.ndarray:

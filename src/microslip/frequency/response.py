@@ -708,7 +708,7 @@ def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> 
                      recovery=lambda k: hb._full(xs[k], float(omegas[k])))
         if extra["reduction"] == "modal":
             peak = int(np.argmax(np.abs(xs[:, hb.ndof:]).max(axis=1)))
-            extra["reduction_error"] = modal_error(hb.structure, linear, float(omegas[peak]))
+            extra["reduction_error"] = modal_error(linear, float(omegas[peak]))
     return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(omegas.size, hb.nb, hb.ndof),
                              q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters,
                              *static, complete=complete, **extra)
