@@ -105,6 +105,15 @@ class ModalCondensation:
             dD = np.diag(np.full(self.modes, -2.0 * h * h * omega)).astype(complex) + (1j * h) * self.modal_damping
         return D, dD
 
+    @staticmethod
+    def _stiffness(G, where: str):
+        """``S = G^-1`` of the receptance(s) ``G``, or the error that names ``where``."""
+        try:
+            return np.linalg.inv(G)
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at {where}; "
+                                        f"keep more modes") from None
+
     def _diagonal(self, hs, omega: float, derivative: bool):
         """``(S, S')``, each ``(len(hs), m, m)``, for harmonics ``hs >= 1`` when the modal damping is diagonal."""
         hs = np.asarray(hs, dtype=float)
@@ -114,12 +123,8 @@ class ModalCondensation:
             h = int(hs[np.argmin(np.min(np.abs(d), axis=1))])
             raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
                                         f"({h * omega:.6g} rad/s); add damping")
-        G = (self.phi_r[None] / d[:, None, :]) @ self.phi_r.T + self.residual
-        try:
-            S = np.linalg.inv(G)
-        except np.linalg.LinAlgError:
-            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at a harmonic of "
-                                        f"{omega:.6g} rad/s; keep more modes") from None
+        S = self._stiffness((self.phi_r[None] / d[:, None, :]) @ self.phi_r.T + self.residual,
+                            f"a harmonic of {omega:.6g} rad/s")
         if not derivative:
             return S, None
         dd = (-2.0 * hs * hs * omega)[:, None] + (1j * hs)[:, None] * self._damping[None]  # dD/domega
@@ -141,12 +146,7 @@ class ModalCondensation:
         except np.linalg.LinAlgError:
             raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
                                         f"({Omega:.6g} rad/s); add damping") from None
-        G = self.phi_r @ Y + self.residual
-        try:
-            S = np.linalg.inv(G)
-        except np.linalg.LinAlgError:
-            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at harmonic {h} "
-                                        f"({Omega:.6g} rad/s); keep more modes") from None
+        S = self._stiffness(self.phi_r @ Y + self.residual, f"harmonic {h} ({Omega:.6g} rad/s)")
         if not derivative:
             return S, None
         # G' = -Phi_r D^-1 D' D^-1 Phi_r^T ;  S' = -S G' S
