@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from microslip.frequency.condensation import Condensation
+from microslip.frequency.condensation import Condensation, _rayleigh
 
 NDOF = 520  # interior above DENSE_INTERIOR: the sparse factorisation on the aligned pattern
 RETAINED = np.array([3, 50, 51, 200, 333, 517])
@@ -115,7 +115,7 @@ def test_the_interior_is_recovered_exactly():
     assert np.linalg.norm(residual) < 1e-10 * np.linalg.norm(abs(Z) @ np.abs(q))
 
 
-def damping(kind: str, M, C, K):
+def damping(kind: str, M, C, K, retained):
     """Damping matrices whose interior block the held structure's modes diagonalise."""
     if kind == "rayleigh":
         return C
@@ -125,15 +125,24 @@ def damping(kind: str, M, C, K):
         E = sp.lil_matrix(M.shape)  # C_ii stays classical, C_ri is no multiple of M_ri
         E[50, 52] = E[52, 50] = 0.5
         return sp.csr_matrix(C + E)
+    if kind == "modal":  # damping of each mode of the held structure, no multiple of M_ii and K_ii
+        interior = np.setdiff1d(np.arange(M.shape[0]), retained)
+        Mi = M.toarray()[np.ix_(interior, interior)]
+        lam, phi = np.linalg.eigh(np.linalg.solve(np.linalg.cholesky(Mi), np.linalg.solve(
+            np.linalg.cholesky(Mi), K.toarray()[np.ix_(interior, interior)]).T))
+        phi = np.linalg.solve(np.linalg.cholesky(Mi).T, phi)  # mass-normalised modes of the held structure
+        Cd = np.zeros(M.shape)
+        Cd[np.ix_(interior, interior)] = Mi @ phi @ np.diag(0.02 * np.sqrt(lam)) @ phi.T @ Mi
+        return sp.csr_matrix((Cd + Cd.T) / 2)  # exactly symmetric
     raise ValueError(kind)
 
 
-@pytest.mark.parametrize("kind", ["rayleigh", "undamped", "coupling"])
+@pytest.mark.parametrize("kind", ["rayleigh", "undamped", "coupling", "modal"])
 @pytest.mark.parametrize("ndof", [NDOF, 60])
 def test_the_spectral_interior_equals_the_factorised_one(kind, ndof):
     M, C, K = chain(ndof, seed=7)
-    C = damping(kind, M, C, K)
     retained = RETAINED if ndof == NDOF else np.array([3, 50, 51, 59])
+    C = damping(kind, M, C, K, retained)
     if ndof < NDOF:
         M, C, K = M.toarray(), C.toarray(), K.toarray()
     curve, point = Condensation(M, C, K, retained), Condensation(M, C, K, retained)
@@ -142,8 +151,11 @@ def test_the_spectral_interior_equals_the_factorised_one(kind, ndof):
     assert curve._spectral == {}
     curve.operator(1200.0, 3)
     assert curve._spectral[0] is not None  # from the fourth frequency on: every mode of the held structure
-    if kind == "coupling":
+    if kind in ("coupling", "modal"):
         assert curve._spectral[0].gamma is None  # the coupling's damping is not a multiple of its mass
+    bM, bC, bK = curve._blocks(0)
+    # C_ii = a M_ii + b K_ii is recognised (no n^3 modal damping product); modal damping is checked in the modes
+    assert (_rayleigh(bM[3], bC[3], bK[3]) is None) == (kind == "modal")
     Z1, dZ1 = curve.operator(OMEGA, 4)
     Z2, dZ2 = point.operator(OMEGA, 4)
     # the same Schur complement by two routes: rounding times the conditioning of the held structure, which

@@ -148,6 +148,21 @@ def _dense(A) -> np.ndarray:
     return A.toarray() if sp.issparse(A) else np.asarray(A)
 
 
+def _rayleigh(M, C, K):
+    """``(a, b)`` with ``C = a M + b K`` to :data:`CLASSICAL` of ``|C|`` (entrywise, least squares), or None."""
+    if sp.issparse(M) or sp.issparse(C) or sp.issparse(K):
+        aligned = _AlignedInterior(M, C, K)
+        m, c, k = aligned.m, aligned.c, aligned.k
+    else:
+        m, c, k = (np.ravel(A) for A in (M, C, K))
+    A = np.stack([m, k], axis=1)
+    scale = np.maximum(np.abs(A).max(axis=0), 1e-300)
+    ab = np.linalg.lstsq(A / scale, c, rcond=None)[0] / scale
+    if np.max(np.abs(c - A @ ab), initial=0.0) > CLASSICAL * max(float(np.max(np.abs(c), initial=0.0)), 1e-300):
+        return None
+    return float(ab[0]), float(ab[1])
+
+
 class _SpectralInterior:
     """The interior condensed through all normal modes of the held structure (see the module docstring).
 
@@ -186,10 +201,15 @@ class _SpectralInterior:
             return None
         if lam[0] <= 1e-12 * max(abs(lam[-1]), 1e-300):  # the held structure can move freely: K_ii singular
             return None
-        Cm = phi.T @ np.asarray(Cii @ phi)
-        off = np.abs(Cm - np.diag(np.diag(Cm)))
-        if off.size and off.max() > CLASSICAL * max(float(np.abs(Cm).max()), 1e-300):
-            return None
+        rayleigh = _rayleigh(Mii, Cii, Kii)
+        if rayleigh is not None:  # C_ii = a M_ii + b K_ii: c = a + b lambda, without an n^3 product
+            c = rayleigh[0] + rayleigh[1] * lam
+        else:
+            Cm = phi.T @ np.asarray(Cii @ phi)
+            off = np.abs(Cm - np.diag(np.diag(Cm)))
+            if off.size and off.max() > CLASSICAL * max(float(np.abs(Cm).max()), 1e-300):
+                return None
+            c = np.real(np.diag(Cm)).copy()
         Kir, Mir, Cir = (np.asarray(A) for A in (Kir, Mir, Cir))
         psi = -phi @ ((phi.T @ Kir) / lam[:, None])  # -K_ii^-1 K_ir through the modes
         Mi_psi, Ci_psi = np.asarray(Mii @ psi), np.asarray(Cii @ psi)
@@ -207,7 +227,7 @@ class _SpectralInterior:
             X, gamma = np.vstack([XM, XC]), None
         if X.shape[0] * (X.shape[0] + 1) // 2 * X.shape[1] > PAIRS_LIMIT:
             return None
-        return cls(lam, np.real(np.diag(Cm)).copy(), phi, psi, rr, X, gamma)
+        return cls(lam, c, phi, psi, rr, X, gamma)
 
     def _factors(self, W):
         """``(f, f')``, each ``(len(W), blocks)``: the coupling ``G = sum_j f_j X_j`` and ``dG/dW``."""
