@@ -146,11 +146,16 @@ def test_the_spectral_interior_equals_the_factorised_one(kind, ndof):
     if ndof < NDOF:
         M, C, K = M.toarray(), C.toarray(), K.toarray()
     curve, point = Condensation(M, C, K, retained), Condensation(M, C, K, retained)
-    for omega in (900.0, 1000.0, 1100.0):  # a curve: the first frequencies are factorised
+    # a curve: the first frequencies are factorised (a sparse interior: one, a dense one: three), then the
+    # modes are computed; this chain's spectrum is dense (a few modes cannot reach 3 x 1200 rad/s), so
+    # every mode is, as for modal damping (not Rayleigh) and for a dense interior
+    first = 1 if ndof == NDOF else 3
+    for omega in np.linspace(900.0, 1100.0, first):
         curve.operator(omega, 3)
     assert curve._spectral == {}
     curve.operator(1200.0, 3)
-    assert curve._spectral[0] is not None  # from the fourth frequency on: every mode of the held structure
+    assert curve._spectral[0] is not None and curve._spectral[0].tail is None
+    assert curve._spectral[0].lam.size == ndof - retained.size
     if kind in ("coupling", "modal"):
         assert curve._spectral[0].gamma is None  # the coupling's damping is not a multiple of its mass
     bM, bC, bK = curve._blocks(0)
@@ -197,3 +202,36 @@ def test_the_modal_condensation_with_diagonal_damping_equals_its_general_path():
     E = sp.lil_matrix(M.shape)
     E[100, 101] = E[101, 100] = 0.5  # a dashpot between interior DOFs: no longer diagonal in the modes
     assert ModalCondensation(M, sp.csr_matrix(C + E), K, RETAINED, 30)._damping is None
+
+
+@pytest.mark.parametrize("coupling", [False, True])
+def test_the_series_of_the_omitted_modes_on_a_blade_equals_the_factorised_condensation(coupling):
+    """A finite-element blade's held structure: its spectrum spreads far (16 modes reach about 100 kHz), so a
+    few modes and the exact series of the others replace a factorisation per frequency and harmonic."""
+    from microslip.fe import blade
+
+    b = blade(1000, contact_nodes=5)
+    retained = np.sort([b.dof_map.index(f"{n}:x") for n in b.platform_nodes] + [b.dof_map.index(f"{b.tip_node}:x")])
+    C = 2e-7 * b.K
+    if coupling:  # a dashpot from a retained DOF to an interior one: C_ri no multiple of M_ri
+        j = int(retained[0])
+        i = int(np.flatnonzero(b.K[j].toarray()[0])[0 if b.K[j].indices[0] != j else 1])
+        E = sp.lil_matrix(b.K.shape)
+        E[i, j] = E[j, i] = 0.3
+        C = sp.csr_matrix(C + E)
+    curve, point = Condensation(b.M, C, b.K, retained), Condensation(b.M, C, b.K, retained)
+    curve.operator(8000.0, 7)
+    assert curve._spectral == {}
+    W = 2 * np.pi * np.array([1200.0, 1800.0])
+    for omega in W:  # from the second frequency on: 16 modes and the series
+        Z1, dZ1 = curve.operator(omega, 7)
+        Z2, dZ2 = point.operator(omega, 7)
+        # rounding times the conditioning (measured up to 1.3e-11); a missing or wrong term shows at 1e-3 or more
+        assert relative(Z1, Z2) < 1e-10 and relative(dZ1, dZ2) < 1e-10
+    spectral = curve._spectral[0]
+    assert spectral.tail is not None and spectral.lam.size == 16 and (spectral.gamma is None) == coupling
+    # far above: the series would converge too slowly with 16 modes, so more are computed
+    Z1, dZ1 = curve.operator(2 * np.pi * 9000.0, 7)
+    Z2, dZ2 = point.operator(2 * np.pi * 9000.0, 7)
+    assert curve._spectral[0].lam.size > 16
+    assert relative(Z1, Z2) < 1e-10 and relative(dZ1, dZ2) < 1e-10

@@ -20,18 +20,23 @@ ordering of ``Z + Z^T`` (less fill than SuperLU's default column ordering on
 these symmetric patterns: 3-5 times faster at 10^5 DOFs); a static or undamped
 harmonic is solved in real arithmetic.
 
-Along a curve (from the :data:`SPECTRAL_AFTER`-th frequency of a harmonic on)
-an interior of up to :data:`SPECTRAL_INTERIOR` DOFs whose damping the held
-structure's normal modes diagonalise (no damping, Rayleigh damping) is
-condensed through all of those modes instead: with ``M_ii Phi = K_ii Phi
-Lambda^-1``, ``Phi^H M_ii Phi = I`` and ``Phi^H C_ii Phi = diag(c)``,
+Along a curve, from the second frequency on (a dense interior: the fourth), a
+symmetric structure whose damping the held structure's normal modes diagonalise
+(none, Rayleigh damping, modal damping) is condensed through those modes
+instead of a factorisation per frequency and harmonic. With ``K_ii Phi = M_ii
+Phi Lambda``, ``Phi^T M_ii Phi = I``, ``Phi^T C_ii Phi = diag(c)`` and the static
+constraint modes ``Psi = -K_ii^-1 K_ir`` the condensed stiffness is
 
-``Z_ii^-1 = Phi D^-1 Phi^H``,  ``D = Lambda - Omega^2 I + i Omega diag(c)``,
+``S = S0(W) - G D^-1 G^T``,  ``D = Lambda - W^2 I + i W diag(c)``,
 
-so that ``S = Z_rr - P D^-1 Q`` with ``P = Z_ri Phi`` and ``Q = Phi^H Z_ir``
-(``m x ni``, each from three products computed once). Every mode is kept:
-this is exact, not a modal truncation; one dense eigensolution replaces a
-factorisation per frequency and harmonic.
+``S0`` the static condensation's ``K - W^2 M + i W C``, ``G = -W^2 M^_r,eta +
+i W C^_r,eta`` (Craig-Bampton coordinates with every mode: exact, not a modal
+truncation). A sparse interior with Rayleigh damping ``c = a + b lambda``
+keeps its :data:`SERIES_MODES` lowest modes (more on demand) and sums all the
+others exactly as a power series in ``(W^2 - i W a) / ((1 + i W b) lambda)``
+whose coefficients come from a few solves with ``K_ii``
+(:class:`_Tail`); otherwise an interior of up to :data:`SPECTRAL_INTERIOR`
+DOFs takes every mode from a dense eigensolution.
 
 A complex amplitude ``z = a - i b`` of ``a cos + b sin`` acted on by ``S = S_r + i S_i``
 gives the real harmonic-balance block ``[[S_r, S_i], [-S_i, S_r]]`` on ``(a, b)``.
@@ -47,9 +52,19 @@ import scipy.sparse.linalg as spla
 #: interior DOFs up to which the interior block is factorised densely
 DENSE_INTERIOR = 400
 #: interior DOFs up to which a classically damped interior is condensed through all its normal modes
+#: (a sparse interior with Rayleigh damping, of any size, through a few of them and the series of the others)
 SPECTRAL_INTERIOR = 2000
-#: frequencies of a harmonic factorised before the normal modes of its interior are computed
+#: normal modes of the held structure the series form starts with, and at most (also at most a quarter)
+SERIES_MODES = 16
+SERIES_MODES_MAX = 256
+#: largest ratio of the series' successive terms; above it more modes are computed
+SERIES_RATIO = 0.25
+#: terms of the series at most (SERIES_RATIO^60 is far below rounding)
+SERIES_TERMS = 60
+#: frequencies of a harmonic factorised before the normal modes of its interior are computed (a dense
+#: interior: all of them; a sparse one: the lowest few, :data:`SERIES_MODES`, which cost far less)
 SPECTRAL_AFTER = 3
+SERIES_AFTER = 1
 #: off-diagonal modal damping, relative to its largest entry, below which damping counts as classical
 CLASSICAL = 1e-12
 #: largest ``modes x (coupling rows)^2 / 2`` kept for the spectral interior (160 MB)
@@ -163,11 +178,87 @@ def _rayleigh(M, C, K):
     return float(ab[0]), float(ab[1])
 
 
+class _TooFewModes(Exception):
+    """The series of the omitted modes would converge too slowly at a frequency: more modes are needed."""
+
+    def __init__(self, needed: float):
+        super().__init__(needed)
+        self.needed = needed  # the eigenvalue (rad^2/s^2) the omitted modes must start above
+
+
+class _Tail:
+    """The omitted modes' share of ``X diag(1/d) X^T``, exactly, as a power series (Rayleigh damping).
+
+    With ``c = a + b lambda``, ``d_k = p lambda_k - q`` (``p = 1 + i W b``,
+    ``q = W^2 - i W a``) and for every omitted mode ``lambda_k >= lambda_c``::
+
+        sum_k x_k x_k^T / d_k = sum_j z^j / p R_j,   z = q / (p lambda_c),
+        R_j = lambda_c^j sum_k x_k x_k^T / lambda_k^(j+1) = B^T V_j,
+
+    ``V_0 = P K_ii^-1 B``, ``V_j = lambda_c P K_ii^-1 M_ii V_(j-1)``, ``P`` the
+    projection that removes the kept modes. Terms are added until they fall
+    below rounding; ``|z| <= SERIES_RATIO`` (else :class:`_TooFewModes`).
+    """
+
+    def __init__(self, solve, M, phi, lam_c: float, Bs, a: float, b: float):
+        self.solve, self.M, self.phi, self.lam_c, self.Bs, self.a, self.b = solve, M, phi, lam_c, Bs, a, b
+        self.V = self._project(solve(Bs))
+        self.R = []
+
+    def _project(self, V):
+        return V - self.phi @ (self.phi.T @ np.asarray(self.M @ V))
+
+    def _terms(self, J: int) -> np.ndarray:
+        while len(self.R) < J:
+            self.R.append(self.Bs.T @ self.V)
+            self.V = self.lam_c * self._project(self.solve(np.asarray(self.M @ self.V)))
+        return np.stack(self.R[:J])
+
+    def add(self, W, derivative: bool):
+        """``[sum_k x x^T / d_k, its W-derivative]`` over the omitted modes, each ``(len(W), p, p)``."""
+        q = W * W - 1j * W * self.a
+        p = 1.0 + 1j * W * self.b
+        z = q / (p * self.lam_c)
+        rho = float(np.max(np.abs(z)))
+        if rho > SERIES_RATIO:
+            raise _TooFewModes(float(np.max(np.abs(q / p))) / (0.5 * SERIES_RATIO))
+        J = 1 if rho == 0 else int(min(SERIES_TERMS, max(1, np.ceil(np.log(1e-17) / np.log(rho)))))
+        R = self._terms(J)
+        zj = z[:, None] ** np.arange(J)[None]  # (H, J)
+        out = [np.einsum("hj,jab->hab", zj / p[:, None], R)]
+        if derivative:
+            dz = ((2 * W - 1j * self.a) * p - q * (1j * self.b)) / (self.lam_c * p * p)
+            zjm1 = np.concatenate([np.zeros((W.size, 1), dtype=complex), zj[:, :-1]], axis=1)  # z^(j-1)
+            dcoef = np.arange(J)[None] * zjm1 * (dz / p)[:, None] - zj * (1j * self.b / (p * p))[:, None]
+            out.append(np.einsum("hj,jab->hab", dcoef, R))
+        return out
+
+
+def _static_part(blocks, psi):
+    """``(rr, Bs, gamma)``: the condensed ``(K^_rr, M^_rr, C^_rr)``, the coupling columns and their damping.
+
+    ``Bs`` holds ``B = M_ir + M_ii Psi`` (the mass coupling of the constraint modes),
+    then ``C_ir + C_ii Psi`` unless that is ``gamma B`` (Rayleigh damping; ``gamma`` None otherwise).
+    """
+    (Mrr, Mri, Mir, Mii), (Crr, Cri, Cir, Cii), (Krr, Kri, Kir, Kii) = blocks
+    Mir, Cir = np.asarray(Mir), np.asarray(Cir)
+    Mi_psi, Ci_psi = np.asarray(Mii @ psi), np.asarray(Cii @ psi)
+    rr = (np.asarray(Krr) + np.asarray(Kri) @ psi,
+          np.asarray(Mrr) + np.asarray(Mri) @ psi + psi.T @ Mir + psi.T @ Mi_psi,
+          np.asarray(Crr) + np.asarray(Cri) @ psi + psi.T @ Cir + psi.T @ Ci_psi)
+    B, BC = Mir + Mi_psi, Cir + Ci_psi
+    gamma = float(np.sum(BC * B) / max(np.sum(B * B), 1e-300))
+    # C_ir + C_ii Psi cancels (to rounding) for C = beta K: compare with the size of its two terms
+    if np.linalg.norm(BC - gamma * B) <= CLASSICAL * (np.linalg.norm(Cir) + np.linalg.norm(Ci_psi)):
+        return rr, B, gamma
+    return rr, np.hstack([B, BC]), None
+
+
 class _SpectralInterior:
-    """The interior condensed through all normal modes of the held structure (see the module docstring).
+    """The interior condensed through the normal modes of the held structure (see the module docstring).
 
     In the coordinates ``q_i = Psi q_r + Phi eta`` (``Psi = -K_ii^-1 K_ir``, the
-    static constraint modes; ``Phi`` every fixed-interface mode) the stiffness
+    static constraint modes; ``Phi`` the fixed-interface modes) the stiffness
     couples nothing and ``S = S0(W) - G D^-1 G^T`` with
     ``S0 = K^_rr - W^2 M^_rr + i W C^_rr``, ``G = -W^2 M^_r,eta + i W C^_r,eta``.
     ``G D^-1 G^T`` and its derivative are sums of ``X diag(w) X^T`` over the
@@ -175,26 +266,29 @@ class _SpectralInterior:
     with Rayleigh damping) with weights ``w`` from ``1/d``: real products, all
     harmonics in one.
 
-    Build with :meth:`of`, which returns None where it does not apply: ``M``,
-    ``C``, ``K`` not exactly symmetric, ``M_ii`` not positive definite, ``K_ii``
-    singular, or damping the modes do not diagonalise (off-diagonal modal
-    damping above :data:`CLASSICAL` of its largest entry).
+    :meth:`full`: every mode from a dense eigensolution; :meth:`series`: a few
+    modes from a sparse one, the others summed exactly by :class:`_Tail`. Both
+    return None where they do not apply: ``M_ii`` not positive definite,
+    ``K_ii`` singular, damping the modes do not diagonalise (off-diagonal modal
+    damping above :data:`CLASSICAL` of its largest entry; the series needs
+    Rayleigh damping of the interior).
     """
 
-    def __init__(self, lam, c, phi, psi, rr, X, gamma):
+    def __init__(self, lam, c, phi, psi, rr, X, gamma, tail=None):
         self.lam, self.c, self.phi, self.psi = lam, c, phi, psi
         self.rr = rr  # K^_rr, M^_rr, C^_rr, (m, m)
-        self.X = X  # (p, ni): M^_r,eta, then C^_r,eta unless gamma is not None (C^_r,eta = gamma M^_r,eta)
-        # X diag(w) X^T = w @ pairs, unpacked: the products X[a] X[b] (a <= b) of every mode, (ni, pairs)
+        self.X = X  # (p, modes): M^_r,eta, then C^_r,eta unless gamma is not None (C^_r,eta = gamma M^_r,eta)
+        # X diag(w) X^T = w @ pairs, unpacked: the products X[a] X[b] (a <= b) of every mode, (modes, pairs)
         self.upper = np.triu_indices(X.shape[0])
         self.pairs = np.ascontiguousarray((X[self.upper[0]] * X[self.upper[1]]).T)
         self.gamma = gamma
+        self.tail = tail
         self.m = rr[0].shape[0]
         self.damped = bool(np.any(c)) or bool(np.any(rr[2])) or gamma != 0.0
 
     @classmethod
-    def of(cls, blocks):
-        (Mrr, Mri, Mir, Mii), (Crr, Cri, Cir, Cii), (Krr, Kri, Kir, Kii) = blocks
+    def full(cls, blocks):
+        (_, _, Mir, Mii), (_, _, _, Cii), (_, _, Kir, Kii) = blocks
         try:
             lam, phi = sla.eigh(_dense(Kii), _dense(Mii), driver="gvd", check_finite=False)
         except (np.linalg.LinAlgError, ValueError):  # M_ii not positive definite
@@ -210,24 +304,47 @@ class _SpectralInterior:
             if off.size and off.max() > CLASSICAL * max(float(np.abs(Cm).max()), 1e-300):
                 return None
             c = np.real(np.diag(Cm)).copy()
-        Kir, Mir, Cir = (np.asarray(A) for A in (Kir, Mir, Cir))
-        psi = -phi @ ((phi.T @ Kir) / lam[:, None])  # -K_ii^-1 K_ir through the modes
-        Mi_psi, Ci_psi = np.asarray(Mii @ psi), np.asarray(Cii @ psi)
-        rr = (np.asarray(Krr) + np.asarray(Kri) @ psi,
-              np.asarray(Mrr) + np.asarray(Mri) @ psi + psi.T @ Mir + psi.T @ Mi_psi,
-              np.asarray(Crr) + np.asarray(Cri) @ psi + psi.T @ Cir + psi.T @ Ci_psi)
-        XM = ((Mir + Mi_psi).T @ phi)  # (m, ni)
-        XC = ((Cir + Ci_psi).T @ phi)
-        gamma = float(np.sum(XC * XM) / max(np.sum(XM * XM), 1e-300))
-        # C_ir + C_ii Psi cancels (to rounding) for C = beta K: compare with the size of its two terms
-        scale = np.linalg.norm(Cir.T @ phi) + np.linalg.norm(Ci_psi.T @ phi)
-        if np.linalg.norm(XC - gamma * XM) <= CLASSICAL * scale:
-            X = XM  # Rayleigh damping (or none): C^_r,eta = gamma M^_r,eta
-        else:
-            X, gamma = np.vstack([XM, XC]), None
+        psi = -phi @ ((phi.T @ np.asarray(Kir)) / lam[:, None])  # -K_ii^-1 K_ir through the modes
+        rr, Bs, gamma = _static_part(blocks, psi)
+        X = Bs.T @ phi
         if X.shape[0] * (X.shape[0] + 1) // 2 * X.shape[1] > PAIRS_LIMIT:
             return None
         return cls(lam, c, phi, psi, rr, X, gamma)
+
+    @classmethod
+    def series(cls, blocks, needed: float = 0.0):
+        """The lowest :data:`SERIES_MODES` modes (more until the omitted ones start above ``needed``) and the tail."""
+        (_, _, Mir, Mii), (_, _, _, Cii), (_, _, Kir, Kii) = blocks
+        rayleigh = _rayleigh(Mii, Cii, Kii)
+        if rayleigh is None:
+            return None
+        K, M = sp.csc_matrix(Kii), sp.csr_matrix(Mii)
+        n = K.shape[0]
+        try:
+            lu = spla.splu(K, permc_spec=ORDERING)
+        except RuntimeError:  # K_ii exactly singular
+            return None
+        psi = -lu.solve(np.asarray(Kir, dtype=float))
+        op = spla.LinearOperator(K.shape, matvec=lu.solve, dtype=float)
+        most = min(SERIES_MODES_MAX, n // 4)  # beyond: a dense spectrum, better computed whole
+        k = min(SERIES_MODES, most)
+        while True:
+            try:
+                lam, phi = spla.eigsh(K, k=k, M=M, sigma=0.0, which="LM", OPinv=op)
+            except (spla.ArpackError, ValueError):
+                return None
+            # Rayleigh-Ritz on the converged subspace: exactly mass-orthonormal modes
+            lam, v = sla.eigh(phi.T @ (K @ phi), phi.T @ (M @ phi))
+            phi = phi @ v
+            if lam[-1] >= needed or k >= most:
+                break
+            k = min(2 * k, most)
+        if lam[0] <= 1e-12 * max(abs(lam[-1]), 1e-300) or lam[-1] < needed:
+            return None
+        rr, Bs, gamma = _static_part(blocks, psi)
+        c = rayleigh[0] + rayleigh[1] * lam
+        tail = _Tail(lu.solve, M, phi, float(lam[-1]), Bs, *rayleigh)
+        return cls(lam, c, phi, psi, rr, Bs.T @ phi, gamma, tail)
 
     def _factors(self, W):
         """``(f, f')``, each ``(len(W), blocks)``: the coupling ``G = sum_j f_j X_j`` and ``dG/dW``."""
@@ -236,14 +353,17 @@ class _SpectralInterior:
         return np.stack([-W * W, 1j * W], axis=1), np.stack([-2 * W, np.full(W.shape, 1j)], axis=1)
 
     def _d(self, W):
-        """The diagonal of ``D`` for each frequency, ``(len(W), ni)``; None when one is singular."""
+        """The diagonal of ``D`` for each frequency, ``(len(W), modes)``; None when one is singular."""
         d = self.lam[None] - (W * W)[:, None] + ((1j * W)[:, None] * self.c[None] if self.damped else 0.0)
         if np.any(np.abs(d) <= 1e-14 * np.max(np.abs(d), axis=1, keepdims=True)):
             return None
         return d
 
     def evaluate(self, hs, omega: float, derivative: bool):
-        """``(S, S')``, each ``(len(hs), m, m)`` complex, for harmonics ``hs`` at ``omega``; None when ``D`` is singular."""
+        """``(S, S')``, each ``(len(hs), m, m)`` complex, for harmonics ``hs`` at ``omega``; None when ``D`` is singular.
+
+        Raises :class:`_TooFewModes` when the tail's series would converge too slowly.
+        """
         hs = np.asarray(hs, dtype=float)
         W = hs * omega
         d = self._d(W)
@@ -252,12 +372,14 @@ class _SpectralInterior:
         u = 1.0 / d
         weights = [u] if not derivative else [u, (2 * W[:, None] - 1j * self.c[None]) * u * u]  # 1/d, d(1/d)/dW
         parts = [w.real for w in weights] + ([w.imag for w in weights] if self.damped else [])
-        wts = np.stack(parts, axis=1)  # (H, q, ni)
+        wts = np.stack(parts, axis=1)  # (H, q, modes)
         H, q, p = W.size, wts.shape[1], self.X.shape[0]
         Y = np.empty((H, q, p, p))
         Y[:, :, self.upper[0], self.upper[1]] = Y[:, :, self.upper[1], self.upper[0]] = wts @ self.pairs
         k = len(weights)
         Yc = Y[:, :k] + (1j * Y[:, k:] if self.damped else 0.0)  # (H, k, p, p): X diag(w) X^T, complex w
+        if self.tail is not None:
+            Yc = Yc + np.stack(self.tail.add(W, derivative), axis=1)
         f, fp = self._factors(W)
         nb, m = f.shape[1], self.m
         Kr, Mr, Cr = self.rr
@@ -280,10 +402,11 @@ class _SpectralInterior:
         return S, dS
 
     def interior(self, W: float, q_r):
-        """Interior amplitudes ``Psi q_r - Phi D^-1 G^T q_r`` at the frequency ``W``; None when ``D`` is singular."""
+        """Interior amplitudes ``Psi q_r - Phi D^-1 G^T q_r`` at the frequency ``W``; None when ``D`` is singular
+        or only some modes are kept (the interior is then solved by factorisation)."""
         Wa = np.array([float(W)])
         d = self._d(Wa)
-        if d is None:
+        if d is None or self.tail is not None:
             return None
         f, _ = self._factors(Wa)
         m = self.m
@@ -360,17 +483,41 @@ class Condensation:
 
     def _spectral_for(self, h: int, omega: float):
         """The spectral interior of harmonic ``h``'s matrices, once they were factorised at
-        :data:`SPECTRAL_AFTER` excitation frequencies (a single point never pays for the eigensolution)."""
+        :data:`SPECTRAL_AFTER` (dense) or :data:`SERIES_AFTER` (sparse) excitation frequencies: a single
+        point never pays for an eigensolution."""
         k = h if self._per_harmonic else 0
         if k in self._spectral:
             return self._spectral[k]
         seen = self._factorisations.setdefault(k, set())
-        if not self._symmetric or self.interior.size > SPECTRAL_INTERIOR or len(seen | {omega}) <= SPECTRAL_AFTER:
+        if not self._symmetric or len(seen | {omega}) <= (SERIES_AFTER if self.sparse else SPECTRAL_AFTER):
             if h:  # the static harmonic is factorised once: it does not count
                 seen.add(omega)
             return None
-        self._spectral[k] = _SpectralInterior.of(self._blocks(h))
+        self._spectral[k] = self._build_spectral(h)
         return self._spectral[k]
+
+    def _build_spectral(self, h: int, needed: float = 0.0):
+        """The series form for a sparse interior, else (or where it does not apply) every mode up to
+        :data:`SPECTRAL_INTERIOR` interior DOFs; None where neither applies."""
+        blocks = self._blocks(h)
+        spectral = _SpectralInterior.series(blocks, needed) if self.sparse else None
+        if spectral is None and self.interior.size <= SPECTRAL_INTERIOR:
+            spectral = _SpectralInterior.full(blocks)
+        return spectral
+
+    def _spectral_evaluate(self, spectral, h: int, hs, omega: float, derivative: bool):
+        """``spectral.evaluate``, computing more modes when the series would converge too slowly (None: factorise)."""
+        try:
+            return spectral.evaluate(hs, omega, derivative)
+        except _TooFewModes as more:
+            k = h if self._per_harmonic else 0
+            self._spectral[k] = spectral = self._build_spectral(h, more.needed)
+            if spectral is None:
+                return None
+            try:
+                return spectral.evaluate(hs, omega, derivative)
+            except _TooFewModes:
+                return None
 
     def _factor(self, Zii):
         """``solve(b, trans)`` with a factorisation of ``Zii`` (real or complex ``b``), None when singular."""
@@ -430,7 +577,7 @@ class Condensation:
         blocks = self._blocks(h)
         Zrr, Zri, Zir = (self._z(blocks, key, k) for k in range(3))
         spectral = self._spectral_for(h, omega) if self.interior.size else None
-        result = spectral.evaluate([h], omega, derivative) if spectral is not None else None
+        result = self._spectral_evaluate(spectral, h, [h], omega, derivative) if spectral is not None else None
         if result is not None:
             return result[0][0], (None if result[1] is None else result[1][0])
         if self.interior.size == 0:
@@ -476,7 +623,8 @@ class Condensation:
     def _harmonics(self, omega: float, H: int):
         """``[(S_h, S'_h) for h = 1..H]``: all at once through the spectral interior once it applies."""
         spectral = self._spectral_for(1, omega) if self.interior.size and not self._per_harmonic else None
-        result = spectral.evaluate(np.arange(1, H + 1), omega, True) if spectral is not None else None
+        result = self._spectral_evaluate(spectral, 1, np.arange(1, H + 1), omega, True) if spectral is not None \
+            else None
         if result is not None:
             return list(zip(*result))
         return [self.harmonic(h, omega) for h in range(1, H + 1)]
