@@ -178,6 +178,23 @@ def _rayleigh(M, C, K):
     return float(ab[0]), float(ab[1])
 
 
+class _Products:
+    """``X diag(w) X^T`` for many real weight vectors ``w`` at once: one product with the pairs ``X[a] X[b]``."""
+
+    def __init__(self, X):
+        self.p = X.shape[0]
+        self.upper = np.triu_indices(self.p)
+        self.pairs = np.ascontiguousarray((X[self.upper[0]] * X[self.upper[1]]).T)  # (modes, pairs)
+
+    def __call__(self, wts) -> np.ndarray:
+        """``(..., p, p)`` from weights ``(..., modes)``."""
+        flat = wts @ self.pairs
+        out = np.empty(wts.shape[:-1] + (self.p, self.p))
+        out[..., self.upper[0], self.upper[1]] = flat
+        out[..., self.upper[1], self.upper[0]] = flat
+        return out
+
+
 class _TooFewModes(Exception):
     """The series of the omitted modes would converge too slowly at a frequency: more modes are needed."""
 
@@ -278,9 +295,7 @@ class _SpectralInterior:
         self.lam, self.c, self.phi, self.psi = lam, c, phi, psi
         self.rr = rr  # K^_rr, M^_rr, C^_rr, (m, m)
         self.X = X  # (p, modes): M^_r,eta, then C^_r,eta unless gamma is not None (C^_r,eta = gamma M^_r,eta)
-        # X diag(w) X^T = w @ pairs, unpacked: the products X[a] X[b] (a <= b) of every mode, (modes, pairs)
-        self.upper = np.triu_indices(X.shape[0])
-        self.pairs = np.ascontiguousarray((X[self.upper[0]] * X[self.upper[1]]).T)
+        self.products = _Products(X)
         self.gamma = gamma
         self.tail = tail
         self.m = rr[0].shape[0]
@@ -372,11 +387,8 @@ class _SpectralInterior:
         u = 1.0 / d
         weights = [u] if not derivative else [u, (2 * W[:, None] - 1j * self.c[None]) * u * u]  # 1/d, d(1/d)/dW
         parts = [w.real for w in weights] + ([w.imag for w in weights] if self.damped else [])
-        wts = np.stack(parts, axis=1)  # (H, q, modes)
-        H, q, p = W.size, wts.shape[1], self.X.shape[0]
-        Y = np.empty((H, q, p, p))
-        Y[:, :, self.upper[0], self.upper[1]] = Y[:, :, self.upper[1], self.upper[0]] = wts @ self.pairs
-        k = len(weights)
+        Y = self.products(np.stack(parts, axis=1))  # (H, q, p, p) for the weights (H, q, modes)
+        H, k = W.size, len(weights)
         Yc = Y[:, :k] + (1j * Y[:, k:] if self.damped else 0.0)  # (H, k, p, p): X diag(w) X^T, complex w
         if self.tail is not None:
             Yc = Yc + np.stack(self.tail.add(W, derivative), axis=1)

@@ -23,7 +23,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .condensation import CLASSICAL, ORDERING, Condensation, SingularInteriorError
+from .condensation import CLASSICAL, ORDERING, Condensation, SingularInteriorError, _Products
 
 #: DOFs up to which the eigenproblem is solved densely
 DENSE_EIGEN = 600
@@ -91,6 +91,7 @@ class ModalCondensation:
         classical = off.size == 0 or off.max() <= CLASSICAL * max(float(np.abs(self.modal_damping).max()), 1e-300)
         # diagonal modal damping (Rayleigh, none): every harmonic from a few products of (m, modes) arrays
         self._damping = np.diag(self.modal_damping).copy() if classical else None
+        self._products = _Products(self.phi_r)  # Phi_r diag(w) Phi_r^T
         self.residual = flex[self.retained] - (self.phi_r / (lam - s)) @ self.phi_r.T
         self.flex_full = flex  # (ndof, m): the shifted static flexibility, for recovery
         self.static = Condensation(M, C, K, self.retained)  # exact for h = 0
@@ -123,12 +124,15 @@ class ModalCondensation:
             h = int(hs[np.argmin(np.min(np.abs(d), axis=1))])
             raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
                                         f"({h * omega:.6g} rad/s); add damping")
-        S = self._stiffness((self.phi_r[None] / d[:, None, :]) @ self.phi_r.T + self.residual,
-                            f"a harmonic of {omega:.6g} rad/s")
+        u = 1.0 / d
+        weights = [u] if not derivative else [u, ((-2.0 * hs * hs * omega)[:, None]
+                                                   + (1j * hs)[:, None] * self._damping[None]) * u * u]  # D'/D^2
+        Y = self._products(np.stack([w.real for w in weights] + [w.imag for w in weights], axis=1))
+        k = len(weights)
+        S = self._stiffness(Y[:, 0] + 1j * Y[:, k] + self.residual, f"a harmonic of {omega:.6g} rad/s")
         if not derivative:
             return S, None
-        dd = (-2.0 * hs * hs * omega)[:, None] + (1j * hs)[:, None] * self._damping[None]  # dD/domega
-        dG = -(self.phi_r[None] * (dd / (d * d))[:, None, :]) @ self.phi_r.T
+        dG = -(Y[:, 1] + 1j * Y[:, k + 1])
         return S, -S @ dG @ S
 
     def harmonic(self, h: int, omega: float, *, derivative: bool = True):
