@@ -33,7 +33,6 @@ OPENBLAS_NUM_THREADS=1 on a shared machine (OpenBLAS's threads slow the reductio
 from __future__ import annotations
 
 import sys
-import time
 import warnings
 from pathlib import Path
 
@@ -41,6 +40,10 @@ import numpy as np
 
 from microslip import MicroslipModel, Structure, frequency_response
 from microslip.frequency import StepControl, frequency_point
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import _common  # noqa: E402  (the benchmarks' shared helpers, next to this file)
+from _common import best_of, in_temporary_directory, pyharm_missing, run_pyharm  # noqa: E402
 
 A_TOL = 1e-4
 
@@ -51,22 +54,9 @@ def jenkins_oscillator() -> Structure:
     return s
 
 
-def peak(omega, amp, omega_scale=100.0):
-    """Peak amplitude: parabola through the highest point and its neighbours, in arclength."""
-    i = int(np.argmax(amp))
-    w, a = omega[i - 1:i + 2], amp[i - 1:i + 2]
-    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(w) / omega_scale, np.diff(a) / amp[i]))])
-    p = np.polyfit(s, a, 2)
-    return float(np.polyval(p, -p[1] / (2 * p[0])))
-
-
-def best_of(fn, repeat=5):
-    best, result = np.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        result = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, result
+def peak(omega, amp):
+    """Peak amplitude (m), read as :func:`_common.peak` does with the 100 rad/s frequency scale."""
+    return _common.peak(omega, amp, 100.0)
 
 
 def microslip_curve(control=None, stability=False):
@@ -103,16 +93,7 @@ def pyharm_input(ds):
 
 def pyharm_curve(ds):
     """(seconds, omega, first-harmonic amplitude, points) of a pyHarm run."""
-    import logging
-
-    import pyHarm
-
-    logging.disable(logging.CRITICAL)
-    maestro = pyHarm.Maestro(pyharm_input(ds))
-    t0 = time.perf_counter()
-    maestro.operate()
-    elapsed = time.perf_counter() - t0
-    X = np.array([s.x for s in maestro.nls["frf"].SolList if s.flag_accepted])
+    elapsed, X, _ = run_pyharm(pyharm_input(ds))
     omega = X[:, -1] * 100.0  # undo the nondimensionalisation (wc = 100 rad/s, lc = 5 mm)
     amp = np.hypot(X[:, 1], X[:, 2]) * 5e-3
     keep = (omega >= 60.0) & (omega <= 160.0)
@@ -139,10 +120,9 @@ def main():
 
 def compare_with_pyharm(t_ms, a_ref):
     """pyHarm's curve to the same peak accuracy, timed, and the ratio to microslip's time ``t_ms``."""
-    try:
-        import pyHarm  # noqa: F401  (only checking that it is installed)
-    except Exception as exc:
-        print(f"pyHarm is not installed ({type(exc).__name__}); install the bench extra to compare. Skipped.")
+    missing = pyharm_missing()
+    if missing:
+        print(f"pyHarm is not installed ({missing.split(':')[0]}); install the bench extra to compare. Skipped.")
         return
     pyharm_curve(0.2)  # warm-up: JIT compilation of pyHarm's kernels
     for ds in (0.05, 0.04, 0.03, 0.02, 0.01):
@@ -205,20 +185,6 @@ def reduced_fe_stability():
               + (f" ({modes} modes)" if modes else "") + f": curve alone {t:.2f} s for {r.points} points "
               f"({slipping} with a contact slipping)")
         stability_cost(f"FE blade {reduction}", run, t, repeat=2)
-
-
-def in_temporary_directory(fn):
-    """Run ``fn()`` from a temporary working directory: pyHarm writes a '.pyHarm' folder there."""
-    import os
-    import tempfile
-
-    here = os.getcwd()
-    with tempfile.TemporaryDirectory() as tmp:
-        os.chdir(tmp)
-        try:
-            return fn()
-        finally:
-            os.chdir(here)
 
 
 if __name__ == "__main__":

@@ -179,6 +179,27 @@ def test_a_dof_held_only_by_friction_is_named_with_the_fix():
     assert frequency_point(grounded, [2.0], 100.0, harmonics=3).points == 1
 
 
+def test_a_large_sparse_structure_is_checked_by_a_sparse_factorisation_and_still_named():
+    import scipy.sparse as sp
+
+    from microslip.frequency import response
+
+    n = 400  # above SPARSE_CHECK: the shift-invert check runs first
+    chain = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1], format="lil") * 1e6
+    model = MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0)
+    grounded = Structure(sp.identity(n, format="csr") * 0.01, None, chain.tocsr())
+    grounded.add_contact(model, tangential=n - 1, approach=1e-6)
+    assert response._surely_determined(grounded)  # no dense eigensolution for a well-held structure
+    chain[n - 1, :] = 0.0  # the last DOF loses its springs: only the contact's friction holds it
+    chain[:, n - 1] = 0.0
+    loose = Structure(sp.identity(n, format="csr") * 0.01, None, chain.tocsr())
+    loose.add_contact(model, tangential=n - 1, approach=1e-6)
+    assert not response._surely_determined(loose)
+    with pytest.raises(ValueError, match=r"the motion of DOF\(s\) \[399\] has no stiffness .* held only by the "
+                                         r"friction of a contact"):
+        static_solution(loose)
+
+
 def test_cycle_work_checks_its_coefficients():
     from microslip.frequency import cycle_work
 

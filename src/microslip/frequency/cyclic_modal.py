@@ -276,6 +276,10 @@ class CyclicModalCondensation:
     #: the real block-diagonal operator of the harmonic balance, from :meth:`harmonic`
     operator = Condensation.operator
 
+    def _harmonics(self, omega: float, H: int):
+        """``[(S_h, S'_h) for h = 1..H]`` (for :meth:`operator`)."""
+        return [self.harmonic(h, omega) for h in range(1, H + 1)]
+
     def harmonic(self, h: int, omega: float, *, derivative: bool = True):
         """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`.
 

@@ -287,19 +287,19 @@ class HarmonicBalance:
         return R, C, which, contact, value, p, q
 
     def _contact_jacobian(self):
-        Bt, Bn = self.Bt, self.Bn
-        if self.dense:
-            # one pass: the harmonic blocks of all contacts times their outer products, as one product
-            nc, nb, m = self.nc, self.nb, self.ndof
-            blocks = np.concatenate([self.JTt, self.JTn, self.JNn]).reshape(3 * nc, nb * nb)
-            outer = np.concatenate([np.einsum("ic,jc->cij", Bt, Bt), np.einsum("ic,jc->cij", Bt, Bn),
-                                    np.einsum("ic,jc->cij", Bn, Bn)]).reshape(3 * nc, m * m)
-            J = (blocks.T @ outer).reshape(nb, nb, m, m).transpose(0, 2, 1, 3)
-            return J.reshape(self.n, self.n)
+        # one pass: every non-zero of every contact's outer products times its harmonic block
         R, C, which, contact, value, p, q = self._pattern
         blocks = np.stack([self.JTt, self.JTn, self.JNn])  # (3, nc, nb, nb)
         data = (blocks[which[None, :], contact[None, :], p[:, None], q[:, None]] * value[None, :]).ravel()
+        if self.dense:  # summed into the dense matrix (contacts may share DOFs)
+            return np.bincount(self._dense_pattern, weights=data, minlength=self.n * self.n).reshape(self.n, self.n)
         return sp.csc_matrix((data, (R, C)), shape=(self.n, self.n))
+
+    @cached_property
+    def _dense_pattern(self) -> np.ndarray:
+        """Flat indices ``R n + C`` of :attr:`_pattern` into the dense Jacobian."""
+        R, C = self._pattern[:2]
+        return R.astype(np.int64) * self.n + C
 
     # -- linear algebra ---------------------------------------------------------
     def solve(self, A, b) -> np.ndarray:

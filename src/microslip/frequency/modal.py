@@ -28,7 +28,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .condensation import Condensation, SingularInteriorError
+from .condensation import CLASSICAL, ORDERING, Condensation, SingularInteriorError, _Products
 
 #: DOFs up to which the eigenproblem is solved densely
 DENSE_EIGEN = 600
@@ -79,7 +79,7 @@ class ModalCondensation:
             solve = lambda b: sla.cho_solve(factor, b)  # noqa: E731
             flex = solve(np.eye(ndof)[:, self.retained])
         else:
-            lu = spla.splu(sp.csc_matrix(shifted))
+            lu = spla.splu(sp.csc_matrix(shifted), permc_spec=ORDERING)
             op = spla.LinearOperator(shifted.shape, matvec=lu.solve, dtype=float)
             lam, phi = spla.eigsh(sp.csr_matrix(K), k=k, M=sp.csr_matrix(M), sigma=s, which="LM", OPinv=op)
             order = np.argsort(lam)
@@ -97,6 +97,11 @@ class ModalCondensation:
         self.phi_r = phi[self.retained]
         Cm = phi.T @ (C @ phi)
         self.modal_damping = 0.5 * (Cm + Cm.T)
+        off = np.abs(self.modal_damping - np.diag(np.diag(self.modal_damping)))
+        classical = off.size == 0 or off.max() <= CLASSICAL * max(float(np.abs(self.modal_damping).max()), 1e-300)
+        # diagonal modal damping (Rayleigh, none): every harmonic from a few products of (m, modes) arrays
+        self._damping = np.diag(self.modal_damping).copy() if classical else None
+        self._products = _Products(self.phi_r)  # Phi_r diag(w) Phi_r^T
         self.residual = flex[self.retained] - (self.phi_r / (lam - s)) @ self.phi_r.T
         self.flex_full = flex  # (ndof, m): the shifted static flexibility, for recovery
         # the omitted modes' damping, the series sum_k (-i Omega)^k [F (C F)^k - kept modes' share]: under
@@ -118,11 +123,60 @@ class ModalCondensation:
             dD = np.diag(np.full(self.modes, -2.0 * h * h * omega)).astype(complex) + (1j * h) * self.modal_damping
         return D, dD
 
+    @staticmethod
+    def _stiffness(G, where: str):
+        """``S = G^-1`` of the receptance(s) ``G``, or the error that names ``where``."""
+        try:
+            return np.linalg.inv(G)
+        except np.linalg.LinAlgError:
+            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at {where}; "
+                                        f"keep more modes") from None
+
+    def _omitted(self, hs, omega: float, derivative: bool):
+        """The omitted modes' damping in the receptance of harmonics ``hs`` and its derivative in ``omega``.
+
+        ``sum_k (-i h omega)^k R_k`` and ``sum_k k (-i h) (-i h omega)^(k-1) R_k``, each
+        ``(len(hs), m, m)`` complex (m/N, m s/N); zeros without damping.
+        """
+        m = self.phi_r.shape[0]
+        extra = np.zeros((hs.size, m, m), dtype=complex)
+        dextra = np.zeros_like(extra) if derivative else None
+        z = -1j * hs * omega
+        for k, (_, _, R) in enumerate(self.damping_terms, 1):
+            extra += (z ** k)[:, None, None] * R
+            if derivative:
+                dextra += (k * (-1j * hs) * z ** (k - 1))[:, None, None] * R
+        return extra, dextra
+
+    def _diagonal(self, hs, omega: float, derivative: bool):
+        """``(S, S')``, each ``(len(hs), m, m)``, for harmonics ``hs >= 1`` when the modal damping is diagonal."""
+        hs = np.asarray(hs, dtype=float)
+        W = hs * omega
+        d = self.eigenvalues[None] - (W * W)[:, None] + (1j * W)[:, None] * self._damping[None]
+        if np.any(np.abs(d) <= 1e-14 * np.max(np.abs(d), axis=1, keepdims=True)):
+            h = int(hs[np.argmin(np.min(np.abs(d), axis=1))])
+            raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
+                                        f"({h * omega:.6g} rad/s); add damping")
+        u = 1.0 / d
+        weights = [u] if not derivative else [u, ((-2.0 * hs * hs * omega)[:, None]
+                                                   + (1j * hs)[:, None] * self._damping[None]) * u * u]  # D'/D^2
+        Y = self._products(np.stack([w.real for w in weights] + [w.imag for w in weights], axis=1))
+        k = len(weights)
+        extra, dextra = self._omitted(hs, omega, derivative)
+        S = self._stiffness(Y[:, 0] + 1j * Y[:, k] + self.residual + extra, f"a harmonic of {omega:.6g} rad/s")
+        if not derivative:
+            return S, None
+        dG = -(Y[:, 1] + 1j * Y[:, k + 1]) + dextra
+        return S, -S @ dG @ S
+
     def harmonic(self, h: int, omega: float, *, derivative: bool = True):
         """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`."""
         if h == 0:
             S, _ = self.static.harmonic(0, omega, derivative=False)
             return S, (np.zeros_like(S) if derivative else None)
+        if self._damping is not None:
+            S, dS = self._diagonal([h], omega, derivative)
+            return S[0], (None if dS is None else dS[0])
         Omega = h * omega
         D, dD = self._dynamic(Omega, h, omega, derivative)
         try:
@@ -130,21 +184,22 @@ class ModalCondensation:
         except np.linalg.LinAlgError:
             raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
                                         f"({Omega:.6g} rad/s); add damping") from None
-        damping = [(-1j * Omega) ** (k - 1) * R for k, (_, _, R) in enumerate(self.damping_terms, 1)]
-        G = self.phi_r @ Y + self.residual + (-1j * Omega) * sum(damping)
-        try:
-            S = np.linalg.inv(G)
-        except np.linalg.LinAlgError:
-            raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at harmonic {h} "
-                                        f"({Omega:.6g} rad/s); keep more modes") from None
+        extra, dextra = self._omitted(np.array([float(h)]), omega, derivative)
+        S = self._stiffness(self.phi_r @ Y + self.residual + extra[0], f"harmonic {h} ({Omega:.6g} rad/s)")
         if not derivative:
             return S, None
         # G' = -Phi_r D^-1 D' D^-1 Phi_r^T ;  S' = -S G' S
         Yt = np.linalg.solve(D.T, self.phi_r.T.astype(complex))
-        dG = -(Yt.T @ dD @ Y) + (-1j * h) * sum(k * term for k, term in enumerate(damping, 1))
+        dG = -(Yt.T @ dD @ Y) + dextra[0]
         return S, -S @ dG @ S
 
     operator = Condensation.operator
+
+    def _harmonics(self, omega: float, H: int):
+        """``[(S_h, S'_h) for h = 1..H]`` (for :meth:`operator`)."""
+        if self._damping is not None:
+            return list(zip(*self._diagonal(np.arange(1, H + 1), omega, True)))
+        return [self.harmonic(h, omega) for h in range(1, H + 1)]
 
     def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
         """Every DOF's real coefficients ``(2H+1, ndof)`` (m) from the retained ones ``(2H+1, m)``.

@@ -421,6 +421,31 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
 DETERMINED_CHECK = 2000
 
 
+#: sparse structures above this many DOFs are checked with a sparse factorisation first; the dense
+#: eigensolution runs only when that finds a direction with (nearly) no stiffness, to name it
+SPARSE_CHECK = 200
+
+
+def _surely_determined(structure: Structure) -> bool:
+    """True when a sparse shift-invert eigensolution puts the smallest eigenvalue of ``K`` plus the contacts'
+    normal springs above ``1e-11`` of a bound on the largest (the dense check's threshold is ``1e-12``)."""
+    if not sp.issparse(structure.K) or structure.ndof <= SPARSE_CHECK:
+        return False
+    _, Bn, _ = structure.contact_directions()
+    kn = np.array([contact.model.kn.sum() for contact in structure.contacts])
+    Bs = sp.csr_matrix(Bn)
+    K = sp.csr_matrix(structure.K)
+    K = (0.5 * (K + K.T) + Bs @ sp.diags(kn) @ Bs.T).tocsc()
+    scale = float(abs(K).sum(axis=1).max())  # at least the largest eigenvalue
+    if not scale > 0:
+        return False
+    try:
+        lam = spla.eigsh(K, k=1, sigma=-1e-10 * scale, which="LM", return_eigenvectors=False)
+    except (spla.ArpackError, RuntimeError):  # no convergence or an exactly singular shifted matrix
+        return False
+    return bool(lam[0] > 1e-11 * scale)
+
+
 def _check_determined(structure: Structure) -> None:
     """Refuse a structure with a direction that nothing but friction holds: its mean position is undetermined.
 
@@ -430,6 +455,8 @@ def _check_determined(structure: Structure) -> None:
     wanders along it.
     """
     if structure.ndof > DETERMINED_CHECK or isinstance(structure, CyclicStructure):
+        return
+    if _surely_determined(structure):
         return
     K = structure.K.toarray() if sp.issparse(structure.K) else np.array(structure.K, dtype=float)
     Bt, Bn, _ = structure.contact_directions()
@@ -705,7 +732,7 @@ def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> 
             peak = int(np.argmax(np.abs(xs[:, hb.ndof:]).max(axis=1)))
             estimate = getattr(linear, "error", None)  # a cyclic sector's, in its diameters
             extra["reduction_error"] = (estimate(float(omegas[peak])) if estimate
-                                        else modal_error(hb.structure, linear, float(omegas[peak])))
+                                        else modal_error(linear, float(omegas[peak])))
     return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(omegas.size, hb.nb, hb.ndof),
                              q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters,
                              *static, complete=complete, **extra)

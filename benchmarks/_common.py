@@ -1,0 +1,83 @@
+"""Helpers the benchmarks share: timing, reading a peak off a curve, running pyHarm (an optional comparison).
+
+pyHarm (``pyHarm-os``, the ``bench`` extra of pyproject.toml) is imported only inside these helpers, so a
+benchmark runs its microslip part without it.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import time
+
+import numpy as np
+
+
+def best_of(fn, repeat=5):
+    """``(seconds, result)``: the best wall time of ``repeat`` calls of ``fn()`` and the last result."""
+    best, result = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        result = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, result
+
+
+def peak(omega, amp, omega_scale):
+    """Peak amplitude: a parabola through the highest point and its neighbours, in arclength.
+
+    ``omega_scale`` (rad/s) makes frequency and relative amplitude weigh alike in the arclength.
+    """
+    omega, amp = np.asarray(omega), np.asarray(amp)
+    i = int(np.argmax(amp))
+    if i == 0 or i == amp.size - 1:
+        return float(amp[i])
+    w, a = omega[i - 1:i + 2], amp[i - 1:i + 2]
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(w) / omega_scale, np.diff(a) / amp[i]))])
+    p = np.polyfit(s, a, 2)
+    return float(np.polyval(p, -p[1] / (2 * p[0])))
+
+
+def pyharm_missing() -> str | None:
+    """None when pyHarm can be imported, else why not (for the message that skips the comparison).
+
+    Imported from a temporary directory: importing pyHarm writes a '.pyHarm' folder into the
+    working directory.
+    """
+    def attempt():
+        try:
+            import pyHarm  # noqa: F401
+        except Exception as exc:  # pyHarm's own imports (jax, numba) may fail too
+            return f"{type(exc).__name__}: {exc}"
+        return None
+
+    return in_temporary_directory(attempt)
+
+
+def in_temporary_directory(fn):
+    """Run ``fn()`` from a temporary working directory: pyHarm writes a '.pyHarm' folder there."""
+    here = os.getcwd()
+    with tempfile.TemporaryDirectory() as tmp:
+        os.chdir(tmp)
+        try:
+            return fn()
+        finally:
+            os.chdir(here)
+
+
+def run_pyharm(inputs: dict, study: str = "frf"):
+    """``(seconds, X, maestro)``: pyHarm's ``Maestro(inputs).operate()`` timed, its accepted solutions, itself.
+
+    ``X`` has one row per accepted point: pyHarm's (possibly nondimensional) unknowns, the
+    frequency last. Setting up the system (``Maestro(...)``) is not timed.
+    """
+    import logging
+
+    import pyHarm
+
+    logging.disable(logging.CRITICAL)
+    maestro = pyHarm.Maestro(inputs)
+    t0 = time.perf_counter()
+    maestro.operate()
+    elapsed = time.perf_counter() - t0
+    return elapsed, np.array([s.x for s in maestro.nls[study].SolList if s.flag_accepted]), maestro
