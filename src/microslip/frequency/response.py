@@ -551,8 +551,9 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         a cyclic sector); implies ``"modal"`` with ``reduction="auto"``.
     stability : bool, default True
         Mark each point stable or unstable (Hill's method on the harmonic
-        balance Jacobian: the whole structure's with ``"exact"``, the modal
-        model's with ``"modal"``; :mod:`~microslip.frequency.stability`) and
+        balance Jacobian: the whole structure's with ``"exact"``, or a 60-mode
+        modal model of it above ``stability.WHOLE_LIMIT`` (4000) unknowns, the
+        modal model's with ``"modal"``; :mod:`~microslip.frequency.stability`) and
         locate the folds and other bifurcations between points, while the Hill
         problem has at most ``stability.HILL_LIMIT`` (20000) unknowns (else, and
         for a cyclic sector, :attr:`FrequencyResponse.stable` is None).
