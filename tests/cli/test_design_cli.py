@@ -1,5 +1,7 @@
 """``microslip design`` and the [cyclic] / [[damper]] tables of the frf configuration."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -92,8 +94,31 @@ def test_microslip_design_writes_the_curve_of_the_api(config, tmp_path, capsys):
     assert "lowest peak" in capsys.readouterr().out
 
 
+def test_the_damper_table_takes_the_retention(config):
+    assert load_config(config).dampers[0].retention == 0.0  # the API's default when the key is absent
+    config.write_text(config.read_text().replace("damping = 200.0", 'damping = 200.0\nretention = "2N/mm"'))
+    cfg = load_config(config)
+    assert cfg.dampers[0].retention == 2e3  # N/m: the unit converted
+    # it reaches the attached structure: a spring on each of the damper's three DOFs
+    np.testing.assert_array_equal(np.diag(cfg.structure.K)[6:], 2e3)
+
+
+@pytest.mark.parametrize("value, message", [
+    ("-1.0", "retention must be non-negative, got -1.0"),
+    ("nan", "retention must be finite, got nan"),
+    ("inf", "retention must be finite, got inf"),
+    ('"3mm"', "retention: unknown stiffness unit 'mm'"),
+])
+def test_a_bad_retention_is_refused_naming_the_file_and_the_key(config, value, message):
+    config.write_text(config.read_text().replace("damping = 200.0", f"damping = 200.0\nretention = {value}"))
+    with pytest.raises(ConfigError, match=f"^{re.escape(str(config))}: \\[\\[damper\\]\\] 1.*{message}"):
+        load_config(config)
+
+
 @pytest.mark.parametrize("old, new, message", [
     ("mass = 0.02", "mas = 0.02", "\\[\\[damper\\]\\] has an unknown key 'mas'; did you mean 'mass'"),
+    ("damping = 200.0", "retension = 1e3", "\\[\\[damper\\]\\] has an unknown key 'retension'; did you mean "
+     "'retention'"),
     ("angle = 45", "angel = 45", "\\[\\[damper.interface\\]\\] has an unknown key 'angel'; did you mean 'angle'"),
     ("platform = {x = 3, y = 4}", 'platform = {x = "next:3", y = 4}', "names a next-sector DOF, which needs a "
      "\\[cyclic\\] table"),
