@@ -64,7 +64,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # max_angle = 0.1
 
     # [design]                          # microslip design: the damper's peak-response curve
-    # loads = ["50N", "100N", "200N"]   # centrifugal loads of the (one) damper
+    # loads = ["3N", "20N", "300N"]     # centrifugal loads of the (one) damper: from sliding to stuck
     # dof = 2                           # the DOF whose peak is read
 
     [output]
