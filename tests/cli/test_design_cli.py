@@ -42,12 +42,11 @@ platform = {{x = 3, y = 4}}
 name = "curved"
 
 [excitation]
-h1 = [0, 0, 0.5, 0, 0, -0.5]            # the tips in antiphase, as in test_design.py
+h1 = [0, 0, 0.5, 0, 0, 0]
 
 [sweep]
 omega = [3000, 5000]
 harmonics = 3
-samples = 128
 
 [design]
 loads = ["3N", "20N", "300N"]           # from a damper sliding through the cycle to a stuck one
@@ -83,6 +82,10 @@ def test_the_damper_table_builds_the_api_damper(config):
 
 
 def test_microslip_design_writes_the_curve_of_the_api(config, tmp_path, capsys):
+    # the tips in antiphase, as in test_design.py: the damper slides through the cycle at 3 N (pushed at one tip
+    # only, the curve at 3 N does not reach 5000 rad/s in 5000 points); 128 samples resolve its slip
+    config.write_text(config.read_text().replace("h1 = [0, 0, 0.5, 0, 0, 0]", "h1 = [0, 0, 0.5, 0, 0, -0.5]")
+                      .replace("harmonics = 3\n", "harmonics = 3\nsamples = 128\n"))
     out = tmp_path / "out"
     assert main(["design", str(config), "--out", str(out), "--quiet"]) == 0
     for name in ("design.csv", "design.png", "report.html", "report.md"):
