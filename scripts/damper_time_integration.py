@@ -12,11 +12,15 @@ The blade pair and damper of ``tests/frequency/test_damper.py``. Two cases:
 2. The lightly damped pair of the tests (50 N, 5 N at the tip, no lift-off) below its peak:
    elements of each contact stick through the whole cycle. Their force is the one they took
    when they last slipped, before the steady state -- in harmonic balance, the single static step
-   from the unloaded contact to the mean of the motion; in time integration, somewhere in the
-   transient from the static equilibrium. The two steady states differ by that history (the
-   damper's mean rotation, i.e. how the load splits between the flat face's contacts), whatever H.
+   from the unloaded contact to the mean of the motion; in time integration from rest, somewhere
+   in the transient from the static equilibrium. Those two steady states differ by that history
+   (the damper's mean rotation, i.e. how the load splits between the flat face's contacts),
+   whatever H. Time integration started on the harmonic balance solution, its contacts in the
+   state harmonic balance assumes (``steady_state(start=frequency_point(...))``), compares like
+   with like: what is left is the truncation of the harmonics and the time step.
 
-Run ``python scripts/damper_time_integration.py`` (about 2 minutes on one core).
+Run ``python scripts/damper_time_integration.py [lifting] [sticking]`` (both by default; about 2 minutes
+on one core).
 """
 
 from __future__ import annotations
@@ -32,7 +36,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "frequency"))
 
 from microslip._kernels import STICK  # noqa: E402
-from microslip.frequency import UnderResolvedWarning, frequency_response, steady_state  # noqa: E402
+from microslip.frequency import (UnderResolvedWarning, frequency_point, frequency_response,  # noqa: E402
+                                 steady_state)
 from test_damper import blade_pair, damper, lifting_pair, steady_contacts, tip_force  # noqa: E402
 
 TARGETS = (3800.0, 3880.0, 4000.0, 4200.0)  # rad/s, with the peak
@@ -75,31 +80,39 @@ def lifting(harmonics=(5, 9, 15, 25), samples=(None, 1024), steps=(2048, 8192)) 
         print(f"   {r.omega[k]:9.1f}  open {np.round(open_, 3)}  stuck throughout {stuck}")
 
 
-def sticking(omegas=(3700.0, 3850.0), harmonics=(5, 15)) -> None:
+def sticking(omegas=(3700.0, 3850.0), harmonics=(5, 15), steps=(2048, 8192)) -> None:
     s = damper(load=50.0).attach(blade_pair())
     force = tip_force(s, 5.0)
-    X, Y, R = s.ndof - 3, s.ndof - 2, s.ndof - 1
-    print("2. lightly damped pair, 5 N at the tip, no lift-off: elements stuck through the cycle")
+    R = s.ndof - 1
+    print("2. lightly damped pair, 5 N at the tip, no lift-off: elements stuck through the cycle; time integration "
+          "from rest, and started on the harmonic balance solution (start=)")
     for H in harmonics:
-        r = frequency_response(s, force, (3000.0, max(omegas) + 10.0), harmonics=H, stability=False)
         for w in omegas:
-            k = int(np.argmin(np.abs(r.omega - w)))
-            ti = steady_state(s, force, float(r.omega[k]), harmonics=H, steps_per_period=2048, tolerance=1e-9)
-            stuck = [int(np.all(c == STICK, axis=0).sum()) for c, _ in steady_contacts(r, k)]
-            tip = np.hypot(*r.coefficients[k, 1:3, 2]) / np.hypot(*ti.coefficients[1:3, 2]) - 1
-            print(f"   H = {H:2d}, w = {r.omega[k]:7.1f}: elements stuck throughout {stuck}; tip's first harmonic "
-                  f"{tip:+.1e}, every coefficient {difference(r, k, ti):.1e}; damper's mean rotation (arc, m) "
-                  f"HB {r.coefficients[k, 0, R]:+.3e}, time integration {ti.coefficients[0, R]:+.3e}", flush=True)
+            hb = frequency_point(s, force, w, harmonics=H, stability=False)
+            stuck = [int(np.all(c == STICK, axis=0).sum()) for c, _ in steady_contacts(hb, 0)]
+            rest = steady_state(s, force, w, harmonics=H, steps_per_period=steps[0], tolerance=1e-9)
+            print(f"   H = {H:2d}, w = {w:7.1f}: elements stuck throughout {stuck}; damper's mean rotation (arc, m) "
+                  f"HB {hb.coefficients[0, 0, R]:+.3e}", flush=True)
+            for name, ti in [("from rest", rest)] + [
+                    (f"on HB, {n} steps", steady_state(s, force, w, harmonics=H, steps_per_period=n, tolerance=1e-9,
+                                                       start=hb)) for n in steps]:
+                tip = np.hypot(*hb.coefficients[0, 1:3, 2]) / np.hypot(*ti.coefficients[1:3, 2]) - 1
+                print(f"     {name:>19}: tip's first harmonic {tip:+.1e}, every coefficient {difference(hb, 0, ti):.1e}"
+                      f"; mean rotation {ti.coefficients[0, R]:+.3e} ({ti.periods} periods)", flush=True)
 
 
-def main() -> None:
+def main(cases=("lifting", "sticking")) -> None:
     start = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnderResolvedWarning)
-        lifting()
-        sticking()
+        for case in cases:
+            {"lifting": lifting, "sticking": sticking}[case]()
     print(f"{time.perf_counter() - start:.0f} s")
 
 
 if __name__ == "__main__":
-    main()
+    import argparse
+
+    parser = argparse.ArgumentParser(description="Harmonic balance against time integration on the damper pair.")
+    parser.add_argument("cases", nargs="*", choices=["lifting", "sticking"], help="the cases to run (default: both)")
+    main(parser.parse_args().cases or ("lifting", "sticking"))

@@ -1,5 +1,7 @@
 """``microslip design`` and the [cyclic] / [[damper]] tables of the frf configuration."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -13,6 +15,7 @@ from _paths import REPO
 
 sys.path.insert(0, str(REPO / "tests" / "frequency"))
 from test_damper import blade_pair, damper  # noqa: E402  (the same blade pair and damper)
+from test_design import antiphase  # noqa: E402  (the same excitation)
 
 CONFIG = """
 title = "Blade pair with an under-platform damper"
@@ -46,7 +49,7 @@ omega = [3000, 5000]
 harmonics = 3
 
 [design]
-loads = ["300N", "500N", "1000N"]
+loads = ["3N", "20N", "300N"]           # from a damper sliding through the cycle to a stuck one
 dof = 2
 """
 
@@ -75,25 +78,50 @@ def test_the_damper_table_builds_the_api_damper(config):
     assert d.centrifugal_load == 50.0 and d.damping == ref.damping
     for a, b in zip(d.contacts, ref.contacts):
         assert a.platform == b.platform and np.allclose(a.point, b.point) and np.allclose(a.normal, b.normal)
-    np.testing.assert_array_equal(cfg.design_loads, [300.0, 500.0, 1000.0])
+    np.testing.assert_array_equal(cfg.design_loads, [3.0, 20.0, 300.0])
 
 
 def test_microslip_design_writes_the_curve_of_the_api(config, tmp_path, capsys):
+    # the tips in antiphase, as in test_design.py: the damper slides through the cycle at 3 N (pushed at one tip
+    # only, the curve at 3 N does not reach 5000 rad/s in 5000 points); 128 samples resolve its slip
+    config.write_text(config.read_text().replace("h1 = [0, 0, 0.5, 0, 0, 0]", "h1 = [0, 0, 0.5, 0, 0, -0.5]")
+                      .replace("harmonics = 3\n", "harmonics = 3\nsamples = 128\n"))
     out = tmp_path / "out"
     assert main(["design", str(config), "--out", str(out), "--quiet"]) == 0
     for name in ("design.csv", "design.png", "report.html", "report.md"):
         assert (out / name).stat().st_size > 0
-    f = np.zeros(6)
-    f[2] = 0.5
-    api = damper_design_curve(blade_pair(), damper(), [300.0, 500.0, 1000.0], f, (3000.0, 5000.0), dof=2,
-                              harmonics=3)
+    api = damper_design_curve(blade_pair(), damper(), [3.0, 20.0, 300.0], antiphase(), (3000.0, 5000.0), dof=2,
+                              harmonics=3, samples=128)
     rows = np.genfromtxt(out / "design.csv", delimiter=",", names=True)
     np.testing.assert_allclose(rows["peak_amplitude_m"], api.peak_amplitude, rtol=1e-10)
     assert "lowest peak" in capsys.readouterr().out
 
 
+def test_the_damper_table_takes_the_retention(config):
+    assert load_config(config).dampers[0].retention == 0.0  # the API's default when the key is absent
+    config.write_text(config.read_text().replace("damping = 200.0", 'damping = 200.0\nretention = "2N/mm"'))
+    cfg = load_config(config)
+    assert cfg.dampers[0].retention == 2e3  # N/m: the unit converted
+    # it reaches the attached structure: a spring on each of the damper's three DOFs
+    np.testing.assert_array_equal(np.diag(cfg.structure.K)[6:], 2e3)
+
+
+@pytest.mark.parametrize("value, message", [
+    ("-1.0", "retention must be non-negative, got -1.0"),
+    ("nan", "retention must be finite, got nan"),
+    ("inf", "retention must be finite, got inf"),
+    ('"3mm"', "retention: unknown stiffness unit 'mm'"),
+])
+def test_a_bad_retention_is_refused_naming_the_file_and_the_key(config, value, message):
+    config.write_text(config.read_text().replace("damping = 200.0", f"damping = 200.0\nretention = {value}"))
+    with pytest.raises(ConfigError, match=f"^{re.escape(str(config))}: \\[\\[damper\\]\\] 1.*{message}"):
+        load_config(config)
+
+
 @pytest.mark.parametrize("old, new, message", [
     ("mass = 0.02", "mas = 0.02", "\\[\\[damper\\]\\] has an unknown key 'mas'; did you mean 'mass'"),
+    ("damping = 200.0", "retension = 1e3", "\\[\\[damper\\]\\] has an unknown key 'retension'; did you mean "
+     "'retention'"),
     ("angle = 45", "angel = 45", "\\[\\[damper.interface\\]\\] has an unknown key 'angel'; did you mean 'angle'"),
     ("platform = {x = 3, y = 4}", 'platform = {x = "next:3", y = 4}', "names a next-sector DOF, which needs a "
      "\\[cyclic\\] table"),

@@ -7,10 +7,10 @@ import pytest
 from scipy.linalg import eigvals
 
 from microslip.frequency import frequency_response
-from microslip.frequency import damper_design_curve
+from microslip.frequency import contact_cycle, damper_design_curve
 from test_damper import blade_pair, damper  # the blade pair with its damper
 
-LOADS = [5.0, 20.0, 300.0]  # N: the damper slides (5, 20 N: the continuation stalled there before) to stuck (300 N)
+LOADS = [3.0, 5.0, 20.0, 300.0]  # N: the damper slides through the cycle (3 N), partly (5, 20 N), sticks (300 N)
 RANGE = (3000.0, 5000.0)  # rad/s: the blades' mode with the damper sliding (3.9 krad/s) to the stuck one (4.4)
 
 
@@ -23,14 +23,14 @@ def antiphase(ndof=6, amplitude=0.5):
 
 @pytest.fixture(scope="module")
 def curve():
-    # 128 samples resolve the contacts' opening at 5 N (64 leave their energy uncertain by 2e-3 of the work)
+    # 128 samples resolve the contacts' slip at 3 and 5 N (64 leave their energy uncertain by 2e-3 of the work)
     return damper_design_curve(blade_pair(), damper(), LOADS, antiphase(), RANGE, dof=2, harmonics=3, samples=128)
 
 
 def test_each_point_is_the_peak_of_the_forced_response_at_that_load(curve):
-    assert list(curve.loads) == LOADS and len(curve.responses) == 3
+    assert list(curve.loads) == LOADS and len(curve.responses) == 4
     r = frequency_response(damper(load=20.0).attach(blade_pair()), antiphase(9), RANGE, harmonics=3, samples=128)
-    assert r.peak(2) == (curve.peak_frequency[1], curve.peak_amplitude[1])
+    assert r.peak(2) == (curve.peak_frequency[2], curve.peak_amplitude[2])
     i = int(np.argmin(curve.peak_amplitude))
     assert curve.optimum == (LOADS[i], curve.peak_amplitude[i])
 
@@ -39,9 +39,13 @@ def test_the_curve_runs_from_a_sliding_damper_to_a_stuck_one(curve):
     assert all(r.complete for r in curve.responses)  # every curve reaches the end of the range: no stall
     sliding, stuck = curve.responses[0], curve.responses[-1]
     k = int(np.argmax(sliding.amplitude(2)))
-    # at 5 N the damper slides: the contacts' first harmonic is the square wave's, 4/pi mu N0 (1.25 measured),
-    # and they dissipate most of the excitation's work (95 % measured)
+    # at 3 N the damper slides through the cycle: every contact in gross slip over 90 % of the period at the
+    # peak (92 to 95 % measured, never open), its first harmonic the square wave's, 4/pi mu N0 (1.25 to 1.32
+    # measured), and the contacts dissipate most of the excitation's work (88 % measured)
     mu = damper().contacts[0].model.mu
+    for c in range(3):
+        fractions = contact_cycle(sliding, c, k).fractions()
+        assert fractions["gross slip"] > 0.9 and fractions["lift-off"] == 0.0
     T1 = np.hypot(sliding.contact_T[k, :, 1], sliding.contact_T[k, :, 2])
     assert np.all(T1 > 1.1 * mu * sliding.contact_N[k, :, 0])
     assert sliding.contact_dissipation[k].sum() > 0.5 * sliding.excitation_work[k]
@@ -58,8 +62,10 @@ def test_the_curve_runs_from_a_sliding_damper_to_a_stuck_one(curve):
     w_stuck = w[np.argmin(np.abs(w - curve.peak_frequency[-1]))]
     # within 1e-3 (1.2e-5 measured); the 20 N peak, partly sliding, is 1 % lower
     assert abs(curve.peak_frequency[-1] / w_stuck - 1) < 1e-3
-    # sliding damps the resonance: the optimum is at the low load, far below the stuck peak
-    assert curve.optimum[0] == 5.0 and curve.peak_amplitude[0] < 0.1 * curve.peak_amplitude[-1]
+    # the optimum lies between: at 5 N, far below the stuck peak (5.3 against 113 um measured); at 3 N the
+    # sliding damper's friction force, mu N, is too small to hold the resonance down (13.5 um measured)
+    assert curve.optimum[0] == 5.0 and curve.peak_amplitude[1] < 0.1 * curve.peak_amplitude[-1]
+    assert curve.peak_amplitude[0] > 2 * curve.peak_amplitude[1]
 
 
 def test_the_curve_writes_csv_and_plots(curve, tmp_path):
@@ -67,7 +73,7 @@ def test_the_curve_writes_csv_and_plots(curve, tmp_path):
 
     matplotlib.use("Agg")
     rows = list(csv.reader(line for line in open(curve.to_csv(tmp_path / "design.csv")) if not line.startswith("#")))
-    assert rows[0][0] == "centrifugal load [N]" and len(rows) == 4
+    assert rows[0][0] == "centrifugal load [N]" and len(rows) == 5
     np.testing.assert_allclose([float(r[1]) for r in rows[1:]], curve.peak_amplitude, rtol=1e-12)
     assert curve.plot().get_xlabel() == "damper centrifugal load (N)"
 

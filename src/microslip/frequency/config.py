@@ -38,6 +38,8 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # inertia = 5e-7                    # kg m^2
     # centrifugal_load = "300N"         # or speed = "1000rad/s" with radius = "0.25m"
     # damping = 50.0                    # 1/s, mass-proportional (optional)
+    # retention = "1e3N/m"              # N/m: the features keeping the damper in its pocket, a spring from
+                                        # each of X, Y and the arc R to the disk (optional, default 0)
     # [[damper.interface]]              # one table per interface
     # model = "flat.json"               # the contacts' law (a list of files: one per point)
     # points = [[-2e-3, 1.5e-3], [-1e-3, 2.5e-3]]   # m, on the damper from its centre of mass
@@ -62,7 +64,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # max_angle = 0.1
 
     # [design]                          # microslip design: the damper's peak-response curve
-    # loads = ["50N", "100N", "200N"]   # centrifugal loads of the (one) damper
+    # loads = ["3N", "20N", "300N"]     # centrifugal loads of the (one) damper: from sliding to stuck
     # dof = 2                           # the DOF whose peak is read
 
     [output]
@@ -102,7 +104,7 @@ KEYS = {
     "the file": ("title", "structure", "cyclic", "contact", "damper", "excitation", "sweep", "design", "continuation",
                  "output"),
     "[cyclic]": ("sectors", "left", "right", "engine_order"),
-    "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "interface"),
+    "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
     "[[damper.interface]]": ("model", "points", "angle", "platform", "name"),
     "[design]": ("loads", "dof"),
     "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names"),
@@ -519,6 +521,8 @@ def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path):
         kwargs["radius"] = number("radius", "length")
     if "damping" in table:
         kwargs["damping"] = number("damping", "dimensionless")
+    if "retention" in table:
+        kwargs["retention"] = number("retention", "stiffness")
     mass = _quantity(_get(table, "mass", where, path), "dimensionless", f"{where} mass", path)
     inertia = _quantity(_get(table, "inertia", where, path), "dimensionless", f"{where} inertia", path)
     d = _checked(path, f"{where}: ", UnderPlatformDamper, mass, inertia, **kwargs)
