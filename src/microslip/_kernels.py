@@ -166,6 +166,23 @@ def plane_tangent(kt, kn, gap, mu, tx, ty, n, sx, sy):  # pragma: no cover - com
     return kt, 0.0, kt, 0.0, 0.0
 
 
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def plane_tangents(kt, kn, gaps, mu, tx, ty, n, s, out):  # pragma: no cover - compiled
+    """The array's consistent tangent for the step to ``(tx, ty, n)`` from sliders ``s`` (``(J, 2)``).
+
+    Writes ``out = (Kxx, Kxy, Kyy, Dx, Dy)``: the sums of :func:`plane_tangent` over the elements.
+    """
+    for j in range(5):
+        out[j] = 0.0
+    for i in range(kt.shape[0]):
+        kxx, kxy, kyy, ddx, ddy = plane_tangent(kt[i], kn[i], gaps[i], mu, tx, ty, n, s[i, 0], s[i, 1])
+        out[0] += kxx
+        out[1] += kxy
+        out[2] += kyy
+        out[3] += ddx
+        out[4] += ddy
+
+
 @nb.njit(cache=True, nogil=True, inline="always")
 def plane_work(Tx, Ty, sx_old, sy_old, sx_new, sy_new):  # pragma: no cover - compiled
     """Work of the element's force on its slider's travel in one step on the plane (J).
@@ -326,3 +343,4 @@ def warm_up() -> None:
           np.empty((1, 1)), np.empty((1, 1), dtype=np.int8))
     march_plane(one, one, z, 0.5, np.zeros((1, 2)), one, np.zeros((1, 2)), np.empty((1, 2)), np.empty(1),
                 np.empty(1), np.empty((1, 1, 2)), np.empty((1, 1), dtype=np.int8))
+    plane_tangents(one, one, z, 0.5, 0.0, 0.0, 1.0, np.zeros((1, 2)), np.empty(5))

@@ -191,7 +191,8 @@ def test_scalar_n_is_held_constant(paper_model):
 
 
 @pytest.mark.parametrize("kwargs, error, message", [
-    (dict(t=[[0.0, 1e-6]], n=1e-6), ValueError, "t must be 1-D, got shape (1, 2)"),
+    (dict(t=[[0.0, 1e-6, 2e-6]], n=1e-6), ValueError, "t must have shape (steps,) (one tangential direction) or "
+     "(steps, 2) (its two components on the contact plane), got shape (1, 3)"),
     (dict(t=[], n=1e-6), ValueError, "t must have at least 1 value(s), got 0"),
     (dict(t=[0.0, np.nan], n=1e-6), ValueError, "t must be finite, got nan at flat index 1"),
     (dict(t=[0.0, 1e-6], n=[1e-6, 1e-6, 1e-6]), ValueError,
@@ -402,7 +403,8 @@ def test_state_refuses_non_finite_or_non_vector_sliders():
 
     with pytest.raises(ValueError, match=r"sliders must be finite, got nan at flat index 0"):
         State([np.nan, 0.0])
-    with pytest.raises(ValueError, match=r"sliders must be 1-D, got shape \(2, 1\)"):
+    with pytest.raises(ValueError, match=r"sliders must have shape \(J,\) \(one tangential direction\) or \(J, 2\) "
+                                         r"\(the contact plane\), got shape \(2, 1\)"):
         State([[0.0], [1.0]])
     with pytest.raises(TypeError, match=r"sliders must be an array of real numbers, got 'ab'"):
         State("ab")
