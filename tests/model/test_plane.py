@@ -14,7 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from _strategies import UM, lengths_array, models, paths
+from _strategies import UM, lengths_array, models, paths, plane_paths
 from microslip import MicroslipModel, State
 from microslip.model import OPEN, SLIP, STICK
 
@@ -189,15 +189,6 @@ def test_one_element_on_an_ellipse_converges_to_the_continuous_energy_at_first_o
 
 
 # -- invariants ----------------------------------------------------------------------------------------
-@st.composite
-def plane_paths(draw, min_size=1, max_size=40):
-    """``(t, n)`` with ``t`` of shape (steps, 2) (m); ``n`` crosses the gaps of :func:`models`."""
-    size = draw(st.integers(min_size, max_size))
-    t = lengths_array(draw, 2 * size, -3 * UM, 3 * UM).reshape(size, 2)
-    n = lengths_array(draw, size, -0.5 * UM, 3 * UM)
-    return t, n
-
-
 @settings(max_examples=100, deadline=None)
 @given(model=models(), path=plane_paths())
 def test_friction_law_on_the_plane_and_non_negative_normal_forces(model, path):
@@ -293,44 +284,7 @@ def test_refinement_converges_where_elements_open_and_close_on_an_elliptic_orbit
     assert errors[1] <= errors[0] / 4 and errors[2] <= errors[1] / 4
 
 
-# -- continuation and trial ----------------------------------------------------------------------------
-@settings(max_examples=60, deadline=None)
-@given(model=models(), path=plane_paths(min_size=2), data=st.data())
-def test_two_calls_on_the_plane_continue_one_call_bit_for_bit(model, path, data):
-    t, n = path
-    k = data.draw(st.integers(1, t.shape[0] - 1))
-    whole = model.simulate(t, n)
-    first = model.simulate(t[:k], n[:k])
-    second = model.simulate(t[k:], n[k:], state=first.state)
-    np.testing.assert_array_equal(np.concatenate([first.T, second.T]), whole.T)
-    np.testing.assert_array_equal(np.concatenate([first.Ti, second.Ti]), whole.Ti)
-    np.testing.assert_array_equal(np.concatenate([first.friction_work, second.friction_work]), whole.friction_work)
-    np.testing.assert_array_equal(second.state.sliders, whole.state.sliders)
-    totals = model.simulate(t[k:], n[k:], state=first.state, per_element=False, work=False)
-    np.testing.assert_array_equal(totals.T, second.T)
-    np.testing.assert_array_equal(totals.N, second.N)
-    np.testing.assert_array_equal(totals.state.sliders, second.state.sliders)
-
-
-@settings(max_examples=60, deadline=None)
-@given(model=models(), path=plane_paths())
-def test_committed_trials_on_the_plane_reproduce_simulate(model, path):
-    t, n = path
-    r = model.simulate(t, n)
-    state = None
-    for k in range(t.shape[0]):
-        before = None if state is None else state.sliders.copy()
-        step = model.trial(state if state is not None else model.initial_state((0.0, 0.0)), t[k], n[k])
-        if state is not None:
-            np.testing.assert_array_equal(state.sliders, before)  # a trial never mutates the committed state
-        np.testing.assert_array_equal(step.T, r.T[k])
-        assert step.N == r.N[k] and step.T.shape == (2,) and step.dT_dt.shape == (2, 2)
-        np.testing.assert_array_equal(step.Ti, r.Ti[k])
-        np.testing.assert_array_equal(step.condition, r.condition[k])
-        state = step.state
-    np.testing.assert_array_equal(state.sliders, r.state.sliders)
-
-
+# -- the tangent ----------------------------------------------------------------------------
 @settings(max_examples=80, deadline=None)
 @given(model=models(), path=plane_paths(), t=st.tuples(st.floats(-3 * UM, 3 * UM), st.floats(-3 * UM, 3 * UM)),
        n=st.floats(-0.5 * UM, 3 * UM))
