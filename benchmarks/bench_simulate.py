@@ -79,18 +79,43 @@ MODES = [("elements + work", {}), ("totals + work", {"per_element": False}),
          ("totals only", {"per_element": False, "work": False})]
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def time_modes(model, path, baseline_path, numpy_march, repeat):
+    """Updates per second of ``simulate`` in every mode of :data:`MODES` on ``path`` and of ``numpy_march``
+    on ``baseline_path`` (checked against ``simulate`` first); prints a row per mode.
+
+    Returns ``(baseline rate, [(mode, rate), ...])``.
+    """
+    (t, n), (tb, nb) = path, baseline_path
+    J = model.elements
+    T_base, N_base = numpy_march(model, tb, nb)  # the baseline computes the same numbers
+    ref = model.simulate(tb, nb, per_element=False)
+    scale = float(np.abs(ref.T).max())
+    assert np.allclose(T_base, ref.T, rtol=0, atol=1e-12 * scale), "NumPy baseline disagrees with simulate"
+    assert np.allclose(N_base, ref.N, rtol=1e-13, atol=0), "NumPy baseline disagrees with simulate"
+    base_rate = tb.shape[0] * J / best_time(lambda: numpy_march(model, tb, nb), max(1, repeat - 1))
+    rows = []
+    for label, options in MODES:
+        model.simulate(t[:10], n[:10], **options)  # compiled (or loaded) already
+        elapsed = best_time(lambda: model.simulate(t, n, **options), repeat)
+        rows.append((label, t.shape[0] * J / elapsed))
+        print_row(J, label, elapsed, rows[-1][1], base_rate)
+    return base_rate, rows
+
+
+def print_row(J, label, elapsed, rate, base_rate):
+    print(f"{J:>5} {label:>22} {elapsed:>9.3f} {rate:>10.3g} {base_rate:>15.3g} {rate / base_rate:>6.0f}x")
+
+
+def arguments(argv, description, title, *, repeat, elements):
+    """The options shared by the march benchmarks, parsed; prints ``title``, the machine and the table's header."""
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--steps", type=int, default=1_000_000, help="steps of the compiled march (default 1e6)")
     parser.add_argument("--baseline-steps", type=int, default=20_000,
                         help="steps of the NumPy baseline (default 2e4)")
-    parser.add_argument("--repeat", type=int, default=5, help="repeats, best time kept (default 5)")
-    parser.add_argument("--elements", type=int, nargs="+", default=[4, 16, 256], help="values of J")
+    parser.add_argument("--repeat", type=int, default=repeat, help=f"repeats, best time kept (default {repeat})")
+    parser.add_argument("--elements", type=int, nargs="+", default=elements, help="values of J")
     args = parser.parse_args(argv)
-
-    sphere = Sphere.paper()
-    warm_up()
-    print(f"microslip simulate benchmark on {platform.processor() or platform.machine()}, "
+    print(f"{title} on {platform.processor() or platform.machine()}, "
           f"Python {platform.python_version()}, NumPy {np.__version__}")
     print(f"compiled: {args.steps:.0e} steps; NumPy baseline: {args.baseline_steps:.0e} steps "
           f"(its cost per step is independent of the number of steps); best of {args.repeat}\n")
@@ -98,25 +123,19 @@ def main(argv=None) -> int:
               f"{'NumPy updates/s':>15} {'ratio':>7}")
     print(header)
     print("-" * len(header))
+    return args
+
+
+def main(argv=None) -> int:
+    args = arguments(argv, __doc__.split("\n")[0], "microslip simulate benchmark", repeat=5, elements=[4, 16, 256])
+    sphere = Sphere.paper()
+    warm_up()
     results = []
     for J in args.elements:
         model = tune(sphere, N_TOT, elements=J)
-        t, n = load_path(sphere, args.steps)
-        tb, nb = load_path(sphere, args.baseline_steps)
-        # the baseline computes the same numbers
-        T_base, N_base = numpy_march(model, tb, nb)
-        ref = model.simulate(tb, nb, per_element=False)
-        scale = float(np.abs(ref.T).max())
-        assert np.allclose(T_base, ref.T, rtol=0, atol=1e-12 * scale), "NumPy baseline disagrees with simulate"
-        base_time = best_time(lambda: numpy_march(model, tb, nb), max(1, args.repeat - 1))
-        base_rate = args.baseline_steps * J / base_time
-        for label, options in MODES:
-            model.simulate(t[:10], n[:10], **options)  # compiled (or loaded) already
-            elapsed = best_time(lambda: model.simulate(t, n, **options), args.repeat)
-            rate = args.steps * J / elapsed
-            results.append((J, label, rate, rate / base_rate))
-            print(f"{J:>5} {label:>22} {elapsed:>9.3f} {rate:>10.3g} {base_rate:>15.3g} "
-                  f"{rate / base_rate:>6.0f}x")
+        base_rate, rows = time_modes(model, load_path(sphere, args.steps), load_path(sphere, args.baseline_steps),
+                                     numpy_march, args.repeat)
+        results += [(J, label, rate, rate / base_rate) for label, rate in rows]
 
     model = tune(sphere, N_TOT, elements=4)
     t100, n100 = load_path(sphere, 100, cycles=1)

@@ -48,3 +48,12 @@ def paths(draw, min_size=1, max_size=40):
     t = lengths_array(draw, size, -3 * UM, 3 * UM)
     n = lengths_array(draw, size, -0.5 * UM, 3 * UM)
     return t, n
+
+
+@st.composite
+def plane_paths(draw, min_size=1, max_size=40):
+    """``(t, n)`` with ``t`` of shape (steps, 2) on the contact plane (m); ``n`` crosses the gaps of :func:`models`."""
+    size = draw(st.integers(min_size, max_size))
+    t = lengths_array(draw, 2 * size, -3 * UM, 3 * UM).reshape(size, 2)
+    n = lengths_array(draw, size, -0.5 * UM, 3 * UM)
+    return t, n

@@ -386,6 +386,7 @@ NO_RISE = ("negative", "zero", "1e300", "1e-300")  # data values that make a cur
 UNCHECKED = ("nan", "inf", "string", "dict")
 T3 = [0.0, 0.5e-6, 1e-6]
 F3 = [0.0, 5.0, 10.0]
+T3_PLANE = [[0.0, 0.0], [0.5e-6, 0.2e-6], [1e-6, -0.3e-6]]  # a history on the contact plane (m)
 X3 = [0.0, 1e-6, 0.0]  # harmonic balance unknowns of the 1-DOF structure with H = 1: c0, a1, b1 (m)
 L = Lazy  # short, for the table
 #: accuracy targets: math.inf is the documented "no limit" (tests/tuning/test_tune_range.py), not a bad value
@@ -462,6 +463,11 @@ CASES = [
     case("MicroslipModel.simulate", lambda: model().simulate, t=T3, n=N_APP, state=STATE, per_element=True,
          work=True),
     case("MicroslipModel.trial", lambda: model().trial, state=STATE, t=1e-7, n=N_APP),
+    case("MicroslipModel.simulate [plane]", lambda: model().simulate, t=T3_PLANE, n=N_APP,
+         state=L(lambda: State(np.zeros((4, 2)))), per_element=True, work=True),
+    case("MicroslipModel.trial [plane]", lambda: model().trial, state=L(lambda: State(np.zeros((4, 2)))),
+         t=[1e-7, -2e-7], n=N_APP),
+    case("MicroslipModel.initial_state [plane]", lambda: model().initial_state, t0=[1e-7, 0.0]),
     case("MicroslipModel.from_dict", lambda: MicroslipModel.from_dict, kinds={"data": "mapping"},
          data=L(lambda: model().to_dict())),
     case("MicroslipModel.with_provenance", lambda: model().with_provenance, kinds={"provenance": "object"},
@@ -508,6 +514,14 @@ CASES = [
     case("paths.from_arrays", lambda: paths.from_arrays, kinds={"steady": "object"}, t=X3, n=N_APP,
          steady=slice(0, 3), periodic=True, label="path"),
     case("paths.from_arrays [N]", lambda: paths.from_arrays, t=X3, N=[N_TOT] * 3, reference=REFERENCE),
+    case("paths.circle", lambda: paths.circle, reference=REFERENCE, radius=1e-6, mean_load=20.0, load_amplitude=5.0,
+         phase_deg=90.0, cycles=1, steps_per_cycle=16),
+    case("paths.ellipse", lambda: paths.ellipse, reference=REFERENCE, semi_major=1e-6, semi_minor=0.5e-6,
+         mean_load=20.0, load_amplitude=5.0, phase_deg=90.0, angle_deg=30.0, cycles=1, steps_per_cycle=16),
+    case("paths.figure_eight", lambda: paths.figure_eight, reference=REFERENCE, half_width=1e-6, half_height=0.5e-6,
+         mean_load=20.0, load_amplitude=5.0, phase_deg=90.0, angle_deg=30.0, cycles=1, steps_per_cycle=16),
+    case("paths.line", lambda: paths.line, reference=REFERENCE, amplitude=1e-6, mean_load=20.0, load_amplitude=5.0,
+         phase_deg=90.0, angle_deg=30.0, cycles=1, steps_per_cycle=16),
     case("paths.default_family", lambda: paths.default_family, reference=REFERENCE, normal_load=N_TOT,
          ratios=[0.0, 0.5], phases_deg=[0.0], amplitudes=[1.0], levels=[1.0], cycles=1, steps_per_cycle=16),
 ]

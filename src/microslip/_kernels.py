@@ -12,9 +12,23 @@ Each step follows the return mapping of DESIGN.md section 2 exactly::
 
 An element with ``N_i = 0`` is reported as open; numerically it follows the
 same rule (its force is zero and its slider sits at ``t``).
+
+On the contact plane (two tangential components, :func:`plane_step`,
+:func:`march_plane`) each element is an isotropic Jenkins slider: the trial
+force ``kt_i (t - s_i)`` is returned radially onto the disc of radius
+``mu N_i``::
+
+    d = t - s_i                                   (a vector of the plane)
+    if kt_i |d| > mu N_i:  T_i = mu N_i d / |d|,  s_i = t - T_i / kt_i     (slip)
+    else:                  T_i = kt_i d                                    (stick)
+
+On a line through the origin of the plane this is the one-direction rule; on
+the first axis it is the same arithmetic, bit for bit.
 """
 
 from __future__ import annotations
+
+import math
 
 import numba as nb
 import numpy as np
@@ -87,9 +101,162 @@ def march(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cover - c
             W[k] = wsum
 
 
+@nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def plane_step(kt, kn, gap, mu, tx, ty, n, sx, sy):  # pragma: no cover - compiled
+    """One element on the contact plane, one step: ``(Tx, Ty, N_i, slipped, new sx, new sy)``.
+
+    Parameters (float): ``kt``, ``kn`` (N/m), ``gap`` (m), ``mu`` (-), the
+    sample ``tx``, ``ty``, ``n`` (m) and the slider ``sx``, ``sy`` (m) before
+    the step. Returns the element's force (N), its normal force (N), whether
+    it slipped (bool; an open element with a stretch counts as slipped, as in
+    one direction), and the slider after the step (m).
+
+    Radial return: the trial force ``kt d``, ``d = t - s``, is brought back
+    along itself onto the disc of radius ``mu N_i`` when it lies outside:
+    ``T = g d`` and ``s = t - h d`` with ``g = mu N_i / |d|``,
+    ``h = g / kt`` (one square root and two divisions: the cost of the
+    step). An open element carries nothing and its slider sits at ``t``.
+    ``|d|`` is ``sqrt(dx^2 + dy^2)``: the callers keep displacements below
+    1e100 m, so the squares never overflow; a stretch below 1e-154 m, whose
+    square underflows, sticks (force ``kt d``, below the limit of any
+    element carrying more than ``kt * 1e-154`` N).
+
+    Written with selects and no branch, so that a loop over elements
+    calling it vectorises (see :func:`march_plane`).
+    """
+    Ni = kn * max(n - gap, 0.0)
+    lim = mu * Ni
+    dx = tx - sx
+    dy = ty - sy
+    d = math.sqrt(dx * dx + dy * dy)
+    closed = Ni > 0.0
+    slipped = kt * d > lim
+    g = lim / d
+    h = g / kt
+    Tx = (g * dx if slipped else kt * dx) if closed else 0.0
+    Ty = (g * dy if slipped else kt * dy) if closed else 0.0
+    new_sx = (tx - h * dx if slipped else sx) if closed else tx
+    new_sy = (ty - h * dy if slipped else sy) if closed else ty
+    return Tx, Ty, Ni, slipped, new_sx, new_sy
+
+
+@nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def plane_tangent(kt, kn, gap, mu, tx, ty, n, sx, sy):  # pragma: no cover - compiled
+    """Consistent tangent of :func:`plane_step` at the same arguments: ``(Kxx, Kxy, Kyy, Dx, Dy)``.
+
+    ``K = dT/dt`` (N/m, symmetric 2x2) and ``D = dT/dn`` (N/m, a vector):
+    ``kt I`` and ``0`` in stick; ``(mu N_i / |d|) (I - u u^T)`` and
+    ``mu kn u`` in slip (``u = d / |d|``); zero for an open element. The
+    derivatives with respect to the slider before the step are ``-K``; the
+    slider after the step, ``s' = t - T / kt``, has ``ds'/dt = I - K / kt``,
+    ``ds'/ds = K / kt``, ``ds'/dn = -D / kt``.
+    """
+    Ni = kn * max(n - gap, 0.0)
+    if Ni == 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    lim = mu * Ni
+    dx = tx - sx
+    dy = ty - sy
+    d = math.sqrt(dx * dx + dy * dy)
+    if kt * d > lim:
+        ux = dx / d
+        uy = dy / d
+        g = lim / d
+        return g * (1.0 - ux * ux), -g * ux * uy, g * (1.0 - uy * uy), mu * kn * ux, mu * kn * uy
+    return kt, 0.0, kt, 0.0, 0.0
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def plane_tangents(kt, kn, gaps, mu, tx, ty, n, s, out):  # pragma: no cover - compiled
+    """The array's consistent tangent for the step to ``(tx, ty, n)`` from sliders ``s`` (``(J, 2)``).
+
+    Writes ``out = (Kxx, Kxy, Kyy, Dx, Dy)``: the sums of :func:`plane_tangent` over the elements.
+    """
+    for j in range(5):
+        out[j] = 0.0
+    for i in range(kt.shape[0]):
+        kxx, kxy, kyy, ddx, ddy = plane_tangent(kt[i], kn[i], gaps[i], mu, tx, ty, n, s[i, 0], s[i, 1])
+        out[0] += kxx
+        out[1] += kxy
+        out[2] += kyy
+        out[3] += ddx
+        out[4] += ddy
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def plane_work(Tx, Ty, sx_old, sy_old, sx_new, sy_new):  # pragma: no cover - compiled
+    """Work of the element's force on its slider's travel in one step on the plane (J).
+
+    Zero in stick; in slip the slider moves along the force, so the product
+    is positive (the ``max`` only absorbs a rounding of the last unit).
+    """
+    return max(Tx * (sx_new - sx_old) + Ty * (sy_new - sy_old), 0.0)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cover - compiled
+    """March the plane history ``t`` (shape ``(steps, 2)``), ``n`` from sliders ``s`` (``(J, 2)``, in place).
+
+    As :func:`march`, with ``T`` of shape ``(steps, 2)`` and, unless empty,
+    ``Ti`` of shape ``(steps, J, 2)``; ``N``, ``W`` ``(steps,)`` and ``cond``
+    ``(steps, J)`` as there. Each step updates the elements in one loop
+    without a loop-carried dependence (it vectorises), into a scratch row,
+    then adds the rows in element order, as the twin does.
+    """
+    work = W.shape[0] > 0
+    elements = Ti.shape[0] > 0
+    J = kt.shape[0]
+    scratch = np.empty((6, J))
+    sx = scratch[0]  # the sliders, one component per row (contiguous: the element loop vectorises)
+    sy = scratch[1]
+    fx = scratch[2]
+    fy = scratch[3]
+    fn = scratch[4]
+    fw = scratch[5]
+    slips = np.empty(J)  # 1.0 where the element slipped (a float row: an int8 one stops the vectorisation)
+    sx[:] = s[:, 0]
+    sy[:] = s[:, 1]
+    for k in range(t.shape[0]):
+        tx = t[k, 0]
+        ty = t[k, 1]
+        nk = n[k]
+        for i in range(J):  # no store into the strided records here: that would stop the vectorisation
+            sx_old = sx[i]
+            sy_old = sy[i]
+            Tx, Ty, Ni, slipped, sx[i], sy[i] = plane_step(kt[i], kn[i], gaps[i], mu, tx, ty, nk, sx_old, sy_old)
+            fx[i] = Tx
+            fy[i] = Ty
+            fn[i] = Ni
+            slips[i] = 1.0 if slipped else 0.0
+            fw[i] = plane_work(Tx, Ty, sx_old, sy_old, sx[i], sy[i])  # always: a branch here slows the loop
+        if elements:
+            for i in range(J):
+                Ti[k, i, 0] = fx[i]
+                Ti[k, i, 1] = fy[i]
+                cond[k, i] = OPEN if fn[i] == 0.0 else (SLIP if slips[i] > 0.0 else STICK)
+        txsum = 0.0
+        tysum = 0.0
+        nsum = 0.0
+        for i in range(J):
+            txsum += fx[i]
+            tysum += fy[i]
+            nsum += fn[i]
+        T[k, 0] = txsum
+        T[k, 1] = tysum
+        N[k] = nsum
+        if work:
+            wsum = 0.0
+            for i in range(J):
+                wsum += fw[i]
+            W[k] = wsum
+    s[:, 0] = sx
+    s[:, 1] = sy
+
+
 NO_WORK = np.empty(0)
 NO_ELEMENTS = np.empty((0, 0))
 NO_CONDITIONS = np.empty((0, 0), dtype=np.int8)
+NO_PLANE_ELEMENTS = np.empty((0, 0, 2))
 
 
 def march_reference(kt, kn, gaps, mu, t, n, s):
@@ -129,9 +296,51 @@ def march_reference(kt, kn, gaps, mu, t, n, s):
     return T, N, W, Ti_all, cond_all, s
 
 
+def march_plane_reference(kt, kn, gaps, mu, t, n, s):
+    """Slow, obviously correct pure-Python twin of :func:`march_plane`.
+
+    ``t`` is a sequence of ``(tx, ty)`` pairs and ``s`` of ``J`` pairs (m);
+    returns ``(T, N, W, Ti, cond, s)`` as lists (``T`` of pairs, ``Ti`` of
+    lists of pairs); ``s`` is not modified.
+    """
+    s = [[float(v[0]), float(v[1])] for v in s]
+    T, N, W, Ti_all, cond_all = [], [], [], [], []
+    for (tx, ty), nk in zip(t, n):
+        row_T, row_c, row_W, row_N = [], [], [], []
+        for i in range(len(kt)):
+            Ni = kn[i] * max(nk - gaps[i], 0.0)
+            limit = mu * Ni
+            dx, dy = tx - s[i][0], ty - s[i][1]  # the stretch d = t - s
+            d = math.sqrt(dx * dx + dy * dy)
+            if Ni == 0.0:  # open: no force, the slider at t
+                Tx, Ty, new, c = 0.0, 0.0, [tx, ty], OPEN
+            elif kt[i] * d > limit:  # the trial force kt d leaves the disc: back onto its edge along d
+                g = limit / d
+                Tx, Ty, new, c = g * dx, g * dy, [tx - g / kt[i] * dx, ty - g / kt[i] * dy], SLIP
+            else:
+                Tx, Ty, new, c = kt[i] * dx, kt[i] * dy, s[i], STICK
+            row_W.append(max(Tx * (new[0] - s[i][0]) + Ty * (new[1] - s[i][1]), 0.0))
+            s[i] = new
+            row_T.append((Tx, Ty))
+            row_c.append(c)
+            row_N.append(Ni)
+        Ti_all.append(row_T)
+        cond_all.append(row_c)
+        Tx_sum = Ty_sum = N_sum = W_sum = 0.0  # added in the kernel's order (no compensated sum)
+        for (Tx, Ty), Ni, work in zip(row_T, row_N, row_W):
+            Tx_sum, Ty_sum, N_sum, W_sum = Tx_sum + Tx, Ty_sum + Ty, N_sum + Ni, W_sum + work
+        T.append((Tx_sum, Ty_sum))
+        N.append(N_sum)
+        W.append(W_sum)
+    return T, N, W, Ti_all, cond_all, s
+
+
 def warm_up() -> None:
     """Compile (or load from cache) the kernel on a tiny input."""
     one = np.ones(1)
     z = np.zeros(1)
     march(one, one, z, 0.5, z, one, np.zeros(1), np.empty(1), np.empty(1), np.empty(1),
           np.empty((1, 1)), np.empty((1, 1), dtype=np.int8))
+    march_plane(one, one, z, 0.5, np.zeros((1, 2)), one, np.zeros((1, 2)), np.empty((1, 2)), np.empty(1),
+                np.empty(1), np.empty((1, 1, 2)), np.empty((1, 1), dtype=np.int8))
+    plane_tangents(one, one, z, 0.5, 0.0, 0.0, 1.0, np.zeros((1, 2)), np.empty(5))

@@ -6,10 +6,16 @@ Element ``i`` has a tangential stiffness ``kt[i]`` (N/m), a normal stiffness
 slider with friction coefficient ``mu``, a tangential force ``|T_i| <= mu N_i``.
 The state is the position of each slider (m).
 
+On the contact plane (``t`` with two tangential components) each element is
+an isotropic Jenkins slider: its trial force is returned radially onto the
+disc ``|T_i| <= mu N_i``; a path along a straight line gives the
+one-direction result along that line.
+
 The public objects are
 
 * :class:`MicroslipModel` -- immutable parameters, :meth:`~MicroslipModel.simulate`
-  for whole histories and :meth:`~MicroslipModel.trial` for one step at a time;
+  for whole histories and :meth:`~MicroslipModel.trial` for one step at a time,
+  along one tangential direction or on the contact plane;
 * :class:`State` -- the committed slider positions;
 * :class:`Response` and :class:`Step` -- what a march or a trial step returns;
 * :class:`Provenance` -- how a tuned model was tuned (kept in its JSON file);
@@ -43,6 +49,8 @@ _UNIT_KINDS = {"kt": "stiffness", "kn": "stiffness", "gaps": "length", "mu": "di
 _SI = {"kt": "N/m", "kn": "N/m", "gaps": "m", "mu": "-"}
 #: relative margin above the tuning approach before a model counts as driven beyond its tuning load
 _BEYOND_RTOL = 1e-9
+#: largest displacement (m) accepted on the contact plane: the element squares the stretch (1e200 m^2 at most)
+PLANE_LIMIT = 1e100
 
 
 class BeyondTuningWarning(UserWarning):
@@ -59,21 +67,62 @@ def _frozen(a: np.ndarray) -> np.ndarray:
     return a
 
 
+def _below_plane_limit(name: str, a: np.ndarray) -> None:
+    """Refuse displacements (m) on the contact plane at or beyond :data:`PLANE_LIMIT`, naming ``name``."""
+    if a.size and float(np.abs(a).max()) >= PLANE_LIMIT:
+        k = int(np.argmax(np.abs(a)))
+        raise ValueError(f"{name} must stay below {PLANE_LIMIT:g} m in magnitude on the contact plane (the element "
+                         f"squares the stretch), got {float(a.ravel()[k]):.6g} m at flat index {k}")
+
+
+def _tangential(name: str, value, *, min_steps: int = 1) -> np.ndarray:
+    """A tangential history (m): shape ``(steps,)``, or ``(steps, 2)`` on the contact plane; finite."""
+    t = _checks.real_array(name, value, min_size=min_steps)
+    if not (t.ndim == 1 or (t.ndim == 2 and t.shape[1] == 2)):
+        raise ValueError(f"{name} must have shape (steps,) (one tangential direction) or (steps, 2) (its two "
+                         f"components on the contact plane), got shape {t.shape}")
+    if t.shape[0] < min_steps:
+        raise ValueError(f"{name} must have at least {min_steps} samples, got {t.shape[0]}")
+    if t.ndim == 2:
+        _below_plane_limit(name, t)
+    return t
+
+
+def _plane_point(name: str, value) -> np.ndarray:
+    """A point of the contact plane ``(x, y)`` (m), shape (2,)."""
+    p = _checks.real_array(name, value)
+    if p.shape != (2,):
+        raise ValueError(f"{name} must be a number (one tangential direction) or a pair (x, y) on the contact "
+                         f"plane (m), got shape {p.shape}")
+    _below_plane_limit(name, p)
+    return p
+
+
 @dataclass(frozen=True, eq=False)
 class State:
     """Committed state of a microslip array.
 
     Attributes
     ----------
-    sliders : ndarray, shape (J,)
-        Slider position of each element (m). Read-only.
+    sliders : ndarray, shape (J,) or (J, 2)
+        Slider position of each element (m): one value per element along
+        one tangential direction, a point of the contact plane per element
+        (its two components) on the plane. Read-only.
     """
 
     sliders: np.ndarray
 
     def __post_init__(self):
-        object.__setattr__(self, "sliders", _frozen(_checks.real_array("sliders", self.sliders, ndim=1,
-                                                                       min_size=1)))
+        sliders = _checks.real_array("sliders", self.sliders, min_size=1)
+        if not (sliders.ndim == 1 or (sliders.ndim == 2 and sliders.shape[1] == 2)):
+            raise ValueError(f"sliders must have shape (J,) (one tangential direction) or (J, 2) (the contact "
+                             f"plane), got shape {sliders.shape}")
+        object.__setattr__(self, "sliders", _frozen(sliders))
+
+    @property
+    def plane(self) -> bool:
+        """True for the state of an array on the contact plane (sliders of shape ``(J, 2)``)."""
+        return self.sliders.ndim == 2
 
     def __repr__(self) -> str:
         return f"State(sliders={np.array2string(self.sliders, precision=4)})"
@@ -88,27 +137,39 @@ class Step:
 
     Attributes
     ----------
-    T, N : float
-        Total tangential and normal force (N).
-    Ti, Ni : ndarray, shape (J,)
-        Force of each element (N).
+    T : float, or ndarray of shape (2,) on the contact plane
+        Total tangential force (N).
+    N : float
+        Total normal force (N).
+    Ti : ndarray, shape (J,), or (J, 2) on the plane
+        Tangential force of each element (N).
+    Ni : ndarray, shape (J,)
+        Normal force of each element (N).
     condition : ndarray of int8, shape (J,)
         0 open, 1 stick, 2 slip.
-    dT_dt, dT_dn, dN_dn : float
-        Consistent tangent of the step (N/m): ``dT/dt`` is the sum of ``kt``
-        over sticking elements, ``dT/dn`` the sum of ``sign(T_i) mu kn_i`` over
-        slipping elements, ``dN/dn`` the sum of ``kn`` over closed elements.
+    dT_dt : float, or ndarray of shape (2, 2) on the plane
+        Consistent tangent ``dT/dt`` (N/m): the sum of ``kt`` over sticking
+        elements; on the plane ``kt I`` per sticking element plus, per
+        slipping one, ``(mu N_i / |d_i|) (I - u_i u_i^T)`` with ``d_i`` the
+        element's stretch ``t - s_i`` before the step and ``u_i = d_i / |d_i|``
+        (sliding along a circle, an element still resists a change of
+        direction).
+    dT_dn : float, or ndarray of shape (2,) on the plane
+        ``dT/dn`` (N/m): the sum of ``sign(T_i) mu kn_i`` over slipping
+        elements (``mu kn_i u_i`` on the plane).
+    dN_dn : float
+        ``dN/dn`` (N/m): the sum of ``kn`` over closed elements.
     state : State
         The state after the step, to commit.
     """
 
-    T: float
+    T: float | np.ndarray
     N: float
     Ti: np.ndarray
     Ni: np.ndarray
     condition: np.ndarray
-    dT_dt: float
-    dT_dn: float
+    dT_dt: float | np.ndarray
+    dT_dn: float | np.ndarray
     dN_dn: float
     state: State
 
@@ -117,19 +178,28 @@ class Step:
 class Response:
     """Result of :meth:`MicroslipModel.simulate` over a history of ``steps`` samples.
 
+    On the contact plane every tangential quantity has a trailing axis of
+    two components: ``t``, ``T`` of shape ``(steps, 2)``, ``Ti`` of shape
+    ``(steps, J, 2)``, the state's sliders ``(J, 2)``.
+
     Attributes
     ----------
     model : MicroslipModel
         The model that produced it.
-    t, n : ndarray, shape (steps,)
-        The imposed tangential displacement and normal approach (m).
-    T, N : ndarray, shape (steps,)
-        Total tangential and normal force (N).
+    t : ndarray, shape (steps,) or (steps, 2)
+        The imposed tangential displacement (m).
+    n : ndarray, shape (steps,)
+        The imposed normal approach (m).
+    T : ndarray, shape (steps,) or (steps, 2)
+        Total tangential force (N).
+    N : ndarray, shape (steps,)
+        Total normal force (N).
     friction_work : ndarray, shape (steps,), or None
         Energy dissipated by friction in each step (J): each element's
-        force times its slider's travel, summed. Never negative. ``None``
-        when the march was run with ``work=False``.
-    Ti : ndarray, shape (steps, J), or None
+        force times its slider's travel (a dot product on the plane),
+        summed. Never negative. ``None`` when the march was run with
+        ``work=False``.
+    Ti : ndarray, shape (steps, J) or (steps, J, 2), or None
         Tangential force of each element (N); ``None`` when the march was
         run with ``per_element=False``.
     condition : ndarray of int8, shape (steps, J), or None
@@ -154,6 +224,11 @@ class Response:
         return self.model.element_normal_forces(self.n)
 
     @property
+    def plane(self) -> bool:
+        """True when the march ran on the contact plane (``t`` of shape ``(steps, 2)``)."""
+        return self.t.ndim == 2
+
+    @property
     def dissipation(self) -> float:
         """Energy dissipated by friction along the record (J), ``sum(friction_work)``.
 
@@ -170,19 +245,28 @@ class Response:
 
     @property
     def work(self) -> float:
-        """Work done on the contact along the record, ``∫ T dt`` (J), by the trapezoidal rule.
+        """Work done on the contact along the record, ``∫ T · dt`` (J), by the trapezoidal rule.
 
         It includes the elastic energy stored at the end; over a steady cycle
-        it converges to :attr:`dissipation` as the path is refined.
+        it converges to :attr:`dissipation` as the path is refined. On the
+        plane it is the sum of the work of the two components.
         """
-        return float(np.trapezoid(self.T, self.t)) if self.t.size > 1 else 0.0
+        if self.t.shape[0] < 2:
+            return 0.0
+        return float(np.sum(np.trapezoid(self.T, self.t, axis=0)))
 
     def plot(self, ax=None, *, label: str | None = None, **kwargs):
         """Plot the tangential force against the tangential displacement.
 
+        On the contact plane: the displacement orbit (``t_y`` against
+        ``t_x``, µm) and, next to it, the force orbit (``T_y`` against
+        ``T_x``, N) with the friction limit ``mu N`` at the largest normal
+        load as a dashed circle; both with equal scales on their two axes
+        and the first sample marked.
+
         Parameters
         ----------
-        ax : matplotlib Axes, optional
+        ax : matplotlib Axes, or a pair of Axes on the plane, optional
             Where to draw; a new figure is made if omitted.
         label : str, optional
             Legend label.
@@ -191,10 +275,12 @@ class Response:
 
         Returns
         -------
-        matplotlib.axes.Axes
+        matplotlib.axes.Axes, or ndarray of two Axes on the plane
         """
         import matplotlib.pyplot as plt
 
+        if self.plane:
+            return self._plot_orbits(ax, label, **kwargs)
         if ax is None:
             _, ax = plt.subplots(figsize=(5.5, 4))
         ax.plot(self.t * 1e6, self.T, label=label, **kwargs)
@@ -204,6 +290,34 @@ class Response:
         if label:
             ax.legend()
         return ax
+
+    def _plot_orbits(self, axes, label, **kwargs):
+        import matplotlib.pyplot as plt
+
+        if axes is None:
+            _, axes = plt.subplots(1, 2, figsize=(10, 4.5))
+        axes = np.asarray(axes, dtype=object).ravel()
+        if axes.size != 2:
+            raise ValueError(f"ax must be a pair of Axes on the contact plane (displacement, force), got {axes.size}")
+        limit = self.model.mu * float(self.N.max())
+        circle = np.linspace(0.0, 2.0 * np.pi, 361)
+        axes[1].plot(limit * np.cos(circle), limit * np.sin(circle), color="0.6", ls="--", lw=1,
+                     label=f"mu N at the largest load ({limit:.3g} N)")
+        for ax, xy, scale, what in ((axes[0], self.t, 1e6, "displacement t (µm)"), (axes[1], self.T, 1.0,
+                                                                                     "force T (N)")):
+            line, = ax.plot(xy[:, 0] * scale, xy[:, 1] * scale, label=label, **kwargs)
+            ax.plot(xy[0, 0] * scale, xy[0, 1] * scale, "o", color=line.get_color(), ms=4)
+            name, unit = what.split(" (")
+            ax.set_xlabel(f"tangential {name}, x component ({unit}")
+            ax.set_ylabel(f"tangential {name}, y component ({unit}")
+            ax.set_aspect("equal", adjustable="datalim")
+            ax.grid(True, alpha=0.3)
+        axes[0].set_title("displacement orbit")
+        axes[1].set_title("force orbit")
+        axes[1].legend(fontsize="small")
+        if label:
+            axes[0].legend(fontsize="small")
+        return axes
 
 
 def _now() -> str:
@@ -499,18 +613,36 @@ class MicroslipModel:
         return (np.sign(t) * np.minimum(self.kt * np.abs(t), self.mu * Ni)).sum(axis=-1)
 
     # -- marching ----------------------------------------------------------
-    def initial_state(self, t0: float = 0.0) -> State:
-        """State with every slider at ``t0`` (m): all elements unloaded at ``t = t0``."""
-        t0 = _checks.real_scalar("t0", t0)
-        return State(np.full(self.elements, t0))
+    def initial_state(self, t0=0.0) -> State:
+        """State with every slider at ``t0``: all elements unloaded at ``t = t0``.
 
-    def _check_state(self, state) -> np.ndarray:
+        Parameters
+        ----------
+        t0 : float, or array_like of shape (2,)
+            Tangential displacement (m); a pair ``(tx, ty)`` gives the state
+            of the array on the contact plane (sliders of shape ``(J, 2)``).
+        """
+        if np.ndim(t0) == 0:
+            return State(np.full(self.elements, _checks.real_scalar("t0", t0)))
+        t0 = _plane_point("t0", t0)
+        return State(np.tile(t0, (self.elements, 1)))
+
+    def _check_state(self, state, plane: bool = False) -> np.ndarray:
+        shape = (self.elements, 2) if plane else (self.elements,)
         if state is None:
-            return np.zeros(self.elements)
+            return np.zeros(shape)
         if not isinstance(state, State):
             raise TypeError(f"state must be a microslip State (from a Response or Step), got {type(state).__name__}")
-        if state.sliders.shape != (self.elements,):
-            raise ValueError(f"state has {state.sliders.size} sliders, this model has J = {self.elements}")
+        if state.sliders.shape[0] != self.elements:
+            raise ValueError(f"state has {state.sliders.shape[0]} sliders, this model has J = {self.elements}")
+        if state.plane != plane:
+            raise ValueError(
+                f"state has sliders of shape {state.sliders.shape}, " + (
+                    f"one tangential direction; t on the contact plane needs a state of shape {shape} (from a "
+                    f"march on the plane, or initial_state((tx, ty)))" if plane else
+                    f"on the contact plane; t along one direction needs a state of shape {shape}"))
+        if plane:
+            _below_plane_limit("state", state.sliders)
         return np.array(state.sliders)
 
     def simulate(self, t, n, state: State | None = None, *, per_element: bool = True,
@@ -519,27 +651,34 @@ class MicroslipModel:
 
         Parameters
         ----------
-        t : array_like, shape (steps,)
-            Tangential relative displacement (m).
+        t : array_like, shape (steps,) or (steps, 2)
+            Tangential relative displacement (m): along one direction, or its
+            two components in the contact plane. On the plane each element
+            is an isotropic Jenkins slider (its trial force returned radially
+            onto the disc ``|T_i| <= mu N_i``, an open element's slider
+            following ``t``), and ``|t|`` must stay below 1e100 m.
         n : array_like, shape (steps,) or scalar
             Normal approach (m); a scalar is held constant.
         state : State, optional
             State to start from (``Response.state`` of an earlier call to
-            continue it exactly). Default: every slider at ``t = 0``, so an
-            element in contact at the first sample carries ``kt_i * t[0]``
-            (capped by friction).
+            continue it exactly; sliders of shape ``(J, 2)`` on the plane).
+            Default: every slider at ``t = 0``, so an element in contact at
+            the first sample carries ``kt_i * t[0]`` (capped by friction).
         per_element : bool, default True
             Record each element's force and condition. ``False`` records only
             the totals, which is faster for long histories of large arrays.
         work : bool, default True
             Record the friction work of each step (``Response.friction_work``,
             ``Response.dissipation``). ``False`` saves about a third of the
-            time of a march that records only totals.
+            time of a march that records only totals (along one direction;
+            on the plane the work is computed anyway and only its sum is
+            saved).
 
         Returns
         -------
         Response
-            Forces in N, shapes ``(steps,)`` and ``(steps, J)``.
+            Forces in N, shapes ``(steps,)`` and ``(steps, J)``; on the plane
+            ``T`` of shape ``(steps, 2)`` and ``Ti`` of shape ``(steps, J, 2)``.
 
         Warns
         -----
@@ -547,48 +686,59 @@ class MicroslipModel:
             Once per call, when a model with a :class:`Provenance` is driven
             beyond the approach of the load it was tuned for.
         """
-        t = _checks.real_array("t", t, ndim=1, min_size=1)
+        t = _tangential("t", t)
+        plane = t.ndim == 2
         n = _checks.real_array("n", n)
         per_element, work = _checks.flag("per_element", per_element), _checks.flag("work", work)
         if n.ndim == 0:
             top = float(n)
-            n = np.full(t.shape, top)
-        elif n.shape != t.shape:
-            raise ValueError(f"n must be a scalar or have the same shape as t {t.shape}, got {n.shape}")
+            n = np.full(t.shape[:1], top)
+        elif n.shape != t.shape[:1]:
+            raise ValueError(f"n must be a scalar or have the same shape as t {t.shape}, got {n.shape}"
+                             if not plane else
+                             f"n must be a scalar or have one value per sample of t ({t.shape[0]},), got {n.shape}")
         else:
             top = None  # its largest approach, only when there is a tuning load to compare it with
-        s = self._check_state(state)
+        s = self._check_state(state, plane)
         if self._beyond is not None:
             top = float(n.max()) if top is None else top
             if top > self._beyond:
                 self._warn_beyond(top, 2)
-        steps = t.size
-        T = np.empty(steps)
+        steps = t.shape[0]
+        T = np.empty(t.shape)
         N = np.empty(steps)
         W = np.empty(steps) if work else _kernels.NO_WORK
         if per_element:
-            Ti = np.empty((steps, self.elements))
+            Ti = np.empty((steps, self.elements) + t.shape[1:])
             cond = np.empty((steps, self.elements), dtype=np.int8)
         else:
-            Ti, cond = _kernels.NO_ELEMENTS, _kernels.NO_CONDITIONS
-        _kernels.march(self.kt, self.kn, self.gaps, self.mu, t, n, s, T, N, W, Ti, cond)
+            Ti = _kernels.NO_PLANE_ELEMENTS if plane else _kernels.NO_ELEMENTS
+            cond = _kernels.NO_CONDITIONS
+        march = _kernels.march_plane if plane else _kernels.march
+        march(self.kt, self.kn, self.gaps, self.mu, t, n, s, T, N, W, Ti, cond)
         return Response(self, t, n, T, N, W if work else None, Ti if per_element else None,
                         cond if per_element else None, State(s))
 
-    def trial(self, state: State | None, t: float, n: float) -> Step:
+    def trial(self, state: State | None, t, n: float) -> Step:
         """One trial step from a committed state; nothing is changed.
 
         Parameters
         ----------
         state : State or None
             Committed state (None: every slider at ``t = 0``).
-        t, n : float
-            Tangential displacement and normal approach at the end of the step (m).
+        t : float, or array_like of shape (2,)
+            Tangential displacement at the end of the step (m); a pair
+            ``(tx, ty)`` on the contact plane (then ``state`` is a state on
+            the plane).
+        n : float
+            Normal approach at the end of the step (m).
 
         Returns
         -------
         Step
-            Forces (N), consistent tangent (N/m) and the trial state.
+            Forces (N), consistent tangent (N/m; on the plane ``dT_dt`` of
+            shape ``(2, 2)`` and ``dT_dn`` of shape ``(2,)``) and the trial
+            state.
 
         Warns
         -----
@@ -596,12 +746,15 @@ class MicroslipModel:
             The first time a model with a :class:`Provenance` is stepped
             beyond its tuning approach (once per model object).
         """
-        t = _checks.real_scalar("t", t)
+        plane = np.ndim(t) != 0
+        t = _plane_point("t", t) if plane else _checks.real_scalar("t", t)
         n = _checks.real_scalar("n", n)
-        s = self._check_state(state)
+        s = self._check_state(state, plane)
         if self._beyond is not None and n > self._beyond and not self._warned:
             object.__setattr__(self, "_warned", True)  # called per step inside solvers: once per model
             self._warn_beyond(n, 2)
+        if plane:
+            return self._trial_plane(s, t, n)
         T, N = np.empty(1), np.empty(1)
         Ti = np.empty((1, self.elements))
         cond = np.empty((1, self.elements), dtype=np.int8)
@@ -616,6 +769,20 @@ class MicroslipModel:
             dN_dn=float(self.kn[cond != OPEN].sum()),
             state=State(s),
         )
+
+    def _trial_plane(self, s: np.ndarray, t: np.ndarray, n: float) -> Step:
+        tangent = np.empty(5)  # Kxx, Kxy, Kyy, Dx, Dy at the committed state, before the step moves it
+        _kernels.plane_tangents(self.kt, self.kn, self.gaps, self.mu, t[0], t[1], n, s, tangent)
+        T, N = np.empty((1, 2)), np.empty(1)
+        Ti = np.empty((1, self.elements, 2))
+        cond = np.empty((1, self.elements), dtype=np.int8)
+        _kernels.march_plane(self.kt, self.kn, self.gaps, self.mu, t[None, :], np.array([n]), s, T, N,
+                             _kernels.NO_WORK, Ti, cond)
+        cond = cond[0]
+        return Step(
+            T=T[0], N=float(N[0]), Ti=Ti[0], Ni=self.kn * np.maximum(n - self.gaps, 0.0), condition=cond,
+            dT_dt=np.array([[tangent[0], tangent[1]], [tangent[1], tangent[2]]]), dT_dn=tangent[3:].copy(),
+            dN_dn=float(self.kn[cond != OPEN].sum()), state=State(s))
 
     # -- persistence -------------------------------------------------------
     def to_dict(self) -> dict:

@@ -102,8 +102,87 @@ def test_simulate_uses_the_compiled_kernel_with_the_same_numbers():
     np.testing.assert_array_equal(r.state.sliders, s_ref)
 
 
+def compiled_plane(model, t, n, s0, per_element=True):
+    steps, J = t.shape[0], model.elements
+    s = np.array(s0, dtype=float)
+    T, N, W = np.empty((steps, 2)), np.empty(steps), np.empty(steps)
+    if per_element:
+        Ti, cond = np.empty((steps, J, 2)), np.empty((steps, J), dtype=np.int8)
+    else:
+        Ti, cond = _kernels.NO_PLANE_ELEMENTS, _kernels.NO_CONDITIONS
+    _kernels.march_plane(model.kt, model.kn, model.gaps, model.mu, t, n, s, T, N, W, Ti, cond)
+    return T, N, W, Ti, cond, s
+
+
+def assert_plane_twins_agree(model, t, n, s0):
+    s0 = np.asarray(s0, dtype=float)
+    s0_copy = s0.copy()
+    ref = _kernels.march_plane_reference(model.kt, model.kn, model.gaps, model.mu, t, n, s0)
+    np.testing.assert_array_equal(s0, s0_copy)  # the twin does not touch its input state
+    T, N, W, Ti, cond, s = compiled_plane(model, t, n, s0)
+    for got, want in zip((T, N, W, Ti, cond, s), ref):
+        np.testing.assert_array_equal(got, np.array(want).reshape(got.shape))
+    T_tot, N_tot, W_tot, _, _, s_tot = compiled_plane(model, t, n, s0, per_element=False)
+    for got, want in zip((T_tot, N_tot, W_tot, s_tot), (T, N, W, s)):
+        np.testing.assert_array_equal(got, want)
+    return cond
+
+
+@st.composite
+def plane_walks(draw):
+    """Random walks on the plane, n wandering across all the gaps."""
+    size = draw(st.integers(50, 300))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    t = np.cumsum(rng.normal(0.0, 0.3 * UM, (size, 2)), axis=0)
+    n = 1 * UM + np.cumsum(rng.normal(0.0, 0.3 * UM, size))
+    return t, n
+
+
+@settings(max_examples=150, deadline=None)
+@given(model=models(), path=paths(), data=st.data())
+def test_compiled_plane_kernel_equals_twin_bit_for_bit(model, path, data):
+    """Same floating-point operations in the same order (the compiled one vectorised over the
+    elements with selects, the twin with an ``if``), so equal bit for bit, ties included."""
+    t1, n = path
+    t = np.column_stack([t1, lengths_array(data.draw, t1.size, -3 * UM, 3 * UM)])
+    s0 = lengths_array(data.draw, 2 * model.elements, -3 * UM, 3 * UM).reshape(-1, 2)
+    assert_plane_twins_agree(model, t, n, s0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(model=models(max_elements=12), path=plane_walks())
+def test_plane_twins_agree_on_random_walks(model, path):
+    assert_plane_twins_agree(model, *path, np.zeros((model.elements, 2)))
+
+
+def test_plane_twins_agree_where_elements_open_and_close_again_on_an_orbit():
+    model = MicroslipModel(kt=[8e6, 5e6, 3e6], kn=[1e7, 7e6, 3e6], gaps=[0.0, 0.9e-6, 1.5e-6], mu=0.4)
+    k = np.arange(2000)
+    t = 1.5 * UM * np.column_stack([np.cos(2 * np.pi * k / 97), 0.5 * np.sin(2 * np.pi * k / 97)])
+    n = 1.0 * UM + 1.2 * UM * np.sin(2 * np.pi * k / 331)
+    cond = assert_plane_twins_agree(model, t, n, np.zeros((3, 2)))
+    for i in range(3):
+        closes = np.flatnonzero((cond[:-1, i] == OPEN) & (cond[1:, i] != OPEN))
+        assert closes.size >= 3
+    assert (cond == STICK).any() and (cond == SLIP).any()
+
+
+def test_simulate_on_the_plane_uses_the_compiled_kernel_with_the_same_numbers():
+    model = MicroslipModel(kt=[8e6, 5e6], kn=[1e7, 7e6], gaps=[0.0, 0.9e-6], mu=0.4)
+    rng = np.random.default_rng(1)
+    t, n = rng.uniform(-2, 2, (500, 2)) * UM, rng.uniform(-0.5, 2, 500) * UM
+    r = model.simulate(t, n)
+    T, N, W, Ti, cond, s = _kernels.march_plane_reference(model.kt, model.kn, model.gaps, model.mu, t, n,
+                                                           np.zeros((2, 2)))
+    np.testing.assert_array_equal(r.T, T)
+    np.testing.assert_array_equal(r.friction_work, W)
+    np.testing.assert_array_equal(r.Ti, Ti)
+    np.testing.assert_array_equal(r.condition, cond)
+    np.testing.assert_array_equal(r.state.sliders, s)
+
+
 def test_kernels_are_compiled_and_cached():
     _kernels.warm_up()
-    for kernel in (_kernels.march,):
+    for kernel in (_kernels.march, _kernels.march_plane, _kernels.plane_tangents):
         assert kernel.signatures  # compiled for float64 arrays
         assert type(kernel._cache).__name__ != "NullCache"  # cache=True

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from _strategies import UM, models, paths
+from _strategies import UM, models, paths, plane_paths
 from microslip import MicroslipModel, Response, Sphere, State, Step, tune
 from microslip.model import OPEN, SLIP, STICK, BeyondTuningWarning
 
@@ -139,20 +139,25 @@ def test_default_state_starts_every_slider_at_zero(paper_model):
     np.testing.assert_array_equal(r.Ti[0], np.zeros(4))
 
 
-@settings(max_examples=60, deadline=None)
-@given(model=models(), path=paths(min_size=2), data=st.data())
+@settings(max_examples=80, deadline=None)
+@given(model=models(), path=st.one_of(paths(min_size=2), plane_paths(min_size=2)), data=st.data())
 def test_two_calls_continue_one_call_bit_for_bit(model, path, data):
+    """Along one direction and on the contact plane (t of shape (steps, 2))."""
     t, n = path
-    k = data.draw(st.integers(1, t.size - 1))
+    k = data.draw(st.integers(1, t.shape[0] - 1))
     whole = model.simulate(t, n)
     first = model.simulate(t[:k], n[:k])
     second = model.simulate(t[k:], n[k:], state=first.state)
     np.testing.assert_array_equal(np.concatenate([first.T, second.T]), whole.T)
     np.testing.assert_array_equal(np.concatenate([first.Ti, second.Ti]), whole.Ti)
     np.testing.assert_array_equal(np.concatenate([first.condition, second.condition]), whole.condition)
+    np.testing.assert_array_equal(np.concatenate([first.friction_work, second.friction_work]), whole.friction_work)
     np.testing.assert_array_equal(second.state.sliders, whole.state.sliders)
-    totals = model.simulate(t[k:], n[k:], state=first.state, per_element=False)
-    np.testing.assert_array_equal(totals.T, second.T)
+    for work in (True, False):
+        totals = model.simulate(t[k:], n[k:], state=first.state, per_element=False, work=work)
+        np.testing.assert_array_equal(totals.T, second.T)
+        np.testing.assert_array_equal(totals.N, second.N)
+        np.testing.assert_array_equal(totals.state.sliders, second.state.sliders)
 
 
 @settings(max_examples=60, deadline=None)
@@ -191,7 +196,8 @@ def test_scalar_n_is_held_constant(paper_model):
 
 
 @pytest.mark.parametrize("kwargs, error, message", [
-    (dict(t=[[0.0, 1e-6]], n=1e-6), ValueError, "t must be 1-D, got shape (1, 2)"),
+    (dict(t=[[0.0, 1e-6, 2e-6]], n=1e-6), ValueError, "t must have shape (steps,) (one tangential direction) or "
+     "(steps, 2) (its two components on the contact plane), got shape (1, 3)"),
     (dict(t=[], n=1e-6), ValueError, "t must have at least 1 value(s), got 0"),
     (dict(t=[0.0, np.nan], n=1e-6), ValueError, "t must be finite, got nan at flat index 1"),
     (dict(t=[0.0, 1e-6], n=[1e-6, 1e-6, 1e-6]), ValueError,
@@ -243,19 +249,21 @@ def test_response_dissipation_and_plot(paper_model):
 
 
 # -- trial / commit -------------------------------------------------------------
-@settings(max_examples=60, deadline=None)
-@given(model=models(), path=paths())
+@settings(max_examples=80, deadline=None)
+@given(model=models(), path=st.one_of(paths(), plane_paths()))
 def test_committed_trials_reproduce_simulate(model, path):
+    """Along one direction and on the contact plane (a pair t, a 2x2 tangent)."""
     t, n = path
     r = model.simulate(t, n)
     state = None
-    for k in range(t.size):
+    for k in range(t.shape[0]):
         before = None if state is None else state.sliders.copy()
         step = model.trial(state, t[k], n[k])
         if state is not None:  # a trial never mutates the committed state
             np.testing.assert_array_equal(state.sliders, before)
         assert isinstance(step, Step)
-        assert step.T == r.T[k] and step.N == r.N[k]
+        np.testing.assert_array_equal(step.T, r.T[k])
+        assert step.N == r.N[k] and np.shape(step.dT_dt) == t.shape[1:] * 2 and np.shape(step.dT_dn) == t.shape[1:]
         np.testing.assert_array_equal(step.Ti, r.Ti[k])
         np.testing.assert_array_equal(step.condition, r.condition[k])
         state = step.state  # commit
@@ -402,7 +410,8 @@ def test_state_refuses_non_finite_or_non_vector_sliders():
 
     with pytest.raises(ValueError, match=r"sliders must be finite, got nan at flat index 0"):
         State([np.nan, 0.0])
-    with pytest.raises(ValueError, match=r"sliders must be 1-D, got shape \(2, 1\)"):
+    with pytest.raises(ValueError, match=r"sliders must have shape \(J,\) \(one tangential direction\) or \(J, 2\) "
+                                         r"\(the contact plane\), got shape \(2, 1\)"):
         State([[0.0], [1.0]])
     with pytest.raises(TypeError, match=r"sliders must be an array of real numbers, got 'ab'"):
         State("ab")

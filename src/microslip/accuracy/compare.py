@@ -251,6 +251,9 @@ def _check_paths(paths) -> tuple:
     for k, p in enumerate(paths):
         if not isinstance(p, Path):
             raise TypeError(f"paths[{k}] must be a microslip.paths.Path, got {type(p).__name__}")
+        if p.plane:
+            raise ValueError(f"paths[{k}] ({p.label}) is an orbit on the contact plane: the accuracy metrics are "
+                             f"defined along one tangential direction; compare models on it with simulate")
     return paths
 
 

@@ -1,6 +1,7 @@
 """Load paths: histories of tangential displacement ``t`` and normal approach ``n`` to drive a contact.
 
-A :class:`Path` holds the samples ``t``, ``n`` (m), the normal load ``N`` (N)
+A :class:`Path` holds the samples ``t`` (along one tangential direction, or
+its two components on the contact plane), ``n`` (m), the normal load ``N`` (N)
 they were built from (when built from loads), and ``steady``: the slice that
 is the steady cycle, over which accuracy metrics are measured. Every path
 starts at ``t = 0`` from the virgin state (sliders at 0): pressing the
@@ -19,6 +20,9 @@ Builders
     as everywhere in this module);
 :func:`from_arrays`
     any user history, given as approaches or as loads;
+:func:`circle`, :func:`ellipse`, :func:`figure_eight`, :func:`line`
+    orbits on the contact plane (``t`` of shape ``(steps, 2)``), each with a
+    normal load ``N = N_m + N_a sin(tau + phi)`` along the orbit;
 :func:`default_family`
     the family of variable-normal-load cycles used by :func:`microslip.accuracy`.
 
@@ -34,10 +38,10 @@ from functools import cached_property
 import numpy as np
 
 from ..common import _checks
-from ..model import MicroslipModel, _frozen
+from ..model import PLANE_LIMIT, MicroslipModel, _frozen, _tangential
 
-__all__ = ["AMPLITUDES", "LEVELS", "PHASES_DEG", "Path", "RATIOS", "default_family", "from_arrays", "loop",
-           "paper_fig4", "variable_load_cycles"]
+__all__ = ["AMPLITUDES", "LEVELS", "PHASES_DEG", "Path", "RATIOS", "circle", "default_family", "ellipse",
+           "figure_eight", "from_arrays", "line", "loop", "paper_fig4", "variable_load_cycles"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,8 +50,11 @@ class Path:
 
     Parameters
     ----------
-    t, n : array_like, shape (steps,)
-        Tangential displacement and normal approach (m), finite.
+    t : array_like, shape (steps,) or (steps, 2)
+        Tangential displacement (m), finite: along one direction, or its two
+        components on the contact plane (an orbit).
+    n : array_like, shape (steps,)
+        Normal approach (m), finite.
     steady : slice
         The steady cycle (the part the metrics use); for a periodic path it
         starts and ends at the same ``t`` and ``n``.
@@ -71,23 +78,23 @@ class Path:
     params: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        t = _checks.real_array("t", self.t, ndim=1, min_size=2)
+        t = _tangential("t", self.t, min_steps=2)
         n = _checks.real_array("n", self.n, ndim=1, min_size=2)
-        if n.shape != t.shape:
-            raise ValueError(f"n must have the same shape as t {t.shape}, got {n.shape}")
+        if n.shape != t.shape[:1]:
+            raise ValueError(_not_per_sample("n", t, n))
         if not isinstance(self.steady, slice):
             raise TypeError(f"steady must be a slice of the samples, got {type(self.steady).__name__}")
-        start, stop, step = self.steady.indices(t.size)
+        start, stop, step = self.steady.indices(t.shape[0])
         if step != 1 or stop - start < 2:
-            raise ValueError(f"steady must select at least 2 consecutive samples of the {t.size}, "
+            raise ValueError(f"steady must select at least 2 consecutive samples of the {t.shape[0]}, "
                              f"got {self.steady}")
         object.__setattr__(self, "steady", slice(start, stop))
         object.__setattr__(self, "t", _frozen(t))
         object.__setattr__(self, "n", _frozen(n))
         if self.N is not None:
             N = _checks.real_array("N", self.N, ndim=1)
-            if N.shape != t.shape:
-                raise ValueError(f"N must have the same shape as t {t.shape}, got {N.shape}")
+            if N.shape != t.shape[:1]:
+                raise ValueError(_not_per_sample("N", t, N))
             object.__setattr__(self, "N", _frozen(N))
         object.__setattr__(self, "params", _checks.mapping("params", self.params))
         object.__setattr__(self, "periodic", _checks.flag("periodic", self.periodic))
@@ -95,17 +102,25 @@ class Path:
         if self.periodic:
             k0, k1 = self.steady.start, self.steady.stop - 1
             for name, x in (("t", t), ("n", n)):
-                if abs(x[k1] - x[k0]) > 1e-9 * max(float(np.abs(x).max()), 1e-300):
-                    raise ValueError(f"periodic: the steady part must close, but {name} goes from {x[k0]:.6g} m "
-                                     f"at sample {k0} to {x[k1]:.6g} m at sample {k1}; give periodic=False "
+                if np.abs(x[k1] - x[k0]).max() > 1e-9 * max(float(np.abs(x).max()), 1e-300):
+                    raise ValueError(f"periodic: the steady part must close, but {name} goes from {_point(x[k0])} m "
+                                     f"at sample {k0} to {_point(x[k1])} m at sample {k1}; give periodic=False "
                                      f"or a steady slice over whole cycles")
 
     def __len__(self) -> int:
-        return self.t.size
+        return self.t.shape[0]
+
+    @property
+    def plane(self) -> bool:
+        """True for a path on the contact plane (``t`` of shape ``(steps, 2)``)."""
+        return self.t.ndim == 2
 
     @cached_property
     def steady_span(self) -> float:
-        """``max t - min t`` over the steady part (m)."""
+        """``max t - min t`` over the steady part (m); along one direction only (it scales the accuracy metrics)."""
+        if self.plane:
+            raise ValueError("steady_span is defined along one tangential direction; this path is on the contact "
+                             "plane (measure its orbit from t directly)")
         return float(np.ptp(self.t[self.steady]))
 
     def simulate(self, model, *, per_element: bool = False):
@@ -122,14 +137,15 @@ class Path:
         -------
         Response
             Forces in N, shapes ``(steps,)`` and, per element, ``(steps, J)``
-            (:meth:`MicroslipModel.simulate`).
+            (:meth:`MicroslipModel.simulate`); on the plane ``(steps, 2)``
+            and ``(steps, J, 2)``.
         """
         if not isinstance(model, MicroslipModel):
             raise TypeError(f"model must be a MicroslipModel (e.g. from tune() or mdr()), got {type(model).__name__}")
         return model.simulate(self.t, self.n, per_element=_checks.flag("per_element", per_element))
 
     def plot(self, ax=None):
-        """Plot ``t`` (µm) and ``N`` (N, or ``n`` in µm) against the sample index, steady cycle shaded.
+        """Plot ``t`` (µm; both components on the plane) and ``N`` (N, or ``n`` in µm) against the sample index.
 
         Returns
         -------
@@ -140,8 +156,13 @@ class Path:
 
         if ax is None:
             _, ax = plt.subplots(figsize=(6, 3.5))
-        k = np.arange(self.t.size)
-        ax.plot(k, self.t * 1e6, color="tab:blue")
+        k = np.arange(len(self))
+        if self.plane:
+            ax.plot(k, self.t[:, 0] * 1e6, color="tab:blue", label="x component")
+            ax.plot(k, self.t[:, 1] * 1e6, color="tab:blue", ls="--", label="y component")
+            ax.legend(fontsize="small", loc="upper left")
+        else:
+            ax.plot(k, self.t * 1e6, color="tab:blue")
         ax.set_xlabel("sample")
         ax.set_ylabel("tangential displacement t (µm)", color="tab:blue")
         ax.axvspan(self.steady.start, self.steady.stop - 1, color="0.9", zorder=0, label="steady cycle")
@@ -154,6 +175,17 @@ class Path:
             twin.set_ylabel("normal approach n (µm)", color="tab:red")
         ax.set_title(self.label)
         return ax
+
+
+def _not_per_sample(name, t, values) -> str:
+    if t.ndim == 1:
+        return f"{name} must have the same shape as t {t.shape}, got {values.shape}"
+    return f"{name} must have one value per sample of t {t.shape[:1]}, got {values.shape}"
+
+
+def _point(x) -> str:
+    """A sample of ``t`` or ``n`` for a message: a number, or ``(x, y)`` on the plane."""
+    return f"{float(x):.6g}" if np.ndim(x) == 0 else "(" + ", ".join(f"{float(v):.6g}" for v in x) + ")"
 
 
 def _require(reference, *names):
@@ -313,8 +345,9 @@ def from_arrays(t, n=None, *, N=None, reference=None, steady=None, periodic: boo
 
     Parameters
     ----------
-    t : array_like, shape (steps,)
-        Tangential displacement (m).
+    t : array_like, shape (steps,) or (steps, 2)
+        Tangential displacement (m): along one direction, or its two
+        components on the contact plane.
     n : array_like, shape (steps,) or scalar, optional
         Normal approach (m).
     N : array_like, shape (steps,) or scalar, optional
@@ -328,26 +361,213 @@ def from_arrays(t, n=None, *, N=None, reference=None, steady=None, periodic: boo
     label : str
         Description.
     """
-    t = _checks.real_array("t", t, ndim=1, min_size=2)
+    t = _tangential("t", t, min_steps=2)
+    steps = t.shape[:1]
     if (n is None) == (N is None):
         raise ValueError("give exactly one of n= (approaches, m) or N= (loads, N)")
     if N is not None:
         if reference is None:
             raise ValueError("N= needs reference= (its normal law turns loads into approaches)")
-        N = np.broadcast_to(_like_t("N", N, t), t.shape)
+        N = np.broadcast_to(_like_t("N", N, t), steps)
         n = _approach(reference, N)
     else:
-        n = np.broadcast_to(_like_t("n", n, t), t.shape)
-    return Path(t=t, n=n, N=None if N is None else N, steady=slice(0, t.size) if steady is None else steady,
+        n = np.broadcast_to(_like_t("n", n, t), steps)
+    return Path(t=t, n=n, N=None if N is None else N, steady=slice(0, steps[0]) if steady is None else steady,
                 periodic=periodic, label=label)
 
 
 def _like_t(name, values, t):
-    """``values`` checked finite and either a scalar or of the shape of ``t``."""
+    """``values`` checked finite and either a scalar or one value per sample of ``t``."""
     v = _checks.real_array(name, values)
-    if v.ndim and v.shape != t.shape:
-        raise ValueError(f"{name} must be a scalar or have the shape of t {t.shape}, got shape {v.shape}")
+    if v.ndim and v.shape != t.shape[:1]:
+        raise ValueError(f"{name} must be a scalar or have the shape of t {t.shape}, got shape {v.shape}" if t.ndim == 1
+                         else f"{name} must be a scalar or have one value per sample of t {t.shape[:1]}, got shape "
+                              f"{v.shape}")
     return v
+
+
+# -- orbits on the contact plane -------------------------------------------------------------------------
+def _orbit(reference, shape, mean_load, load_amplitude, phase_deg, angle_deg, cycles, steps_per_cycle,
+           lead_in, label, params):
+    """An orbit ``R(angle) @ shape(tau)`` (m) with ``N = N_m + N_a sin(tau + phi)``, the last cycle steady.
+
+    ``shape`` maps ``tau`` (rad, array) to the unrotated orbit, shape ``(samples, 2)``. With ``lead_in``
+    the first turn is the orbit scaled by ``tau / 2 pi`` (a spiral out of the centre, where the path
+    starts unloaded).
+    """
+    Nm = _checks.positive_scalar("mean_load", mean_load)
+    Na = _checks.positive_scalar("load_amplitude", load_amplitude, allow_zero=True)
+    phi_deg = _checks.real_scalar("phase_deg", phase_deg)
+    angle = _checks.real_scalar("angle_deg", angle_deg)
+    if Na > Nm:
+        raise ValueError(f"load_amplitude must not exceed mean_load = {Nm:.6g} N (the normal load "
+                         f"N_m - N_a would be negative), got {Na:.6g} N")
+    _require(reference, "approach")
+    tau, steady = _cycles_grid(_checks.size("cycles", cycles) + lead_in, steps_per_cycle)
+    xy = shape(tau)
+    if lead_in:
+        xy *= np.minimum(tau / (2.0 * np.pi), 1.0)[:, None]
+    c, s = np.cos(np.radians(angle)), np.sin(np.radians(angle))
+    t = xy @ np.array([[c, s], [-s, c]])  # each row rotated by the angle
+    N = np.maximum(Nm + Na * np.sin(tau + np.radians(phi_deg)), 0.0)  # clip round-off below 0 when N_a = N_m
+    load = f"N = {Nm:.4g} N" if Na == 0 else f"N = {Nm:.4g} + {Na:.4g} sin(tau + {phi_deg:.0f}°) N"
+    return Path(t=t, n=_approach(reference, N), N=N, steady=steady, periodic=True,
+                label=f"{label}, {load}" + (f", at {angle:g}°" if angle else ""),
+                params={**params, "N_m": Nm, "N_a": Na, "phase": float(np.radians(phi_deg)), "phase_deg": phi_deg,
+                        "angle_deg": angle})
+
+
+def _orbit_size(name, value) -> float:
+    """A positive size of an orbit (m), below the plane's limit of 1e100 m."""
+    size = _checks.positive_scalar(name, value)
+    if size >= PLANE_LIMIT:
+        raise ValueError(f"{name} must be below {PLANE_LIMIT:g} m on the contact plane, got {size:.6g} m")
+    return size
+
+
+_ORBIT_PARAMETERS = """    mean_load : float
+        ``N_m`` (N), positive.
+    load_amplitude : float, default 0
+        ``N_a`` (N), ``0 <= N_a <= N_m``: the normal load along the orbit is
+        ``N = N_m + N_a sin(tau + phi)``, ``tau`` the orbit's phase (rad).
+    phase_deg : float, default 0
+        ``phi`` (degrees): the lead of the normal load on the orbit."""
+
+_ORBIT_GRID = """    cycles : int, default 3
+        Number of whole orbits; the last is the steady one.
+    steps_per_cycle : int, default 360
+        Samples per orbit (at least 8)."""
+
+
+def circle(reference, radius, mean_load, load_amplitude=0.0, phase_deg=0.0, *, cycles: int = 3,
+           steps_per_cycle: int = 360) -> Path:
+    """A circular orbit ``t = radius (cos tau, sin tau)`` on the contact plane.
+
+    Parameters
+    ----------
+    reference : object with ``approach(N)``
+        Normal law turning ``N`` into the approach ``n`` (e.g. a
+        :class:`~microslip.Sphere`, or a model's own normal curve).
+    radius : float
+        Radius of the orbit (m), positive.
+    {load}
+    {grid}
+
+    Returns
+    -------
+    Path
+        ``t`` of shape ``(steps, 2)``: one lead-in turn spiralling out from
+        the centre (the path starts at ``t = 0``, the contact unloaded), then
+        ``cycles`` circles; periodic, the last circle steady. ``params``:
+        ``radius`` (m), ``N_m``, ``N_a`` (N), ``phase``, ``phase_deg``,
+        ``angle_deg`` (0).
+    """
+    R = _orbit_size("radius", radius)
+    return _orbit(reference, lambda tau: R * np.column_stack([np.cos(tau), np.sin(tau)]), mean_load,
+                  load_amplitude, phase_deg, 0.0, cycles, steps_per_cycle, True,
+                  f"circle of radius {R * 1e6:.4g} µm", {"radius": R, "t_a": R})
+
+
+def ellipse(reference, semi_major, semi_minor, mean_load, load_amplitude=0.0, phase_deg=0.0, *,
+            angle_deg: float = 0.0, cycles: int = 3, steps_per_cycle: int = 360) -> Path:
+    """An elliptical orbit ``(a cos tau, b sin tau)``, its major axis at ``angle_deg`` on the contact plane.
+
+    Parameters
+    ----------
+    reference : object with ``approach(N)``
+        Normal law turning ``N`` into the approach ``n``.
+    semi_major, semi_minor : float
+        Semi-axes ``a`` and ``b`` (m), positive, ``b <= a``.
+    {load}
+    angle_deg : float, default 0
+        Direction of the major axis (degrees from the first tangential axis).
+    {grid}
+
+    Returns
+    -------
+    Path
+        As :func:`circle`: a lead-in turn spiralling out from the centre,
+        then ``cycles`` ellipses, the last steady. ``params``: ``semi_major``,
+        ``semi_minor`` (m), the load's and ``angle_deg``.
+    """
+    a = _orbit_size("semi_major", semi_major)
+    b = _orbit_size("semi_minor", semi_minor)
+    if b > a:
+        raise ValueError(f"semi_minor must not exceed semi_major = {a:.6g} m, got {b:.6g} m")
+    return _orbit(reference, lambda tau: np.column_stack([a * np.cos(tau), b * np.sin(tau)]), mean_load,
+                  load_amplitude, phase_deg, angle_deg, cycles, steps_per_cycle, True,
+                  f"ellipse {a * 1e6:.4g} x {b * 1e6:.4g} µm", {"semi_major": a, "semi_minor": b, "t_a": a})
+
+
+def figure_eight(reference, half_width, half_height, mean_load, load_amplitude=0.0, phase_deg=0.0, *,
+                 angle_deg: float = 0.0, cycles: int = 3, steps_per_cycle: int = 360) -> Path:
+    """A figure-eight ``(w sin tau, h sin 2 tau)`` (a Lissajous curve 1:2) on the contact plane.
+
+    It passes through the centre twice per orbit, crossing itself there, so
+    it needs no lead-in.
+
+    Parameters
+    ----------
+    reference : object with ``approach(N)``
+        Normal law turning ``N`` into the approach ``n``.
+    half_width : float
+        ``w`` (m), positive: the extent along the figure's long axis.
+    half_height : float
+        ``h`` (m), positive: the extent across it.
+    {load}
+    angle_deg : float, default 0
+        Direction of the long axis (degrees from the first tangential axis).
+    {grid}
+
+    Returns
+    -------
+    Path
+        ``cycles`` figure-eights from ``t = 0``, the last steady.
+        ``params``: ``half_width``, ``half_height`` (m), the load's and
+        ``angle_deg``.
+    """
+    w = _orbit_size("half_width", half_width)
+    h = _orbit_size("half_height", half_height)
+    return _orbit(reference, lambda tau: np.column_stack([w * np.sin(tau), h * np.sin(2.0 * tau)]), mean_load,
+                  load_amplitude, phase_deg, angle_deg, cycles, steps_per_cycle, False,
+                  f"figure-eight {w * 1e6:.4g} x {h * 1e6:.4g} µm", {"half_width": w, "half_height": h, "t_a": w})
+
+
+def line(reference, amplitude, mean_load, load_amplitude=0.0, phase_deg=0.0, *, angle_deg: float = 0.0,
+         cycles: int = 3, steps_per_cycle: int = 360) -> Path:
+    """A straight back-and-forth ``t = amplitude sin(tau) (cos angle, sin angle)`` on the contact plane.
+
+    Every increment is parallel to the line, so the contact responds as along
+    one direction: the forces of :func:`variable_load_cycles` (with
+    ``cycles``), along the line (to rounding).
+
+    Parameters
+    ----------
+    reference : object with ``approach(N)``
+        Normal law turning ``N`` into the approach ``n``.
+    amplitude : float
+        ``t_a`` (m), positive.
+    {load}
+    angle_deg : float, default 0
+        Direction of the line (degrees from the first tangential axis).
+    {grid}
+
+    Returns
+    -------
+    Path
+        ``cycles`` back-and-forth strokes from ``t = 0``, the last steady.
+        ``params``: ``t_a`` (m), the load's and ``angle_deg``.
+    """
+    ta = _orbit_size("amplitude", amplitude)
+    return _orbit(reference, lambda tau: np.column_stack([ta * np.sin(tau), np.zeros_like(tau)]), mean_load,
+                  load_amplitude, phase_deg, angle_deg, cycles, steps_per_cycle, False,
+                  f"line of amplitude {ta * 1e6:.4g} µm", {"t_a": ta})
+
+
+for _builder in (circle, ellipse, figure_eight, line):
+    if _builder.__doc__:  # not under python -OO
+        _builder.__doc__ = _builder.__doc__.format(load=_ORBIT_PARAMETERS.strip(), grid=_ORBIT_GRID.strip())
+del _builder
 
 
 #: defaults of :func:`default_family`

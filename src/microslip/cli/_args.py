@@ -101,6 +101,17 @@ def positive_int(text):
     return value
 
 
+def degrees(text):
+    """An argparse ``type`` for an angle in degrees: any finite number (``30``, ``-45``, ``90.5``)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an angle in degrees such as 30, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite angle in degrees, got {text!r}")
+    return value
+
+
 def _writable_folder(folder: Path, text: str, what: str) -> None:
     """Refuse a folder that is a file or cannot be written into (``what`` says what lives there)."""
     if not folder.is_dir():

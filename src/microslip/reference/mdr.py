@@ -16,6 +16,22 @@ paper's element, so a fine array of them -- a :class:`MDRModel`, which *is* a
 any history of normal approach and unidirectional tangential displacement,
 with the same compiled kernel.
 
+On the contact plane (``t`` of shape ``(steps, 2)``) every spring becomes an
+isotropic Jenkins element of the plane, its trial force returned radially
+onto its disc ``mu N_i``. Along a straight line through the rest position
+(every increment of ``t`` parallel to it, e.g. :func:`microslip.paths.line`
+at any angle) that is the
+1D MDR along the line, so it is exact as above, whatever ``n`` does. On a
+curved orbit it is the usual approximation, not an exact solution: the MDR
+is derived for unidirectional tangential loading; applied spring by spring
+on the plane, each spring's friction force follows that spring's own
+stretch, whereas in the continuous contact the traction at each point is
+set by the local slip of the two-dimensional contact area, which a row of
+springs does not resolve. On a circle in gross slip the array's own energy
+has a closed form: each spring slides round its own circle and dissipates
+``2 pi mu N_i sqrt(R^2 - (mu N_i / kt_i)^2)`` per cycle
+(``tests/reference/test_mdr_plane.py``).
+
 The row is symmetric about ``x = 0``; the two springs at ``+x`` and ``-x``
 always carry the same forces, so one element of width ``2 dx`` stands for
 both. Element ``i`` (1-based) sits at the midpoint ``x_i = (i - 1/2) a_max / J``.
