@@ -1,0 +1,588 @@
+"""Compiled AFT of one contact on the contact plane: two tangential directions plus normal (private).
+
+Plain float64 arrays in, arrays out; the checked public wrapper is
+:func:`microslip.frequency.aft.aft_plane`. Fourier layout and tables as in
+:mod:`microslip.frequency._aft`.
+
+The element. Element ``i`` is an isotropic Jenkins slider on the plane: with
+``r = mu kn_i (n - g_i) / kt_i`` (its stick radius, m) and ``d = t - s_i``
+(2-vectors), it is open for ``n <= g_i`` (no force, ``s_i = t``), sticks for
+``|d| <= r`` (``T_i = kt_i d``) and slips otherwise: ``u = d / |d|``,
+``s_i = t - r u``, ``T_i = mu kn_i (n - g_i) u`` (the trial force returned
+radially onto the disc of radius ``mu N_i``). Along a straight line this is
+the one-direction return mapping of :mod:`microslip._kernels`, to the bit
+(``d / |d|`` is exactly ``+-1`` there).
+
+The march. As in one direction: the contact is closed at ``t = 0`` with every
+slider at 0, the static part ``(c0 of t, c0 of n)`` is applied as one step,
+then whole periods are marched. On the plane the periodic state is in general
+reached only asymptotically (a circular orbit in gross slip), so an element is
+periodic when its slider at the start of a period moves by at most
+``32 eps`` times the size of the motion over one period. A slipping element
+contracts by ``alpha = r / |d|`` per slip sample across its path, so an
+element that barely slips would need thousands of periods: once its residual
+falls, the march takes a Newton step on the fixed point of the period map,
+``s <- s + (I - dPhi/ds)^-1 (Phi(s) - s)``. An element that ends a period
+stuck throughout keeps the state the plain march gives it (a Newton step is
+taken back, the element restarted from the static step and marched plainly):
+its state depends on its history, and that history is the physical one.
+
+Exact derivatives. With ``A_k`` the derivative of the slider after sample
+``k`` with respect to the slider before it (``I`` in stick, ``alpha v v^T``
+with ``v`` perpendicular to ``u`` in slip, 0 when open) and ``G_k`` its
+derivative with respect to the sample's ``(t, n)`` (0 in stick,
+``[I - alpha v v^T, -r/(n - g) u]`` in slip, ``[I, 0]`` when open),
+
+``ds_k = A_k ds_(k-1) + G_k dx_k`` and ``dT_k = kt A_k (dt_k - ds_(k-1)) + mu kn u dn_k`` (slip only).
+
+The local parts ``kt A_k dt_k`` and ``mu kn u dn_k`` give diagonal Jacobian
+blocks ``P diag(d) E`` (as in one direction, by product-to-sum identities).
+The history part ``-kt A_k ds_(k-1)`` is gathered by one backward sweep per
+element: ``Y_(m-1) = (Y_m - kt P[:, m] (x) I) A_m`` is the coefficient of
+``ds_m`` in the period's force coefficients, and each slip or open sample
+adds ``Y_m G_m`` to its column ``m``; the columns are multiplied by the
+basis rows at the end (one matrix product for the whole contact). The
+periodic state closes the sweep: the slider at the start of the period is the
+fixed point ``sigma = Phi(sigma, x)``, so ``dsigma = (I - Phi_s)^-1 Phi_x dx``
+with ``Phi_s = A_(Ns-1) ... A_0`` (rank one if the element slips, zero if
+it opens), which starts the sweep at ``Y_(Ns-1) = Z (I - Phi_s)^-1``, ``Z``
+the coefficient of ``sigma`` accumulated forward. An element stuck through
+the whole period (``Phi_s = I``) keeps the slider its history gave it: that
+history is marched again with the slider's derivative carried forward
+(rank-one updates, a few of them).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numba as nb
+import numpy as np
+
+from .._kernels import OPEN, SLIP, STICK
+from ._aft import _dft, _diagonal_jacobian, _project, _synthesise, tables
+
+#: the periodicity tolerance, in units of the motion's size times the machine epsilon
+PERIODIC_ULPS = 32.0
+#: ``1 - rho`` (``rho`` the period map's eigenvalue) below which a plainly marched slider takes its
+#: derivative from its history rather than from the fixed point (whose formula divides by ``1 - rho``)
+FIXED_POINT_MARGIN = 1e-3
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _step(rk, nk, t1, t2, s1, s2):  # pragma: no cover - compiled
+    """One element, one sample: ``(code, s1, s2, alpha, u1, u2)``.
+
+    ``rk = mu kn / kt``, ``nk = n - gap``; the slider ``(s1, s2)`` before the
+    sample. ``alpha = r / |d|`` and ``u`` are set in slip only.
+    """
+    if nk <= 0.0:
+        return OPEN, t1, t2, 0.0, 0.0, 0.0
+    r = rk * nk
+    d1 = t1 - s1
+    d2 = t2 - s2
+    dd = math.sqrt(d1 * d1 + d2 * d2)
+    if dd > r:
+        u1 = d1 / dd
+        u2 = d2 / dd
+        return SLIP, t1 - r * u1, t2 - r * u2, r / dd, u1, u2
+    return STICK, s1, s2, 1.0, 0.0, 0.0
+
+
+@nb.njit(cache=True, nogil=True)
+def _static(rk, nk, t1, t2):  # pragma: no cover - compiled
+    """The static step from the virgin slider ``(0, 0)``: ``(code, s1, s2, alpha, u1, u2)``."""
+    return _step(rk, nk, t1, t2, 0.0, 0.0)
+
+
+@nb.njit(cache=True, nogil=True)
+def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # pragma: no cover - compiled
+    """Derivative ``D`` (2, 3, nb) of the slider after the static step and ``periods`` plain periods.
+
+    Forward mode: ``D <- G_k (x) E[k] + A_k D`` (rank-one ``A_k``). Returns the slider.
+    """
+    nbasis = E.shape[1]
+    Ns = E.shape[0]
+    for a in range(2):
+        for b in range(3):
+            for q in range(nbasis):
+                D[a, b, q] = 0.0
+    code, s1, s2, al, u1, u2 = _static(rk, xn_0 - gi, x1_0, x2_0)
+    if code == OPEN:
+        D[0, 0, 0] = 1.0
+        D[1, 1, 0] = 1.0
+    elif code == SLIP:
+        v1 = -u2
+        v2 = u1
+        D[0, 0, 0] = 1.0 - al * v1 * v1
+        D[0, 1, 0] = -al * v1 * v2
+        D[1, 0, 0] = -al * v2 * v1
+        D[1, 1, 0] = 1.0 - al * v2 * v2
+        D[0, 2, 0] = -rk * u1
+        D[1, 2, 0] = -rk * u2
+    for _ in range(periods):
+        for k in range(Ns):
+            code, s1, s2, al, u1, u2 = _step(rk, n[k] - gi, t1[k], t2[k], s1, s2)
+            if code == STICK:
+                continue
+            if code == OPEN:
+                for b in range(3):
+                    for q in range(nbasis):
+                        D[0, b, q] = E[k, q] if b == 0 else 0.0
+                        D[1, b, q] = E[k, q] if b == 1 else 0.0
+                continue
+            v1 = -u2
+            v2 = u1
+            for b in range(3):
+                for q in range(nbasis):
+                    w = al * (v1 * D[0, b, q] + v2 * D[1, b, q])
+                    D[0, b, q] = w * v1
+                    D[1, b, q] = w * v2
+            for q in range(nbasis):
+                e = E[k, q]
+                D[0, 0, q] += (1.0 - al * v1 * v1) * e
+                D[0, 1, q] -= al * v1 * v2 * e
+                D[1, 0, q] -= al * v2 * v1 * e
+                D[1, 1, q] += (1.0 - al * v2 * v2) * e
+                D[0, 2, q] -= rk * u1 * e
+                D[1, 2, q] -= rk * u2 * e
+    return s1, s2
+
+
+@lru_cache(maxsize=32)
+def transposed_projection(H: int, Ns: int) -> np.ndarray:
+    """``P.T`` of :func:`~microslip.frequency._aft.tables`, C-contiguous ``(Ns, 2H+1)`` (read-only)."""
+    PT = np.ascontiguousarray(tables(H, Ns)[1].T)
+    PT.setflags(write=False)
+    return PT
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved):  # pragma: no cover
+    """March every element over one period from sliders ``s1, s2`` (updated in place).
+
+    Writes, per sample ``k`` and element ``i``, the condition ``code[k, i]``,
+    ``alpha[k, i]`` and the perpendicular ``v = (V1, V2)`` of a slip, and the
+    element's force ``Te1, Te2``; ``C`` (4, J) receives the period map's
+    derivative ``dPhi/ds`` (row-major 2x2 per element), ``moved[i]`` 1 if
+    element ``i`` slipped or opened. Branch-free over the elements, so that
+    the inner loop vectorises.
+    """
+    J = kt.shape[0]
+    for i in range(J):
+        C[0, i] = 1.0
+        C[1, i] = 0.0
+        C[2, i] = 0.0
+        C[3, i] = 1.0
+        moved[i] = 0.0
+    for k in range(t1.shape[0]):
+        tk1 = t1[k]
+        tk2 = t2[k]
+        nk0 = n[k]
+        for i in range(J):
+            nk = nk0 - gaps[i]
+            r = rk[i] * nk
+            sa = s1[i]
+            sb = s2[i]
+            d1 = tk1 - sa
+            d2 = tk2 - sb
+            dd = math.sqrt(d1 * d1 + d2 * d2)
+            closed = nk > 0.0
+            slip = closed & (dd > r)
+            u1 = d1 / dd
+            u2 = d2 / dd
+            al = r / dd
+            g = mu * kn[i] * nk
+            s1[i] = (tk1 - r * u1 if slip else sa) if closed else tk1
+            s2[i] = (tk2 - r * u2 if slip else sb) if closed else tk2
+            Te1[k, i] = (g * u1 if slip else kt[i] * d1) if closed else 0.0
+            Te2[k, i] = (g * u2 if slip else kt[i] * d2) if closed else 0.0
+            code[k, i] = (STICK + slip) if closed else OPEN
+            alpha[k, i] = al
+            V1[k, i] = -u2
+            V2[k, i] = u1
+            # C <- A C: alpha v v^T C in slip, 0 when open
+            c0 = C[0, i]
+            c1 = C[1, i]
+            c2 = C[2, i]
+            c3 = C[3, i]
+            w1 = al * (-u2 * c0 + u1 * c2)
+            w2 = al * (-u2 * c1 + u1 * c3)
+            C[0, i] = (-u2 * w1 if slip else c0) if closed else 0.0
+            C[1, i] = (-u2 * w2 if slip else c1) if closed else 0.0
+            C[2, i] = (u1 * w1 if slip else c2) if closed else 0.0
+            C[3, i] = (u1 * w2 if slip else c3) if closed else 0.0
+            moved[i] = max(moved[i], 0.0 if closed and not slip else 1.0)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
+           code, alpha, V1, V2, Te1, Te2, C, moved):  # pragma: no cover - compiled
+    """Static step, then periods until every element's slider repeats to ``tol`` (Newton-accelerated).
+
+    On return the arrays of :func:`_period` hold the periodic period;
+    ``count[i]`` is the number of plain periods since element ``i`` last
+    started from the static step, ``tried[i]`` 1 if a Newton step brought it
+    where it is. Returns the periods marched, ``-1`` past ``max_periods``.
+    """
+    J = kt.shape[0]
+    el = np.empty((5, J))
+    b1 = el[0]  # slider at the start of the period
+    b2 = el[1]
+    st1 = el[2]  # after the static step (the restart point)
+    st2 = el[3]
+    prev = el[4]  # residual of the previous period
+    newton = np.ones(J, dtype=np.int64)
+    for i in range(J):
+        _, a1, a2, _, _, _ = _step(rk[i], xn[0] - gaps[i], x1[0], x2[0], 0.0, 0.0)
+        st1[i] = a1
+        st2[i] = a2
+        s1[i] = a1
+        s2[i] = a2
+        prev[i] = np.inf
+        count[i] = 0
+        tried[i] = 0
+    periods = 0
+    while True:
+        for i in range(J):
+            b1[i] = s1[i]
+            b2[i] = s2[i]
+        _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved)
+        periods += 1
+        done = True
+        for i in range(J):
+            count[i] += 1
+            r1 = s1[i] - b1[i]
+            r2 = s2[i] - b2[i]
+            res = max(abs(r1), abs(r2))
+            restart = False
+            if tried[i] and moved[i] == 0.0:
+                restart = True  # stuck through a period a Newton step led to: its state must be its history's
+            elif res <= tol:
+                continue
+            elif newton[i] and count[i] >= 2 and res < prev[i]:
+                m11 = 1.0 - C[0, i]
+                m12 = -C[1, i]
+                m21 = -C[2, i]
+                m22 = 1.0 - C[3, i]
+                det = m11 * m22 - m12 * m21
+                n1 = b1[i] + (m22 * r1 - m12 * r2) / det
+                n2 = b2[i] + (-m21 * r1 + m11 * r2) / det
+                if math.isfinite(n1) and math.isfinite(n2):
+                    s1[i] = n1
+                    s2[i] = n2
+                    tried[i] = 1
+            elif tried[i] and res >= prev[i]:
+                restart = True  # the Newton steps do not help
+            done = False
+            prev[i] = res
+            if restart:
+                s1[i] = st1[i]
+                s2[i] = st2[i]
+                newton[i] = 0
+                tried[i] = 0
+                count[i] = 0
+                prev[i] = np.inf
+        if done:
+            return periods
+        if periods >= max_periods:
+            return -1
+
+
+@nb.njit(cache=True, nogil=True)
+def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no cover - compiled
+    """The coefficient ``Z = beta (x) I + z (x) w^T`` of the slider at the start of the period.
+
+    ``Z = sum_k -kt P[:, k] (x) C_k`` with ``C_k = A_k ... A_0``: the identity
+    up to the first slip, ``c_k v_k w^T`` after it (``w`` the first slip's
+    ``v``), zero from the first opening on. Writes ``beta`` (nb) and ``z``
+    (2, nb); returns ``(w1, w2, c, l1, l2)``: ``w``, and ``Phi_s = C_(Ns-1)
+    = c l w^T`` (``c = 1``, ``l = w = 0`` for an element that sticks
+    throughout, whose ``Phi_s`` is the identity; ``c = 0`` once it opens).
+    """
+    Ns = PT.shape[0]
+    nbasis = PT.shape[1]
+    beta[:] = 0.0
+    z[:] = 0.0
+    z1 = z[0]
+    z2 = z[1]
+    w1 = 0.0
+    w2 = 0.0
+    l1 = 0.0
+    l2 = 0.0
+    cc = 1.0
+    first = True  # no slip yet: C is the identity
+    run = -1
+    for k in range(Ns + 1):
+        c = code[k, i] if k < Ns else OPEN
+        if c == STICK:
+            if run < 0:
+                run = k
+            continue
+        if run >= 0:
+            if first:
+                for p in range(nbasis):
+                    beta[p] -= kti * (cum[k, p] - cum[run, p])
+            else:
+                f1 = -kti * cc * l1
+                f2 = -kti * cc * l2
+                for p in range(nbasis):
+                    seg = cum[k, p] - cum[run, p]
+                    z1[p] += f1 * seg
+                    z2[p] += f2 * seg
+            run = -1
+        if k == Ns:
+            break
+        if c == OPEN:
+            return w1, w2, 0.0, l1, l2
+        al = alpha[k, i]
+        v1 = V1[k, i]
+        v2 = V2[k, i]
+        if first:
+            first = False
+            w1 = v1
+            w2 = v2
+            cc = al
+        else:
+            cc *= al * (v1 * l1 + v2 * l2)
+        l1 = v1
+        l2 = v2
+        f1 = -kti * cc * l1
+        f2 = -kti * cc * l2
+        for p in range(nbasis):
+            z1[p] += f1 * PT[k, p]
+            z2[p] += f2 * PT[k, p]
+    return w1, w2, cc, l1, l2
+
+
+@nb.njit(cache=True, nogil=True)
+def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used):  # pragma: no cover
+    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (6, nb) for its slip and open samples.
+
+    ``Y = beta (x) I + y (x) w^T`` (``beta`` (nb), ``y`` (2, nb), both
+    overwritten) is the coefficient of the slider at the end of the period;
+    the form is kept through the sweep (a slip makes it ``y (x) v^T``, a
+    stick adds to ``beta``, an opening clears it).
+    """
+    Ns = PT.shape[0]
+    nbasis = PT.shape[1]
+    y1 = y[0]
+    y2 = y[1]
+    hi = Ns  # the stick samples m + 1, ..., hi - 1 are still to be applied to Y
+    for m in range(Ns - 1, -1, -1):
+        c = code[m, i]
+        if c == STICK:
+            continue
+        if hi > m + 1:
+            for p in range(nbasis):
+                beta[p] -= kti * (cum[hi, p] - cum[m + 1, p])
+        hi = m
+        Um = U[m]
+        if not used[m]:
+            used[m] = True
+            Um[:] = 0.0
+        if c == OPEN:
+            for p in range(nbasis):
+                Um[0, p] += beta[p] + y1[p] * w1
+                Um[1, p] += y1[p] * w2
+                Um[3, p] += y2[p] * w1
+                Um[4, p] += beta[p] + y2[p] * w2
+                beta[p] = 0.0
+                y1[p] = 0.0
+                y2[p] = 0.0
+            continue
+        al = alpha[m, i]
+        v1 = V1[m, i]
+        v2 = V2[m, i]
+        u1 = v2
+        u2 = -v1
+        # G = [I - al v v^T | -rk u]; w^T G = h
+        wv = w1 * v1 + w2 * v2
+        h1 = w1 - al * wv * v1
+        h2 = w2 - al * wv * v2
+        h3 = -rki * (w1 * u1 + w2 * u2)
+        g11 = 1.0 - al * v1 * v1
+        g12 = -al * v1 * v2
+        g22 = 1.0 - al * v2 * v2
+        g13 = -rki * u1
+        g23 = -rki * u2
+        for p in range(nbasis):
+            bp = beta[p]
+            a1 = y1[p]
+            a2 = y2[p]
+            Um[0, p] += bp * g11 + a1 * h1
+            Um[1, p] += bp * g12 + a1 * h2
+            Um[2, p] += bp * g13 + a1 * h3
+            Um[3, p] += bp * g12 + a2 * h1
+            Um[4, p] += bp * g22 + a2 * h2
+            Um[5, p] += bp * g23 + a2 * h3
+            q = al * (bp - kti * PT[m, p])
+            y1[p] = q * v1 + al * wv * a1
+            y2[p] = q * v2 + al * wv * a2
+            beta[p] = 0.0
+        w1 = v1
+        w2 = v2
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_periods,
+               F, Jac):  # pragma: no cover - compiled
+    """AFT of one contact on the plane. Writes ``F`` (3, nb) and ``Jac`` (3, 3, nb, nb).
+
+    ``F`` holds the coefficients of ``T1, T2, N``; ``Jac[a, b]`` the
+    derivative of output ``a`` with respect to the coefficients of input
+    ``b`` (``t1, t2, n``); ``PT`` is :func:`transposed_projection`. Returns
+    the number of periods marched until every element was periodic, or
+    ``-1`` if some element was not after ``max_periods``.
+    """
+    nbasis = x1.shape[0]
+    Ns = E.shape[0]
+    J = kt.shape[0]
+    smp = np.zeros((12, Ns))  # per-sample work arrays
+    t1 = smp[0]
+    t2 = smp[1]
+    n = smp[2]
+    _synthesise(E, x1, t1)
+    _synthesise(E, x2, t2)
+    _synthesise(E, xn, n)
+    T1s = smp[3]
+    T2s = smp[4]
+    Nsum = smp[5]
+    d11 = smp[6]  # local derivative sums over the elements
+    d12 = smp[7]
+    d22 = smp[8]
+    c1 = smp[9]
+    c2 = smp[10]
+    dcl = smp[11]
+    el = np.empty((4, J))
+    rk = el[0]
+    s1 = el[1]
+    s2 = el[2]
+    moved = el[3]
+    ivec = np.empty((2, J), dtype=np.int64)
+    count = ivec[0]
+    tried = ivec[1]
+    code = np.empty((Ns, J), dtype=np.int8)
+    per = np.empty((6, Ns, J))
+    alpha = per[0]
+    V1 = per[1]
+    V2 = per[2]
+    Te1 = per[3]
+    Te2 = per[4]
+    C = np.empty((4, J))
+    size = 0.0
+    for k in range(Ns):
+        size = max(size, abs(t1[k]) + abs(t2[k]))
+    rmax = 0.0
+    for i in range(J):
+        rk[i] = mu * kn[i] / kt[i]
+        for k in range(Ns):
+            rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
+    tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
+    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
+                     code, alpha, V1, V2, Te1, Te2, C, moved)
+    # -- the periodic period: forces and the local derivatives ---------------------------
+    for k in range(Ns):
+        f1 = 0.0
+        f2 = 0.0
+        fn = 0.0
+        for i in range(J):
+            c = code[k, i]
+            f1 += Te1[k, i]
+            f2 += Te2[k, i]
+            if c == OPEN:
+                continue
+            fn += kn[i] * (n[k] - gaps[i])
+            dcl[k] += kn[i]
+            if c == STICK:
+                d11[k] += kt[i]
+                d22[k] += kt[i]
+                continue
+            a = kt[i] * alpha[k, i]
+            v1 = V1[k, i]
+            v2 = V2[k, i]
+            d11[k] += a * v1 * v1
+            d12[k] += a * v1 * v2
+            d22[k] += a * v2 * v2
+            g = mu * kn[i]
+            c1[k] += g * v2
+            c2[k] -= g * v1
+        T1s[k] = f1
+        T2s[k] = f2
+        Nsum[k] = fn
+    _project(P, T1s, T2s, F[0], F[1])
+    for p in range(nbasis):
+        acc = 0.0
+        for k in range(Ns):
+            acc += P[p, k] * Nsum[k]
+        F[2, p] = acc
+    CS = np.empty((2, nbasis))
+    for which in range(7):
+        d = (d11, d12, d12, d22, c1, c2, dcl)[which]
+        a = (0, 0, 1, 1, 0, 1, 2)[which]
+        b = (0, 1, 0, 1, 2, 2, 2)[which]
+        _dft(cos2, sin2, d, CS[0], CS[1])
+        _diagonal_jacobian(CS[0], CS[1], Ns, Jac[a, b])
+    for b in range(2):
+        Jac[2, b] = 0.0
+    # -- the history parts, element by element -------------------------------------------
+    U = np.zeros((Ns, 6, nbasis))  # column m's coefficients, times E[m] at the end
+    used = np.zeros(Ns, dtype=np.bool_)
+    beta = np.empty(nbasis)
+    y = np.empty((2, nbasis))
+    D = np.empty((2, 3, nbasis))
+    for i in range(J):
+        kti = kt[i]
+        w1, w2, cc, l1, l2 = _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, y)
+        stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
+        rho = 1.0 if stuck else cc * (l1 * w1 + l2 * w2)  # the eigenvalue of Phi_s = c l w^T
+        if not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN:
+            # the slider at the start of the period is (nearly) neutral to the period map: stuck through the
+            # period, or slipping so little that its state is the one its history gave it. The plain march
+            # from the static step is repeated with the slider's derivative carried along.
+            _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, count[i] - 1, D)
+            for b in range(3):
+                for q in range(nbasis):
+                    wd = w1 * D[0, b, q] + w2 * D[1, b, q]
+                    for a in range(2):
+                        da = D[a, b, q]
+                        for p in range(nbasis):
+                            Jac[a, b, p, q] += beta[p] * da + y[a, p] * wd
+            if stuck:
+                continue
+            beta[:] = 0.0
+            y[:] = 0.0
+        elif cc != 0.0:
+            # Y at the end of the period: Z (I - Phi_s)^-1 = Z + Z Phi_s / (1 - rho), still beta I + y w^T
+            f = cc / (1.0 - rho)
+            lw = l1 * w1 + l2 * w2
+            for p in range(nbasis):
+                y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
+                y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
+        _element_columns(i, kti, rk[i], code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used)
+    # -- columns times their basis rows -----------------------------------------------------
+    acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
+    for r in range(6):
+        a = r // 3
+        b = r % 3
+        for p in range(nbasis):
+            for q in range(nbasis):
+                Jac[a, b, p, q] += acc[r * nbasis + p, q]
+    return periods
+
+
+@nb.njit(cache=True, nogil=True)
+def aft_plane_batch(kt, kn, gaps, offsets, mu, X1, X2, XN, E, P, cos2, sin2, cum, PT, max_periods,
+                    F, Jac, periods):  # pragma: no cover - compiled
+    """AFT of many contacts on the plane; contact ``c`` owns elements ``offsets[c]:offsets[c+1]``.
+
+    ``X1, X2, XN`` have shape ``(nc, nb)``, ``F`` ``(nc, 3, nb)``, ``Jac``
+    ``(nc, 3, 3, nb, nb)``; ``periods`` (int64, ``nc``) receives each
+    contact's period count (``-1``: not periodic within ``max_periods``).
+    """
+    for c in range(X1.shape[0]):
+        a = offsets[c]
+        b = offsets[c + 1]
+        periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], X1[c], X2[c], XN[c], E, P, cos2, sin2, cum, PT,
+                                max_periods, F[c], Jac[c])
