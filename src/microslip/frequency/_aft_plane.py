@@ -61,7 +61,7 @@ import numba as nb
 import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK
-from ._aft import _dft, _diagonal_jacobian, _project, _synthesise, tables
+from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -586,3 +586,38 @@ def aft_plane_batch(kt, kn, gaps, offsets, mu, X1, X2, XN, E, P, cos2, sin2, cum
         b = offsets[c + 1]
         periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], X1[c], X2[c], XN[c], E, P, cos2, sin2, cum, PT,
                                 max_periods, F[c], Jac[c])
+
+
+@nb.njit(cache=True, nogil=True)
+def aft_mixed_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, sin2, cum, PT, max_periods,
+                    FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods):  # pragma: no cover - compiled
+    """AFT of contacts along one direction and on their planes (``planar[c]``), in one call.
+
+    The one-direction arrays as :func:`microslip.frequency._aft.aft_batch`
+    (for a contact on its plane: its first direction's); ``FT2`` (nc, nb)
+    the second tangential force, ``JT12, JT21, JT22, JT2n`` (nc, nb, nb) the
+    derivatives of ``T1`` by ``t2``, ``T2`` by ``t1``, ``t2`` and ``n``
+    (zero for a one-direction contact).
+    """
+    nbasis = XT.shape[1]
+    F = np.empty((3, nbasis))
+    Jac = np.empty((3, 3, nbasis, nbasis))
+    for c in range(XT.shape[0]):
+        a = offsets[c]
+        b = offsets[c + 1]
+        if not planar[c]:
+            periods[c] = _aft_contact(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XN[c], E, P, cos2, sin2, cum,
+                                      max_periods, FT[c], FN[c], JTt[c], JTn[c], JNn[c])
+            continue
+        periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XT2[c], XN[c], E, P, cos2, sin2, cum,
+                                PT, max_periods, F, Jac)
+        FT[c] = F[0]
+        FT2[c] = F[1]
+        FN[c] = F[2]
+        JTt[c] = Jac[0, 0]
+        JT12[c] = Jac[0, 1]
+        JTn[c] = Jac[0, 2]
+        JT21[c] = Jac[1, 0]
+        JT22[c] = Jac[1, 1]
+        JT2n[c] = Jac[1, 2]
+        JNn[c] = Jac[2, 2]

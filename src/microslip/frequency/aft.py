@@ -517,3 +517,50 @@ def friction_work(packed, xt, xn, synthesis, max_periods: int = MAX_PERIODS) -> 
         steps = 0.5 * (Ti + np.roll(Ti, 1, axis=0)) * (slider - np.roll(slider, 1, axis=0))
         work[c] = np.maximum(steps, 0.0)[cond != STICK].sum()
     return work, opens
+
+
+def friction_work_plane(packed, planar, xt, xt2, xn, synthesis, max_periods: int, work, opens) -> None:
+    """:func:`friction_work` of the contacts on their planes (``planar``), written into ``work`` and ``opens``.
+
+    The same definition on the plane: from the AFT's periodic state, one
+    period marched, the work ``(T_k-1 + T_k) . (s_k - s_k-1) / 2`` of each
+    element's force on its slider's travel summed over the steps where the
+    slider moves, each step's work floored at zero.
+
+    Parameters
+    ----------
+    packed : tuple
+        The contacts' laws, :func:`pack_models`.
+    planar : ndarray of bool, shape (nc,)
+        Which contacts move on their planes.
+    xt, xt2, xn : ndarray, shape (nc, 2H+1)
+        Fourier coefficients of each contact's two tangential displacements and normal approach (m).
+    synthesis : ndarray, shape (Ns, 2H+1)
+        The AFT's synthesis table.
+    max_periods : int
+        Periods marched at most.
+    work : ndarray, shape (nc,)
+        J per cycle, overwritten for the contacts on their planes.
+    opens : ndarray of bool, shape (nc,)
+        Whether some element opens and closes during the cycle, likewise.
+    """
+    from .._kernels import STICK
+    from ._plane_march import march_plane, periodic_state
+
+    kt, kn, gaps, offsets, mu = packed
+    Ns = synthesis.shape[0]
+    for c in np.flatnonzero(planar):
+        lo, hi = offsets[c], offsets[c + 1]
+        k, g = kt[lo:hi], gaps[lo:hi]
+        s = np.empty((2, hi - lo))
+        periods = periodic_state(k, kn[lo:hi], g, mu[c], xt[c], xt2[c], xn[c], synthesis, max_periods, s)
+        check_periodic(int(periods), max_periods)
+        t = np.stack([synthesis @ xt[c], synthesis @ xt2[c]], axis=1)  # (Ns, 2)
+        n = np.ascontiguousarray(synthesis @ xn[c])
+        opens[c] = bool(np.any((n.min() <= g) & (n.max() > g)))
+        Ti, cond = np.empty((Ns, hi - lo, 2)), np.empty((Ns, hi - lo), dtype=np.int8)
+        march_plane(k, kn[lo:hi], g, mu[c], np.ascontiguousarray(t[:, 0]), np.ascontiguousarray(t[:, 1]), n, s,
+                    np.empty((Ns, 2)), np.empty(Ns), Ti, cond)
+        slider = t[:, None, :] - Ti / k[None, :, None]  # T = kt (t - s) in every condition
+        steps = 0.5 * np.sum((Ti + np.roll(Ti, 1, axis=0)) * (slider - np.roll(slider, 1, axis=0)), axis=-1)
+        work[c] = np.maximum(steps, 0.0)[cond != STICK].sum()
