@@ -111,3 +111,55 @@ def aft_plane_reference(kt, kn, gaps, mu, x1, x2, xn, Ns, max_periods=20000):
     G = P @ dN
     Jac[2, 2] = G[:, 2 * nb:]
     return F, Jac, worst
+
+
+def march_plane_reference(kt, kn, gaps, mu, t1, t2, n, s):
+    """Twin of :func:`microslip.frequency._plane_march.march_plane`: ``(T (steps, 2), N, Ti, cond, s)``.
+
+    The radial return written out with plain floats, one element and one sample at a time.
+    """
+    s = [[float(s[0][i]), float(s[1][i])] for i in range(len(kt))]
+    T, N, Ti, cond = [], [], [], []
+    for k in range(len(t1)):
+        row_T, row_c = [], []
+        for i in range(len(kt)):
+            Ni = kn[i] * max(n[k] - gaps[i], 0.0)
+            if Ni == 0.0:  # open: no force, the slider follows t
+                s[i] = [t1[k], t2[k]]
+                row_T.append((0.0, 0.0))
+                row_c.append(0)
+                continue
+            trial = (kt[i] * (t1[k] - s[i][0]), kt[i] * (t2[k] - s[i][1]))
+            size = math.hypot(*trial)
+            if size > mu * Ni:  # slip: back onto the disc of radius mu N_i, along the trial force
+                force = (mu * Ni * trial[0] / size, mu * Ni * trial[1] / size)
+                s[i] = [t1[k] - force[0] / kt[i], t2[k] - force[1] / kt[i]]
+                row_c.append(2)
+            else:
+                force = trial
+                row_c.append(1)
+            row_T.append(force)
+        Ti.append(row_T)
+        cond.append(row_c)
+        T.append([sum(f[0] for f in row_T), sum(f[1] for f in row_T)])
+        N.append(sum(kn[i] * max(n[k] - gaps[i], 0.0) for i in range(len(kt))))
+    return np.array(T), np.array(N), np.array(Ti), np.array(cond), np.array(s).T
+
+
+def integrate_plane_reference(A_inv, K, B1, B0, force, Bt, Bt2, Bn, n0, models, sliders, q_prev, q, steps):
+    """Twin of :func:`microslip.frequency._transient_plane.integrate_plane` (every contact on its plane).
+
+    ``sliders`` is a list of ``(2, J)`` arrays. Returns ``(out, q_prev, q, sliders)``.
+    """
+    q_prev, q = np.array(q_prev, float), np.array(q, float)
+    sliders = [np.array(s, float) for s in sliders]
+    out = []
+    for k in range(steps):
+        rhs = force[k % len(force)] - K @ q + B1 @ q - B0 @ q_prev
+        for c, m in enumerate(models):
+            T, N, _, _, sliders[c] = march_plane_reference(m.kt, m.kn, m.gaps, m.mu, [Bt[:, c] @ q], [Bt2[:, c] @ q],
+                                                           [Bn[:, c] @ q + n0[c]], sliders[c])
+            rhs = rhs - Bt[:, c] * T[0, 0] - Bt2[:, c] * T[0, 1] - Bn[:, c] * N[0]
+        q_prev, q = q, A_inv @ rhs
+        out.append(q.copy())
+    return np.array(out), q_prev, q, sliders
