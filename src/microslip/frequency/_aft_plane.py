@@ -68,26 +68,30 @@ PERIODIC_ULPS = 32.0
 #: ``1 - rho`` (``rho`` the period map's eigenvalue) below which a plainly marched slider takes its
 #: derivative from its history rather than from the fixed point (whose formula divides by ``1 - rho``)
 FIXED_POINT_MARGIN = 1e-3
+#: ``1 - rho`` above which a Newton step on the fixed point is taken (below, the fixed point is nearly neutral:
+#: an element that touches its slip limit without slipping, whose state is its history's)
+NEWTON_MARGIN = 1e-8
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def _step(rk, nk, t1, t2, s1, s2):  # pragma: no cover - compiled
-    """One element, one sample: ``(code, s1, s2, alpha, u1, u2)``.
+    """One element, one sample: ``(code, s1, s2, alpha, q)``, the arithmetic of :func:`_period`.
 
     ``rk = mu kn / kt``, ``nk = n - gap``; the slider ``(s1, s2)`` before the
-    sample. ``alpha = r / |d|`` and ``u`` are set in slip only.
+    sample. In slip ``alpha = r / |d|`` and ``q = 1 / |d|`` (``d = t - s``
+    before the sample; the force is ``mu kn nk q d``); 0 otherwise.
     """
     if nk <= 0.0:
-        return OPEN, t1, t2, 0.0, 0.0, 0.0
+        return OPEN, t1, t2, 0.0, 0.0
     r = rk * nk
     d1 = t1 - s1
     d2 = t2 - s2
-    dd = math.sqrt(d1 * d1 + d2 * d2)
-    if dd > r:
-        u1 = d1 / dd
-        u2 = d2 / dd
-        return SLIP, t1 - r * u1, t2 - r * u2, r / dd, u1, u2
-    return STICK, s1, s2, 1.0, 0.0, 0.0
+    dd2 = d1 * d1 + d2 * d2
+    if dd2 <= r * r:
+        return STICK, s1, s2, 0.0, 0.0
+    q = 1.0 / math.sqrt(dd2)
+    al = r * q
+    return SLIP, t1 - al * d1, t2 - al * d2, al, q
 
 
 @nb.njit(cache=True, nogil=True)
@@ -108,7 +112,9 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
         for b in range(3):
             for q in range(nbasis):
                 D[a, b, q] = 0.0
-    code, s1, s2, al, u1, u2 = _static(rk, xn_0 - gi, x1_0, x2_0)
+    code, s1, s2, al, qq = _static(rk, xn_0 - gi, x1_0, x2_0)
+    u1 = x1_0 * qq
+    u2 = x2_0 * qq
     if code == OPEN:
         D[0, 0, 0] = 1.0
         D[1, 1, 0] = 1.0
@@ -123,7 +129,11 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
         D[1, 2, 0] = -rk * u2
     for _ in range(periods):
         for k in range(Ns):
-            code, s1, s2, al, u1, u2 = _step(rk, n[k] - gi, t1[k], t2[k], s1, s2)
+            u1 = t1[k] - s1
+            u2 = t2[k] - s2
+            code, s1, s2, al, qq = _step(rk, n[k] - gi, t1[k], t2[k], s1, s2)
+            u1 *= qq
+            u2 *= qq
             if code == STICK:
                 continue
             if code == OPEN:
@@ -166,8 +176,8 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, T
     ``alpha[k, i]`` and the perpendicular ``v = (V1, V2)`` of a slip, and the
     element's force ``Te1, Te2``; ``C`` (4, J) receives the period map's
     derivative ``dPhi/ds`` (row-major 2x2 per element), ``moved[i]`` 1 if
-    element ``i`` slipped or opened. Branch-free over the elements, so that
-    the inner loop vectorises.
+    element ``i`` slipped or opened. A stick costs a comparison; a slip one
+    square root and one division (``s = t - alpha d``, ``T = mu N d / |d|``).
     """
     J = kt.shape[0]
     for i in range(J):
@@ -182,38 +192,48 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, T
         nk0 = n[k]
         for i in range(J):
             nk = nk0 - gaps[i]
+            if nk <= 0.0:  # open: no force, the slider follows t, the period map forgets
+                s1[i] = tk1
+                s2[i] = tk2
+                Te1[k, i] = 0.0
+                Te2[k, i] = 0.0
+                code[k, i] = OPEN
+                C[0, i] = 0.0
+                C[1, i] = 0.0
+                C[2, i] = 0.0
+                C[3, i] = 0.0
+                moved[i] = 1.0
+                continue
             r = rk[i] * nk
-            sa = s1[i]
-            sb = s2[i]
-            d1 = tk1 - sa
-            d2 = tk2 - sb
-            dd = math.sqrt(d1 * d1 + d2 * d2)
-            closed = nk > 0.0
-            slip = closed & (dd > r)
-            u1 = d1 / dd
-            u2 = d2 / dd
-            al = r / dd
-            g = mu * kn[i] * nk
-            s1[i] = (tk1 - r * u1 if slip else sa) if closed else tk1
-            s2[i] = (tk2 - r * u2 if slip else sb) if closed else tk2
-            Te1[k, i] = (g * u1 if slip else kt[i] * d1) if closed else 0.0
-            Te2[k, i] = (g * u2 if slip else kt[i] * d2) if closed else 0.0
-            code[k, i] = (STICK + slip) if closed else OPEN
+            d1 = tk1 - s1[i]
+            d2 = tk2 - s2[i]
+            dd2 = d1 * d1 + d2 * d2
+            if dd2 <= r * r:  # stick
+                Te1[k, i] = kt[i] * d1
+                Te2[k, i] = kt[i] * d2
+                code[k, i] = STICK
+                continue
+            q = 1.0 / math.sqrt(dd2)
+            al = r * q
+            g = mu * kn[i] * nk * q
+            s1[i] = tk1 - al * d1
+            s2[i] = tk2 - al * d2
+            Te1[k, i] = g * d1
+            Te2[k, i] = g * d2
+            code[k, i] = SLIP
             alpha[k, i] = al
-            V1[k, i] = -u2
-            V2[k, i] = u1
-            # C <- A C: alpha v v^T C in slip, 0 when open
-            c0 = C[0, i]
-            c1 = C[1, i]
-            c2 = C[2, i]
-            c3 = C[3, i]
-            w1 = al * (-u2 * c0 + u1 * c2)
-            w2 = al * (-u2 * c1 + u1 * c3)
-            C[0, i] = (-u2 * w1 if slip else c0) if closed else 0.0
-            C[1, i] = (-u2 * w2 if slip else c1) if closed else 0.0
-            C[2, i] = (u1 * w1 if slip else c2) if closed else 0.0
-            C[3, i] = (u1 * w2 if slip else c3) if closed else 0.0
-            moved[i] = max(moved[i], 0.0 if closed and not slip else 1.0)
+            v1 = -d2 * q
+            v2 = d1 * q
+            V1[k, i] = v1
+            V2[k, i] = v2
+            # C <- A C = alpha v v^T C
+            w1 = al * (v1 * C[0, i] + v2 * C[2, i])
+            w2 = al * (v1 * C[1, i] + v2 * C[3, i])
+            C[0, i] = v1 * w1
+            C[1, i] = v1 * w2
+            C[2, i] = v2 * w1
+            C[3, i] = v2 * w2
+            moved[i] = 1.0
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -235,7 +255,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
     prev = el[4]  # residual of the previous period
     newton = np.ones(J, dtype=np.int64)
     for i in range(J):
-        _, a1, a2, _, _, _ = _step(rk[i], xn[0] - gaps[i], x1[0], x2[0], 0.0, 0.0)
+        _, a1, a2, _, _ = _step(rk[i], xn[0] - gaps[i], x1[0], x2[0], 0.0, 0.0)
         st1[i] = a1
         st2[i] = a2
         s1[i] = a1
@@ -257,11 +277,13 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
             r2 = s2[i] - b2[i]
             res = max(abs(r1), abs(r2))
             restart = False
-            if tried[i] and moved[i] == 0.0:
-                restart = True  # stuck through a period a Newton step led to: its state must be its history's
+            if tried[i] and 1.0 - (C[0, i] + C[3, i]) <= NEWTON_MARGIN:
+                # stuck (C = I), or nearly neutral, through a period a Newton step led to: its state must be its
+                # history's
+                restart = True
             elif res <= tol:
                 continue
-            elif newton[i] and count[i] >= 2 and res < prev[i]:
+            elif newton[i] and count[i] >= 2 and res < prev[i] and 1.0 - (C[0, i] + C[3, i]) > NEWTON_MARGIN:
                 m11 = 1.0 - C[0, i]
                 m12 = -C[1, i]
                 m21 = -C[2, i]
@@ -290,7 +312,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
             return -1
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, fastmath=True)
 def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no cover - compiled
     """The coefficient ``Z = beta (x) I + z (x) w^T`` of the slider at the start of the period.
 
@@ -356,7 +378,7 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
     return w1, w2, cc, l1, l2
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, fastmath=True)
 def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used):  # pragma: no cover
     """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (6, nb) for its slip and open samples.
 

@@ -41,17 +41,17 @@ def march_plane(kt, kn, gaps, mu, t1, t2, n, s, T, N, Ti, cond):  # pragma: no c
             nk = n[k] - gaps[i]
             s1 = s[0, i]
             s2 = s[1, i]
-            c, a1, a2, _, u1, u2 = _step(mu * kn[i] / kt[i], nk, t1[k], t2[k], s1, s2)
+            c, a1, a2, _, q = _step(mu * kn[i] / kt[i], nk, t1[k], t2[k], s1, s2)
             if c == OPEN:
                 g1 = 0.0
                 g2 = 0.0
             elif c == STICK:
                 g1 = kt[i] * (t1[k] - s1)
                 g2 = kt[i] * (t2[k] - s2)
-            else:
-                g = mu * kn[i] * nk
-                g1 = g * u1
-                g2 = g * u2
+            else:  # as the AFT's period: mu N d / |d|
+                g = mu * kn[i] * nk * q
+                g1 = g * (t1[k] - s1)
+                g2 = g * (t2[k] - s2)
             if c != OPEN:
                 fn += kn[i] * nk
             f1 += g1
