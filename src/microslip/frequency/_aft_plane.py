@@ -391,6 +391,7 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
     nbasis = PT.shape[1]
     y1 = y[0]
     y2 = y[1]
+    bare = False  # beta known to be zero (after a slip or an opening): the cheaper update
     hi = Ns  # the stick samples m + 1, ..., hi - 1 are still to be applied to Y
     for m in range(Ns - 1, -1, -1):
         c = code[m, i]
@@ -399,6 +400,7 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
         if hi > m + 1:
             for p in range(nbasis):
                 beta[p] -= kti * (cum[hi, p] - cum[m + 1, p])
+            bare = False
         hi = m
         Um = U[m]
         if not used[m]:
@@ -413,6 +415,7 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
                 beta[p] = 0.0
                 y1[p] = 0.0
                 y2[p] = 0.0
+            bare = True
             continue
         al = alpha[m, i]
         v1 = V1[m, i]
@@ -429,6 +432,24 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
         g22 = 1.0 - al * v2 * v2
         g13 = -rki * u1
         g23 = -rki * u2
+        if bare:  # consecutive slips: Y = y (x) w^T
+            awv = al * wv
+            for p in range(nbasis):
+                a1 = y1[p]
+                a2 = y2[p]
+                Um[0, p] += a1 * h1
+                Um[1, p] += a1 * h2
+                Um[2, p] += a1 * h3
+                Um[3, p] += a2 * h1
+                Um[4, p] += a2 * h2
+                Um[5, p] += a2 * h3
+                q = -al * kti * PT[m, p]
+                y1[p] = q * v1 + awv * a1
+                y2[p] = q * v2 + awv * a2
+            w1 = v1
+            w2 = v2
+            continue
+        bare = True
         for p in range(nbasis):
             bp = beta[p]
             a1 = y1[p]
@@ -549,7 +570,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     for b in range(2):
         Jac[2, b] = 0.0
     # -- the history parts, element by element -------------------------------------------
-    U = np.zeros((Ns, 6, nbasis))  # column m's coefficients, times E[m] at the end
+    U = np.empty((Ns, 6, nbasis))  # column m's coefficients (rows zeroed when first used), times E[m] at the end
     used = np.zeros(Ns, dtype=np.bool_)
     beta = np.empty(nbasis)
     y = np.empty((2, nbasis))
@@ -583,8 +604,19 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
         _element_columns(i, kti, rk[i], code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used)
-    # -- columns times their basis rows -----------------------------------------------------
-    acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
+    # -- the used columns times their basis rows: one matrix product ------------------------------
+    rows = np.flatnonzero(used)
+    if rows.size == 0:
+        return periods
+    if rows.size < Ns:  # gather the used rows
+        Uc = np.empty((rows.size, 6 * nbasis))
+        Ec = np.empty((rows.size, nbasis))
+        for j in range(rows.size):
+            Uc[j] = U[rows[j]].reshape(6 * nbasis)
+            Ec[j] = E[rows[j]]
+        acc = np.dot(Uc.T, Ec)
+    else:
+        acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
     for r in range(6):
         a = r // 3
         b = r % 3
