@@ -18,32 +18,20 @@ baseline, measured in the same run, is the figure to compare.
 
 from __future__ import annotations
 
-import time
+import sys
+from pathlib import Path
 
 import numpy as np
 
 from microslip import Sphere, tune
 from microslip.frequency import _aft, _aft_plane, aft, aft_plane
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_aft import best_time  # noqa: E402  (the same timing in both AFT benchmarks)
+
 H, NS, J = 7, 128, 8
 NB = 2 * H + 1
 TOL_ULPS = _aft_plane.PERIODIC_ULPS
-
-
-def best_time(fn, repeat=7, number=None):
-    """Best mean time per call (s) over ``repeat`` rounds of ``number`` calls."""
-    fn()
-    if number is None:
-        t0 = time.perf_counter()
-        fn()
-        number = max(1, int(0.05 / max(time.perf_counter() - t0, 1e-7)))
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / number)
-    return best
 
 
 def numpy_aft_plane(model, x, xn, E, P, max_periods=100000):

@@ -99,9 +99,7 @@ def aft_plane_reference(kt, kn, gaps, mu, x1, x2, xn, Ns, max_periods=20000):
             dT[k] += dTi
             N[k] += Ni
             dN[k] += dNi
-    w = np.full(nb, 2.0 / Ns)
-    w[0] = 1.0 / Ns
-    P = E.T * w[:, None]
+    P = np.linalg.pinv(E)  # the least-squares fit of the kept harmonics to the samples
     F = np.array([P @ T[:, 0], P @ T[:, 1], P @ N])
     Jac = np.zeros((3, 3, nb, nb))
     for a in range(2):

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from _plane_twin import aft_plane_reference
+from _strategies import random_contact
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import aft, aft_plane, cycle_work
 from microslip.frequency.aft import NotPeriodicError
@@ -14,11 +15,7 @@ JENKINS = MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0)  # slip force 1
 def _random_case(seed, H=3, J=4):
     """Random contact and motion: ellipses of random size and tilt, some elements opening, varying n."""
     rng = np.random.default_rng(seed)
-    kt = rng.uniform(1, 3, J) * 1e6
-    kn = rng.uniform(1, 3, J) * 1e7
-    gaps = np.sort(rng.uniform(0, 2e-6, J))
-    gaps[0] = 0.0
-    model = MicroslipModel(kt, kn, gaps, mu=0.4)
+    model = random_contact(rng, J)
     nb = 2 * H + 1
     t = rng.normal(size=(2, nb)) * 1e-6
     t[0] *= 10 ** rng.uniform(-2, 1)

@@ -489,30 +489,15 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     _synthesise(E, x1, t1)
     _synthesise(E, x2, t2)
     _synthesise(E, xn, n)
-    T1s = smp[3]
-    T2s = smp[4]
-    Nsum = smp[5]
-    d11 = smp[6]  # local derivative sums over the elements
-    d12 = smp[7]
-    d22 = smp[8]
-    c1 = smp[9]
-    c2 = smp[10]
-    dcl = smp[11]
+    T1s, T2s, Nsum = smp[3], smp[4], smp[5]  # the forces' samples
+    d11, d12, d22, c1, c2, dcl = smp[6], smp[7], smp[8], smp[9], smp[10], smp[11]  # local derivative sums
     el = np.empty((4, J))
-    rk = el[0]
-    s1 = el[1]
-    s2 = el[2]
-    moved = el[3]
+    rk, s1, s2, moved = el[0], el[1], el[2], el[3]
     ivec = np.empty((2, J), dtype=np.int64)
-    count = ivec[0]
-    tried = ivec[1]
+    count, tried = ivec[0], ivec[1]
     code = np.empty((Ns, J), dtype=np.int8)
-    per = np.empty((6, Ns, J))
-    alpha = per[0]
-    V1 = per[1]
-    V2 = per[2]
-    Te1 = per[3]
-    Te2 = per[4]
+    per = np.empty((5, Ns, J))  # per sample and element: alpha, v of a slip; the element's force
+    alpha, V1, V2, Te1, Te2 = per[0], per[1], per[2], per[3], per[4]
     C = np.empty((4, J))
     size = 0.0
     for k in range(Ns):

@@ -30,42 +30,29 @@ def march_plane(kt, kn, gaps, mu, t1, t2, n, s, T, N, Ti, cond):  # pragma: no c
     unless empty, each element's force ``Ti`` ``(steps, J, 2)`` (N) and
     condition ``cond`` ``(steps, J)`` (0 open, 1 stick, 2 slip).
     """
-    J = kt.shape[0]
-    elements = Ti.shape[0] > 0
-    conditions = cond.shape[0] > 0
+    record = (Ti.shape[0] > 0, cond.shape[0] > 0)  # each element's force, its condition
     for k in range(t1.shape[0]):
-        f1 = 0.0
-        f2 = 0.0
-        fn = 0.0
-        for i in range(J):
+        T[k, 0] = T[k, 1] = N[k] = 0.0
+        for i in range(kt.shape[0]):
             nk = n[k] - gaps[i]
             s1 = s[0, i]
             s2 = s[1, i]
             c, a1, a2, _, q = _step(mu * kn[i] / kt[i], nk, t1[k], t2[k], s1, s2)
-            if c == OPEN:
-                g1 = 0.0
-                g2 = 0.0
-            elif c == STICK:
-                g1 = kt[i] * (t1[k] - s1)
-                g2 = kt[i] * (t2[k] - s2)
-            else:  # as the AFT's period: mu N d / |d|
-                g = mu * kn[i] * nk * q
-                g1 = g * (t1[k] - s1)
-                g2 = g * (t2[k] - s2)
+            # the force: none when open, kt d in stick, mu N d / |d| in slip (as the AFT's period)
+            g = 0.0 if c == OPEN else (kt[i] if c == STICK else mu * kn[i] * nk * q)
+            g1 = g * (t1[k] - s1)
+            g2 = g * (t2[k] - s2)
             if c != OPEN:
-                fn += kn[i] * nk
-            f1 += g1
-            f2 += g2
+                N[k] += kn[i] * nk
+            T[k, 0] += g1
+            T[k, 1] += g2
             s[0, i] = a1
             s[1, i] = a2
-            if elements:
+            if record[0]:
                 Ti[k, i, 0] = g1
                 Ti[k, i, 1] = g2
-            if conditions:
+            if record[1]:
                 cond[k, i] = c
-        T[k, 0] = f1
-        T[k, 1] = f2
-        N[k] = fn
 
 
 @nb.njit(cache=True, nogil=True)

@@ -16,6 +16,7 @@ import numpy as np
 
 from .._kernels import march
 from ._plane_march import march_plane
+from ._transient import advance, linear_rhs
 
 
 @nb.njit(cache=True, nogil=True)
@@ -29,25 +30,15 @@ def integrate_plane(A_inv, K, B1, B0, force, Bt, Bt2, Bn, n0, planar, kt, kn, ga
     ndof = q.shape[0]
     nc = Bt.shape[1]
     period = force.shape[0]
-    rhs = np.empty(ndof)
-    t1 = np.empty(1)
-    t2 = np.empty(1)
-    n1 = np.empty(1)
-    T1 = np.empty(1)
-    N1 = np.empty(1)
-    T2 = np.empty((1, 2))
-    W1 = np.empty(0)
-    no_el = np.empty((0, 0))
+    work = np.empty((2, ndof))
+    rhs, q_next = work[0], work[1]
+    one = np.empty((5, 1))  # a single sample of the march: t1, t2, n, and the forces T1 (one direction), N
+    t1, t2, n1, T1, N1 = one[0], one[1], one[2], one[3], one[4]
+    T2 = np.empty((1, 2))  # the force on the plane
+    W1, no_el, no_el2 = np.empty(0), np.empty((0, 0)), np.empty((0, 0, 2))  # nothing else recorded
     no_cond = np.empty((0, 0), dtype=np.int8)
-    no_el2 = np.empty((0, 0, 2))
-    q_next = np.empty(ndof)
     for k in range(steps):
-        fk = force[k % period]
-        for i in range(ndof):
-            acc = fk[i]
-            for j in range(ndof):
-                acc += (B1[i, j] - K[i, j]) * q[j] - B0[i, j] * q_prev[j]
-            rhs[i] = acc
+        linear_rhs(force[k % period], K, B1, B0, q, q_prev, rhs)
         for c in range(nc):
             a = 0.0
             b = 0.0
@@ -71,12 +62,4 @@ def integrate_plane(A_inv, K, B1, B0, force, Bt, Bt2, Bn, n0, planar, kt, kn, ga
                       no_cond)
                 for i in range(ndof):
                     rhs[i] -= Bt[i, c] * T1[0] + Bn[i, c] * N1[0]
-        for i in range(ndof):
-            acc = 0.0
-            for j in range(ndof):
-                acc += A_inv[i, j] * rhs[j]
-            q_next[i] = acc
-        for i in range(ndof):
-            q_prev[i] = q[i]
-            q[i] = q_next[i]
-            out[k, i] = q_next[i]
+        advance(A_inv, rhs, q_prev, q, q_next, out[k])

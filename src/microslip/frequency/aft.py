@@ -273,7 +273,7 @@ def aft(model: MicroslipModel, t, n, *, samples: int | None = None,
 
 
 @dataclass(frozen=True, eq=False)
-class PlaneAFTResult:
+class PlaneAFTResult(AFTResult):
     """Periodic forces of a contact on its plane and their derivatives (from :func:`aft_plane`).
 
     With ``nb = 2H + 1`` coefficients; component 0 and 1 are the two
@@ -299,19 +299,6 @@ class PlaneAFTResult:
     samples : int
         Time samples per period.
     """
-
-    T: np.ndarray
-    N: np.ndarray
-    dT_dt: np.ndarray
-    dT_dn: np.ndarray
-    dN_dn: np.ndarray
-    periods: int
-    samples: int
-
-    @property
-    def harmonics(self) -> int:
-        """Number of harmonics ``H``."""
-        return (self.T.shape[-1] - 1) // 2
 
     def dissipation(self, t) -> float:
         """Energy dissipated per cycle by the tangential force along ``t`` (J), both components.
@@ -348,28 +335,31 @@ def aft_plane(model: MicroslipModel, t, n, *, samples: int | None = None,
         one row per direction, ``[c0, a1, b1, ..., aH, bH]``.
     n : array_like, shape (2H+1,)
         Fourier coefficients of the normal approach (m).
-    samples : int, optional
-        Time samples per period (default :func:`default_samples`).
-    max_periods : int, default 1000
-        Periods allowed for the state to become periodic.
+    samples, max_periods
+        As in :func:`aft` (curved orbits need more samples than lines: the
+        sampled radial return is first order in the step there).
 
     Returns
     -------
     PlaneAFTResult
+        Coefficients and Jacobians, with the number of periods marched.
 
     Raises
     ------
     NotPeriodicError
-        If the state is still changing after ``max_periods`` periods.
+        When some element's slider still moves by more than 32 ulps of the
+        motion after ``max_periods`` periods.
 
     Examples
     --------
-    >>> import numpy as np
+    A circle in gross slip: the force, of magnitude ``mu N``, turns with it.
+
+    >>> from math import hypot
     >>> from microslip import MicroslipModel
     >>> from microslip.frequency import aft_plane
     >>> jenkins = MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0)  # slip force 1 N at n = 1 µm
-    >>> r = aft_plane(jenkins, t=[[0, 3e-4, 0], [0, 0, 3e-4]], n=[1e-6, 0, 0])  # a circle in gross slip
-    >>> r.T.shape, r.dT_dt.shape, round(float(np.hypot(r.T[0, 1], r.T[0, 2])), 3)
+    >>> r = aft_plane(jenkins, t=[[0, 3e-4, 0], [0, 0, 3e-4]], n=[1e-6, 0, 0])
+    >>> r.T.shape, r.dT_dt.shape, round(hypot(r.T[0, 1], r.T[0, 2]), 3)
     ((2, 3), (2, 2, 3, 3), 1.0)
     """
     model = _check_model("model", model)
