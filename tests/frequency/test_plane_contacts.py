@@ -221,3 +221,30 @@ harmonics = 3
     (tmp_path / "frf.toml").write_text(text.replace("TANGENTIAL", '[{"0" = 1.0}, {"0" = -1.0}]'))
     with pytest.raises(ConfigError, match="\\[\\[contact\\]\\] 1: tangential\\[1\\] must not be parallel"):
         load_config(tmp_path / "frf.toml")
+
+
+def test_the_frf_command_reports_a_contact_on_its_plane(tmp_path, capsys):
+    from microslip.cli import main
+
+    MODEL.save(tmp_path / "contact.json")
+    (tmp_path / "frf.toml").write_text(f"""
+[structure]
+M = [[1.0, 0.0], [0.0, 1.0]]
+K = [[1e5, 0.0], [0.0, 1.2e5]]
+[[contact]]
+model = "contact.json"
+tangential = [{{"0" = 1.0}}, {{"1" = 1.0}}]
+approach = "1um"
+name = "puck"
+[excitation]
+h1 = {[float(f) for f in FORCE]}
+[sweep]
+omega = [330, 440]
+harmonics = 3
+""")
+    assert main(["frf", str(tmp_path / "frf.toml"), "--out", str(tmp_path / "out")]) == 0
+    header = (tmp_path / "out" / "contact_cycle.csv").read_text().splitlines()[0]
+    assert "puck T [N]" in header and "puck T2 [N]" in header
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("Contact puck at the peak"))
+    # the size of the force on the plane, within mu N = 2.1 N
+    assert 1.0 < float(line.split("|T| up to ")[1].split(" N")[0]) <= 2.1

@@ -72,6 +72,11 @@ class ContactCycle:
     t2: np.ndarray | None = None
     T2: np.ndarray | None = None
 
+    @property
+    def magnitude(self) -> np.ndarray:
+        """``|T|`` (N), shape ``(samples,)``: the tangential force's size (both components on the plane)."""
+        return np.abs(self.T) if self.T2 is None else np.hypot(self.T, self.T2)
+
     def fractions(self) -> dict:
         """``{state: fraction of the period}`` for each of :data:`SLIP_STATES` (fractions sum to 1)."""
         return {name: float(np.mean(self.state == k)) for k, name in enumerate(SLIP_STATES)}
