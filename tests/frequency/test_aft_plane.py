@@ -212,6 +212,24 @@ def test_an_element_that_barely_slips_is_periodic_in_a_few_periods():
     np.testing.assert_allclose(r.dT_dt, Jac[:2, :2], atol=1e-6 * 1e4)
 
 
+def test_a_newton_step_that_overshoots_is_shortened():
+    """A motion met on a harmonic balance curve (the 8-element sphere under a 3-DOF structure), where one
+    element's fixed point lies just across a change of its slip pattern: a full Newton step from one side
+    overshoots. Shortened steps converge; starting the element again from the static step would leave it to
+    thousands of plain periods (the slider creeps by a factor 0.997 per period)."""
+    model = tune(Sphere.paper(), 37.5, elements=8)
+    t = np.array([[-1.4281600127283143e-08, 3.316156156115378e-07, 2.0815998960129506e-08, -3.778051744516878e-09,
+                   1.6263739072811408e-10, -1.1136066812832282e-09, -4.212444957215849e-09, -4.463730483436133e-09,
+                   3.829519338763516e-10, -5.24339784937063e-11, -2.651019892543301e-11],
+                  [4.658914561721157e-10, 1.760193966568407e-08, -1.8910973820509768e-07, 5.287259898294274e-10,
+                   2.5325287896504892e-09, -3.537727925328244e-09, 7.16211608316541e-10, 3.5169805500303176e-09,
+                   1.8487809413979257e-09, 2.164820931504973e-12, 4.2874365710598445e-11]])
+    n = np.zeros(11)
+    n[:3] = [1.616451152150991e-06, 8.759388532241335e-08, 1.472366374462887e-09]
+    r = aft_plane(model, t, n, samples=128)
+    assert r.periods < 400
+
+
 def test_not_periodic_within_max_periods_is_reported():
     with pytest.raises(NotPeriodicError, match="max_periods = 1"):
         aft_plane(JENKINS, _circle(1, 3e-4), [1e-6, 0, 0], samples=32, max_periods=1)
