@@ -68,9 +68,6 @@ PERIODIC_ULPS = 32.0
 #: ``1 - rho`` (``rho`` the period map's eigenvalue) below which a plainly marched slider takes its
 #: derivative from its history rather than from the fixed point (whose formula divides by ``1 - rho``)
 FIXED_POINT_MARGIN = 1e-3
-#: a Newton step that ends an element on the edge of its stick region is kept when it moved the slider by at most
-#: this many times the periodicity tolerance from the plain step (1e6 x 32 ulps: 7e-9 of the motion)
-EDGE = 1e6
 #: ``1 - rho`` above which a Newton step on the fixed point is taken (below, the fixed point is nearly neutral:
 #: an element that touches its slip limit without slipping, whose state is its history's)
 NEWTON_MARGIN = 1e-8
@@ -250,13 +247,12 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
     where it is. Returns the periods marched, ``-1`` past ``max_periods``.
     """
     J = kt.shape[0]
-    el = np.empty((9, J))
+    el = np.empty((8, J))
     b1, b2 = el[0], el[1]  # slider at the start of the period
     st1, st2 = el[2], el[3]  # after the static step (the restart point)
     prev = el[4]  # residual of the previous period
     p1, p2 = el[5], el[6]  # the plain step's end, when a Newton step was taken instead
     lam = el[7]  # the Newton steps' length, halved each time one does not reduce the residual
-    corr = el[8]  # the last Newton step's distance from the plain step it replaced
     newton = np.ones(J, dtype=np.int64)
     stepped = np.zeros(J, dtype=np.int64)  # 1: this period started from a Newton step
     for i in range(J):
@@ -287,10 +283,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
             stepped[i] = 0
             if tried[i] and 1.0 - (C[0, i] + C[3, i]) <= NEWTON_MARGIN:
                 # stuck (C = I), or nearly neutral, through a period a Newton step led to: its state must be its
-                # history's, unless the steps only closed in on the edge of its stick region, where the plain
-                # march ends too (the last step within EDGE of the plain one, and periodic)
-                if res <= tol and corr[i] <= EDGE * tol:
-                    continue
+                # history's
                 restart = True
             elif res <= tol:
                 continue
@@ -311,7 +304,6 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                 n1 = b1[i] + lam[i] * (m22 * r1 - m12 * r2) / det
                 n2 = b2[i] + lam[i] * (-m21 * r1 + m11 * r2) / det
                 if math.isfinite(n1) and math.isfinite(n2):
-                    corr[i] = max(abs(n1 - s1[i]), abs(n2 - s2[i]))
                     p1[i] = s1[i]
                     p2[i] = s2[i]
                     s1[i] = n1
@@ -587,7 +579,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
         w1, w2, cc, l1, l2 = _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, y)
         stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
         rho = 1.0 if stuck else cc * (l1 * w1 + l2 * w2)  # the eigenvalue of Phi_s = c l w^T
-        if 1.0 - rho < (FIXED_POINT_MARGIN if not tried[i] else NEWTON_MARGIN):
+        if not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN:
             # the slider at the start of the period is (nearly) neutral to the period map: stuck through the
             # period, or slipping so little that its state is the one its history gave it. The plain march
             # from the static step is repeated with the slider's derivative carried along.
