@@ -22,10 +22,14 @@ periodic when its slider at the start of a period moves by at most
 contracts by ``alpha = r / |d|`` per slip sample across its path, so an
 element that barely slips would need thousands of periods: once its residual
 falls, the march takes a Newton step on the fixed point of the period map,
-``s <- s + (I - dPhi/ds)^-1 (Phi(s) - s)``. An element that ends a period
-stuck throughout keeps the state the plain march gives it (a Newton step is
-taken back, the element restarted from the static step and marched plainly):
-its state depends on its history, and that history is the physical one.
+``s <- s + (I - dPhi/ds)^-1 (Phi(s) - s)`` (only while ``1 - rho``, the
+distance of the map's eigenvalue from 1, exceeds 1e-8). A step after which
+the residual does not fall is replaced by the plain step and the next ones are
+halved (after six halvings the element goes on plainly: its fixed point lies
+across a change of its slip pattern). An element that ends a period stuck
+throughout, or nearly neutral, after a Newton step keeps the state the plain
+march gives it (restarted from the static step and marched plainly): its
+state depends on its history, and that history is the physical one.
 
 Exact derivatives. With ``A_k`` the derivative of the slider after sample
 ``k`` with respect to the slider before it (``I`` in stick, ``alpha v v^T``
