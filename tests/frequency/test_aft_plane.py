@@ -230,6 +230,29 @@ def test_a_newton_step_that_overshoots_is_shortened():
     assert r.periods < 400
 
 
+def test_an_element_on_a_corner_of_its_stick_region_takes_its_derivative_from_that_corner():
+    """A motion met on a harmonic balance curve (a puck on its plane with a static push): the third element
+    creeps onto a corner of its stick region, where the circles of two samples meet, contracting by 1.3 % per
+    period. Newton steps reach it in a few periods; the corner, fixed by those two samples and not by the
+    element's history, gives the derivative (taking it from the history instead was off by 100 %)."""
+    model = MicroslipModel(kt=[3e4, 2e4, 1e4], kn=[2e6, 2e6, 2e6], gaps=[0.0, 0.3e-6, 0.6e-6], mu=0.5)
+    t = np.zeros((2, 11))
+    t[0, [0, 1, 2, 5, 6, 9, 10]] = [1.026264169071451e-05, 3.612656221146175e-05, 1.0236958498141291e-05,
+                                    -7.837399704048127e-08, -7.387460973786496e-08, -1.499696969485441e-08,
+                                    -2.473172828743903e-09]
+    t[1, [0, 1, 2, 5, 6, 9, 10]] = [1.6180259733182164e-05, 1.376620486634661e-05, 2.697312294576065e-06,
+                                    -3.1600467436319924e-08, -2.9034236851201593e-08, -5.92959775585675e-09,
+                                    -8.468215146626199e-10]
+    n = np.zeros(11)
+    n[0] = 1e-6
+    r = aft_plane(model, t, n, samples=128)
+    assert r.periods < 20
+    fd = _finite_difference(model, t, n, 128)
+    k = model.kn.sum()
+    for exact, approx in zip((r.dT_dt, r.dT_dn, r.dN_dn), fd):
+        np.testing.assert_allclose(exact, approx, atol=1e-6 * k)
+
+
 def test_not_periodic_within_max_periods_is_reported():
     with pytest.raises(NotPeriodicError, match="max_periods = 1"):
         aft_plane(JENKINS, _circle(1, 3e-4), [1e-6, 0, 0], samples=32, max_periods=1)

@@ -25,8 +25,9 @@ falls, the march takes a Newton step on the fixed point of the period map,
 ``s <- s + (I - dPhi/ds)^-1 (Phi(s) - s)`` (only while ``1 - rho``, the
 distance of the map's eigenvalue from 1, exceeds 1e-8). A step after which
 the residual does not fall is replaced by the plain step and the next ones are
-halved (after six halvings the element goes on plainly: its fixed point lies
-across a change of its slip pattern). An element that ends a period stuck
+halved (after three halvings the element goes on plainly, or onto the corner
+of its stick region it creeps towards: its fixed point lies across a change
+of its slip pattern). An element that ends a period stuck
 throughout, or nearly neutral, after a Newton step keeps the state the plain
 march gives it (restarted from the static step and marched plainly): its
 state depends on its history, and that history is the physical one.
@@ -69,6 +70,8 @@ from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise,
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
+#: a sample binds a slider on the edge of its stick region within this many periodicity tolerances
+BIND = 1000.0
 #: ``1 - rho`` (``rho`` the period map's eigenvalue) below which a plainly marched slider takes its
 #: derivative from its history rather than from the fixed point (whose formula divides by ``1 - rho``)
 FIXED_POINT_MARGIN = 1e-3
@@ -240,15 +243,127 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, T
             moved[i] = 1.0
 
 
+@nb.njit(cache=True, nogil=True)
+def _binding_pair(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
+    """The two samples nearest to binding the slider ``(s1, s2)``: ``(a, ga, b, gb)``.
+
+    ``g = |s - t_k| - r_k`` (positive: outside sample ``k``'s disc); ``a`` the
+    largest, ``b`` the largest among the samples whose direction from the
+    slider is at least 1e-3 from ``a``'s (``b = -1``: none). ``a = -1`` when
+    the element opens: it has no stick region.
+    """
+    a = -1
+    ga = -np.inf
+    for k in range(t1.shape[0]):
+        nk = n[k] - gi
+        if nk <= 0.0:
+            return -1, ga, -1, ga
+        g = math.hypot(t1[k] - s1, t2[k] - s2) - rk * nk
+        if g > ga:
+            ga = g
+            a = k
+    da = math.hypot(t1[a] - s1, t2[a] - s2)
+    b = -1
+    gb = -np.inf
+    for k in range(t1.shape[0]):
+        d = math.hypot(t1[k] - s1, t2[k] - s2)
+        if abs((t1[a] - s1) * (t2[k] - s2) - (t2[a] - s2) * (t1[k] - s1)) < 1e-3 * d * da:
+            continue
+        g = d - rk * (n[k] - gi)
+        if g > gb:
+            gb = g
+            b = k
+    return a, ga, b, gb
+
+
+@nb.njit(cache=True, nogil=True)
+def _corner(t1, t2, n, gi, rk, s1, s2, tol):  # pragma: no cover - compiled
+    """The two samples whose discs meet at ``(s1, s2)``, a corner of the element's stick region, or ``(-1, -1)``.
+
+    The stick region is the intersection of the discs ``|s - t_k| <= r_k``; a
+    slider that creeps onto it from outside lands on its edge, generically at
+    a corner where two circles meet. There it is fixed by those two samples
+    (not by its history): both within ``BIND`` tolerances of their circles
+    (:func:`_binding_pair`).
+    """
+    a, ga, b, gb = _binding_pair(t1, t2, n, gi, rk, s1, s2)
+    if a < 0 or b < 0 or ga < -BIND * tol or gb < -BIND * tol:
+        return -1, -1
+    return a, b
+
+
+@nb.njit(cache=True, nogil=True)
+def _corner_point(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
+    """The corner of the stick region nearest a slider creeping onto it: ``(found, c1, c2)``.
+
+    The two samples whose discs the slider ``(s1, s2)`` violates most
+    (:func:`_binding_pair`); of the two points where their circles meet, the
+    nearer one, if it lies in every disc (radii shrunk by 16 ulps).
+    """
+    a, _, b, _ = _binding_pair(t1, t2, n, gi, rk, s1, s2)
+    if a < 0 or b < 0:
+        return False, s1, s2
+    shrink = 1.0 - 16 * 2.220446049250313e-16
+    ra = rk * (n[a] - gi) * shrink
+    rb = rk * (n[b] - gi) * shrink
+    e1 = t1[b] - t1[a]
+    e2 = t2[b] - t2[a]
+    L = math.hypot(e1, e2)
+    if L == 0.0 or L > ra + rb or L < abs(ra - rb):
+        return False, s1, s2
+    x = (L * L + ra * ra - rb * rb) / (2.0 * L)
+    h = math.sqrt(max(ra * ra - x * x, 0.0))
+    best = np.inf
+    c1 = s1
+    c2 = s2
+    for side in (-1.0, 1.0):
+        p1 = t1[a] + (x * e1 - side * h * e2) / L
+        p2 = t2[a] + (x * e2 + side * h * e1) / L
+        dist = math.hypot(p1 - s1, p2 - s2)
+        if dist < best:
+            best = dist
+            c1 = p1
+            c2 = p2
+    for k in range(t1.shape[0]):
+        if math.hypot(c1 - t1[k], c2 - t2[k]) > rk * (n[k] - gi):
+            return False, s1, s2
+    return True, c1, c2
+
+
+@nb.njit(cache=True, nogil=True)
+def _corner_derivative(t1, t2, rk, s1, s2, a, b, E, D):  # pragma: no cover - compiled
+    """``D`` (2, 3, nb): the derivative of the corner where the circles of samples ``a`` and ``b`` meet.
+
+    Each binding sample ``j`` keeps ``|t_j - s| = r_j``: ``u_j . ds = u_j . dt_j - rk dn_j``.
+    """
+    nbasis = E.shape[1]
+    u = np.empty((2, 2))
+    for row, j in enumerate((a, b)):
+        d = math.hypot(t1[j] - s1, t2[j] - s2)
+        u[row, 0] = (t1[j] - s1) / d
+        u[row, 1] = (t2[j] - s2) / d
+    det = u[0, 0] * u[1, 1] - u[0, 1] * u[1, 0]
+    inv = np.array([[u[1, 1], -u[0, 1]], [-u[1, 0], u[0, 0]]]) / det
+    for c in range(2):
+        for q in range(nbasis):
+            ea = E[a, q]
+            eb = E[b, q]
+            D[c, 0, q] = inv[c, 0] * u[0, 0] * ea + inv[c, 1] * u[1, 0] * eb
+            D[c, 1, q] = inv[c, 0] * u[0, 1] * ea + inv[c, 1] * u[1, 1] * eb
+            D[c, 2, q] = -rk * (inv[c, 0] * ea + inv[c, 1] * eb)
+
+
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
-           code, alpha, V1, V2, Te1, Te2, C, moved):  # pragma: no cover - compiled
+           code, alpha, V1, V2, Te1, Te2, C, moved, corner):  # pragma: no cover - compiled
     """Static step, then periods until every element's slider repeats to ``tol`` (Newton-accelerated).
 
     On return the arrays of :func:`_period` hold the periodic period;
     ``count[i]`` is the number of plain periods since element ``i`` last
     started from the static step, ``tried[i]`` 1 if a Newton step brought it
-    where it is. Returns the periods marched, ``-1`` past ``max_periods``.
+    where it is, 2 if that is a corner of its stick region, the samples
+    ``corner[:, i]`` fixing it. Returns the periods marched, ``-1`` past
+    ``max_periods``.
     """
     J = kt.shape[0]
     el = np.empty((8, J))
@@ -286,8 +401,15 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
             newton_step = stepped[i]
             stepped[i] = 0
             if tried[i] and 1.0 - (C[0, i] + C[3, i]) <= NEWTON_MARGIN:
-                # stuck (C = I), or nearly neutral, through a period a Newton step led to: its state must be its
-                # history's
+                # stuck (C = I), or nearly neutral, through a period a Newton step led to: the Newton steps
+                # closed in on a corner of its stick region, where the plain march ends too; or its state must be
+                # its history's
+                a, b = _corner(t1, t2, n, gaps[i], rk[i], s1[i], s2[i], tol) if res <= tol else (-1, -1)
+                if a >= 0:
+                    tried[i] = 2
+                    corner[0, i] = a
+                    corner[1, i] = b
+                    continue
                 restart = True
             elif res <= tol:
                 continue
@@ -296,10 +418,19 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                 s1[i] = p1[i]
                 s2[i] = p2[i]
                 lam[i] *= 0.5
-                if lam[i] < 1.0 / 64:  # the fixed point lies across a change of the slip pattern: plain periods
+                if lam[i] < 1.0 / 8:
+                    # the fixed point lies across a change of the slip pattern, where the slider creeps onto a
+                    # corner of its stick region: there if the two discs it violates most meet inside the others
+                    # (the next period checks it, see _corner), else plain periods
+                    found, c1, c2 = _corner_point(t1, t2, n, gaps[i], rk[i], s1[i], s2[i])
+                    if found:
+                        s1[i] = c1
+                        s2[i] = c2
                     newton[i] = 0
                 res = np.inf
             elif newton[i] and count[i] >= 2 and res < prev[i] and 1.0 - (C[0, i] + C[3, i]) > NEWTON_MARGIN:
+                if newton_step:
+                    lam[i] = min(1.0, 2.0 * lam[i])  # the last step reduced the residual
                 m11 = 1.0 - C[0, i]
                 m12 = -C[1, i]
                 m21 = -C[2, i]
@@ -526,8 +657,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
         for k in range(Ns):
             rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
+    corner = np.empty((2, J), dtype=np.int64)
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
-                     code, alpha, V1, V2, Te1, Te2, C, moved)
+                     code, alpha, V1, V2, Te1, Te2, C, moved, corner)
     # -- the periodic period: forces and the local derivatives ---------------------------
     for k in range(Ns):
         f1 = 0.0
@@ -583,11 +715,15 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
         w1, w2, cc, l1, l2 = _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, y)
         stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
         rho = 1.0 if stuck else cc * (l1 * w1 + l2 * w2)  # the eigenvalue of Phi_s = c l w^T
-        if not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN:
-            # the slider at the start of the period is (nearly) neutral to the period map: stuck through the
-            # period, or slipping so little that its state is the one its history gave it. The plain march
-            # from the static step is repeated with the slider's derivative carried along.
-            _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, count[i] - 1, D)
+        if tried[i] == 2 or (not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN):
+            # the slider at the start of the period is (nearly) neutral to the period map: at a corner of its
+            # stick region, fixed by the two samples whose circles meet there; or stuck through the period, or
+            # slipping so little that its state is the one its history gave it: the plain march from the
+            # static step is repeated with the slider's derivative carried along.
+            if tried[i] == 2:
+                _corner_derivative(t1, t2, rk[i], s1[i], s2[i], corner[0, i], corner[1, i], E, D)
+            else:
+                _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, count[i] - 1, D)
             for b in range(3):
                 for q in range(nbasis):
                     wd = w1 * D[0, b, q] + w2 * D[1, b, q]

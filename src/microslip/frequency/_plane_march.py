@@ -94,7 +94,7 @@ def periodic_state_of_samples(kt, kn, gaps, mu, m1, m2, mn, t1, t2, n, max_perio
     x2 = np.array([m2])
     xn = np.array([mn])
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, ivec[0], ivec[1],
-                     code, per[0], per[1], per[2], per[3], per[4], C, moved)
+                     code, per[0], per[1], per[2], per[3], per[4], C, moved, np.empty((2, J), dtype=np.int64))
     # the march ends with the periodic period; its start is one period back from the end, to 32 ulps
     for i in range(J):
         s[0, i] = s1[i]
