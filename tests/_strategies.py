@@ -57,3 +57,12 @@ def plane_paths(draw, min_size=1, max_size=40):
     t = lengths_array(draw, 2 * size, -3 * UM, 3 * UM).reshape(size, 2)
     n = lengths_array(draw, size, -0.5 * UM, 3 * UM)
     return t, n
+
+
+def random_contact(rng, J: int) -> MicroslipModel:
+    """A contact of ``J`` elements (kt 1e6..3e6, kn 1e7..3e7 N/m, gaps in 0..2 µm from 0, mu 0.4) from ``rng``."""
+    kt = rng.uniform(1, 3, J) * 1e6
+    kn = rng.uniform(1, 3, J) * 1e7
+    gaps = np.sort(rng.uniform(0, 2e-6, J))
+    gaps[0] = 0.0
+    return MicroslipModel(kt, kn, gaps, mu=0.4)

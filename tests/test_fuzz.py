@@ -258,6 +258,11 @@ def aft_result():
     return aft(model(), [1e-7, 1e-7, 0.0], [float(SPHERE.approach(N_TOT)), 0.0, 0.0], samples=16)
 
 
+def plane_aft_result():
+    return microslip.frequency.aft_plane(model(), [[1e-7, 1e-7, 0.0]] * 2, [float(SPHERE.approach(N_TOT)), 0.0, 0.0],
+                                         samples=16)
+
+
 @cache
 def backbone_xy():
     return some_loops().backbone_points()
@@ -643,6 +648,8 @@ CASES += [
          steps_per_period=64, harmonics=1, tolerance=1e-7, max_periods=20, progress=False, start=L(a_point)),
     case("frequency.aft", lambda: aft, model=MODEL, t=[1e-7, 1e-7, 0.0], n=[N_APP, 0.0, 0.0], samples=16,
          max_periods=100),
+    case("frequency.aft_plane", lambda: microslip.frequency.aft_plane, model=MODEL, t=[[1e-7, 1e-7, 0.0]] * 2,
+         n=[N_APP, 0.0, 0.0], samples=16, max_periods=100),
     case("frequency.aft_batch", lambda: microslip.frequency.aft_batch, models=L(lambda: [model(), model()]),
          t=[[1e-7, 1e-7, 0.0]] * 2, n=[[N_APP, 0.0, 0.0]] * 2, samples=16, max_periods=100),
     # cycle_work does not check its arrays yet (NaN, strings, mismatched lengths give a number): left out until
@@ -668,6 +675,7 @@ CASES += [
     case("FrequencyResponse.to_csv", lambda: a_point().to_csv, kinds=PATH, path="frf.csv", dofs=[0]),
     case("SteadyState.amplitude", lambda: a_steady_state().amplitude, dof=0, harmonic=1),
     case("AFTResult.dissipation", lambda: aft_result().dissipation, t=[1e-7, 1e-7, 0.0]),
+    case("PlaneAFTResult.dissipation", lambda: plane_aft_result().dissipation, t=[[1e-7, 1e-7, 0.0]] * 2),
     case("Structure.add_static_force", lambda: jenkins_structure().add_static_force, force=[1.0]),
     case("FrequencyResponse.dof_coefficients", lambda: a_point().dof_coefficients, dof=0),
     case("FrequencyResponse.sector_coefficients", lambda: disk_point().sector_coefficients, dof=1, sector=2),
@@ -752,7 +760,7 @@ NOT_FUZZED = {
 }
 
 #: classes whose objects the package builds and returns (their constructors are not an entry point)
-RESULTS = {"AccuracyReport", "AFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
+RESULTS = {"AccuracyReport", "AFTResult", "PlaneAFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
            "DesignCurve", "FEBlade", "FEMatrices", "ContactCycle"}

@@ -5,6 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from _strategies import random_contact
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import aft, aft_batch, cycle_work, default_samples, synthesise
 from microslip.frequency import _aft
@@ -15,11 +16,7 @@ JENKINS = MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0)  # slip force 1
 
 def _random_case(seed, H=3, J=4):
     rng = np.random.default_rng(seed)
-    kt = rng.uniform(1, 3, J) * 1e6
-    kn = rng.uniform(1, 3, J) * 1e7
-    gaps = np.sort(rng.uniform(0, 2e-6, J))
-    gaps[0] = 0.0
-    model = MicroslipModel(kt, kn, gaps, mu=0.4)
+    model = random_contact(rng, J)
     nb = 2 * H + 1
     t = rng.normal(size=nb) * 1e-6
     n = rng.normal(size=nb) * 0.5e-6

@@ -12,11 +12,17 @@ def static_rows(result) -> list:
     """One row per contact: name, N0 (N), T0 (N), |T0| / (mu N0), elements closed of J."""
     rows = []
     for c, contact in enumerate(result.structure.contacts):
-        N0, T0 = result.static_normal_force[c], result.static_tangential_force[c]
+        N0, T0 = result.static_normal_force[c], static_tangential(result, c)
         limit = contact.model.mu * N0
         rows.append([contact.name, f"{N0:.4g}", f"{T0:.4g}", f"{abs(T0) / limit:.3g}" if limit > 0 else "open",
                      f"{result.static_closed_elements[c]} of {contact.model.elements}"])
     return rows
+
+
+def static_tangential(result, c: int) -> float:
+    """Contact ``c``'s static tangential force (N): signed along one direction, its size on a plane."""
+    T0 = result.static_tangential_force[c]
+    return float(np.hypot(T0, result.static_tangential_force2[c])) if result.structure.contacts[c].planar else T0
 
 
 def damper_lines(result, dampers) -> list[str]:
@@ -47,7 +53,7 @@ def cycle_rows(cycles_at_peak) -> list:
     rows = []
     for cy in cycles_at_peak:
         shares = cy.fractions()
-        rows.append([cy.name, f"{cy.N.min():.4g} to {cy.N.max():.4g}", f"{np.abs(cy.T).max():.4g}"]
+        rows.append([cy.name, f"{cy.N.min():.4g} to {cy.N.max():.4g}", f"{cy.magnitude.max():.4g}"]
                     + [f"{100 * s:.0f}" for s in shares.values()])
     return rows
 
@@ -61,6 +67,8 @@ def cycle_columns(cycles_at_peak) -> dict:
     for cy in cycles_at_peak:
         cols[f"{cy.name} N [N]"] = cy.N
         cols[f"{cy.name} T [N]"] = cy.T
+        if cy.T2 is not None:  # a contact on its plane: the second component
+            cols[f"{cy.name} T2 [N]"] = cy.T2
         cols[f"{cy.name} state [-]"] = np.array([SLIP_STATES[k] for k in cy.state])
     return cols
 
@@ -97,5 +105,5 @@ def add_section(report, result, cfg, out) -> list[str]:
     write_csv(out / "contact_cycle.csv", cycle_columns(at_peak))
     for cy in at_peak:
         lines.append(f"Contact {cy.name} {where}: N from {cy.N.min():.4g} to {cy.N.max():.4g} N, |T| up to "
-                     f"{np.abs(cy.T).max():.4g} N; {cy.summary()}.")
+                     f"{cy.magnitude.max():.4g} N; {cy.summary()}.")
     return lines

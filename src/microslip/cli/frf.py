@@ -8,6 +8,7 @@ import numpy as np
 
 from ..common.units import display_unit
 from ._args import add_output_folder
+from ._contacts import static_tangential
 
 
 def add_parser(sub) -> None:
@@ -197,7 +198,7 @@ def _excitation_rows(cfg) -> list:
 def _static_text(result, c: int) -> str:
     """One contact's static state: normal and tangential force, share of the slip force, closed elements."""
     contact = result.structure.contacts[c]
-    N0, T0 = result.static_normal_force[c], result.static_tangential_force[c]
+    N0, T0 = result.static_normal_force[c], static_tangential(result, c)
     limit = contact.model.mu * N0
     share = f"{abs(T0) / limit:.3g} of the slip force mu N0" if limit > 0 else "open"
     preload = f" (preload {contact.preload:.6g} N on the structure)" if contact.preload else ""

@@ -2,6 +2,8 @@
 
 * :func:`aft`, :func:`aft_batch` -- periodic forces of microslip contacts from
   the Fourier coefficients of their displacements, with exact Jacobians;
+  :func:`aft_plane` the same for a contact moving on its plane (two
+  tangential directions plus the normal);
 * :class:`Structure` -- a linear structure (dense or sparse ``M, C, K``) with
   contacts attached to linear combinations of its degrees of freedom;
 * :func:`frequency_response` -- harmonic balance with pseudo-arclength
@@ -26,8 +28,8 @@
   to the periodic steady state (an independent check).
 """
 
-from .aft import (AFTResult, NotPeriodicError, UnderResolvedWarning, aft, aft_batch, cycle_work, default_samples,
-                  synthesise)
+from .aft import (AFTResult, NotPeriodicError, PlaneAFTResult, UnderResolvedWarning, aft, aft_batch, aft_plane, cycle_work,
+                  default_samples, synthesise)
 from .continuation import ConvergenceError, StepControl
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import CyclicStructure
@@ -53,6 +55,7 @@ __all__ = [
     "HarmonicBalance",
     "IncompleteCurveWarning",
     "NotPeriodicError",
+    "PlaneAFTResult",
     "SingularInteriorError",
     "StepControl",
     "SteadyState",
@@ -61,6 +64,7 @@ __all__ = [
     "Structure",
     "aft",
     "aft_batch",
+    "aft_plane",
     "contact_cycle",
     "craig_bampton",
     "cycle_work",

@@ -17,6 +17,32 @@ import numpy as np
 from .._kernels import march, march_reference
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def linear_rhs(fk, K, B1, B0, q, q_prev, rhs):  # pragma: no cover - compiled
+    """``rhs = f_k - K q + B1 q - B0 q_prev``: the step's right-hand side before the contact forces."""
+    ndof = q.shape[0]
+    for i in range(ndof):
+        acc = fk[i]
+        for j in range(ndof):
+            acc += (B1[i, j] - K[i, j]) * q[j] - B0[i, j] * q_prev[j]
+        rhs[i] = acc
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def advance(A_inv, rhs, q_prev, q, q_next, out_k):  # pragma: no cover - compiled
+    """``q_next = A_inv rhs``, then ``(q_prev, q) <- (q, q_next)`` and ``out_k = q_next``."""
+    ndof = q.shape[0]
+    for i in range(ndof):
+        acc = 0.0
+        for j in range(ndof):
+            acc += A_inv[i, j] * rhs[j]
+        q_next[i] = acc
+    for i in range(ndof):
+        q_prev[i] = q[i]
+        q[i] = q_next[i]
+        out_k[i] = q_next[i]
+
+
 @nb.njit(cache=True, nogil=True)
 def integrate(A_inv, K, B1, B0, force, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sliders,
               q_prev, q, steps, out):  # pragma: no cover - compiled
@@ -39,12 +65,7 @@ def integrate(A_inv, K, B1, B0, force, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sl
     no_cond = np.empty((0, 0), dtype=np.int8)
     q_next = np.empty(ndof)
     for k in range(steps):
-        fk = force[k % period]
-        for i in range(ndof):
-            acc = fk[i]
-            for j in range(ndof):
-                acc += (B1[i, j] - K[i, j]) * q[j] - B0[i, j] * q_prev[j]
-            rhs[i] = acc
+        linear_rhs(force[k % period], K, B1, B0, q, q_prev, rhs)
         for c in range(nc):
             tc = 0.0
             nc_ = n0[c]
@@ -58,15 +79,7 @@ def integrate(A_inv, K, B1, B0, force, Bt, Bn, n0, kt, kn, gaps, offsets, mu, sl
             march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[c], t1, n1, sliders[lo:hi], T1, N1, W1, no_el, no_cond)
             for i in range(ndof):
                 rhs[i] -= Bt[i, c] * T1[0] + Bn[i, c] * N1[0]
-        for i in range(ndof):
-            acc = 0.0
-            for j in range(ndof):
-                acc += A_inv[i, j] * rhs[j]
-            q_next[i] = acc
-        for i in range(ndof):
-            q_prev[i] = q[i]
-            q[i] = q_next[i]
-            out[k, i] = q_next[i]
+        advance(A_inv, rhs, q_prev, q, q_next, out[k])
 
 
 def integrate_reference(A_inv, K, B1, B0, force, Bt, Bn, n0, models, sliders, q_prev, q, steps):

@@ -37,7 +37,7 @@ import numpy as np
 
 from ..common import _checks
 from ..model import MicroslipModel
-from . import _aft
+from . import _aft, _aft_plane
 
 MAX_PERIODS = 1000
 #: harmonics kept at most (each adds two unknowns per DOF; a response with kinks needs tens, not hundreds)
@@ -272,6 +272,117 @@ def aft(model: MicroslipModel, t, n, *, samples: int | None = None,
     return AFTResult(T, N, dT_dt, dT_dn, dN_dn, int(periods), Ns)
 
 
+@dataclass(frozen=True, eq=False)
+class PlaneAFTResult(AFTResult):
+    """Periodic forces of a contact on its plane and their derivatives (from :func:`aft_plane`).
+
+    With ``nb = 2H + 1`` coefficients; component 0 and 1 are the two
+    tangential directions of the contact plane.
+
+    Attributes
+    ----------
+    T : ndarray, shape (2, nb)
+        Fourier coefficients of the two tangential force components (N).
+    N : ndarray, shape (nb,)
+        Fourier coefficients of the normal force (N).
+    dT_dt : ndarray, shape (2, 2, nb, nb)
+        ``dT_dt[a, b]``: derivative of the coefficients of ``T[a]`` with
+        respect to those of ``t[b]`` (N/m).
+    dT_dn : ndarray, shape (2, nb, nb)
+        ``dT_dn[a]``: derivative of the coefficients of ``T[a]`` with respect
+        to those of ``n`` (N/m).
+    dN_dn : ndarray, shape (nb, nb)
+        Derivative of the coefficients of ``N`` with respect to those of ``n``
+        (N/m); ``N`` does not depend on ``t``.
+    periods : int
+        Periods marched until every element's slider repeated (to rounding).
+    samples : int
+        Time samples per period.
+    """
+
+    def dissipation(self, t) -> float:
+        """Energy dissipated per cycle by the tangential force along ``t`` (J), both components.
+
+        Parameters
+        ----------
+        t : array_like, shape (2, nb)
+            The tangential displacement coefficients (m) given to :func:`aft_plane`.
+        """
+        t, _ = harmonics_of("t", t)
+        if t.shape != self.T.shape:
+            raise ValueError(f"t must have the shape of T {self.T.shape}, got {t.shape}")
+        return float(cycle_work(self.T, t).sum())
+
+
+def aft_plane(model: MicroslipModel, t, n, *, samples: int | None = None,
+              max_periods: int = MAX_PERIODS) -> PlaneAFTResult:
+    """Periodic forces of one contact moving on its plane, and their exact derivatives.
+
+    Each element is an isotropic Jenkins slider on the contact plane: its
+    trial force ``kt_i (t - s_i)`` (2-vectors) is returned radially onto the
+    disc of radius ``mu N_i`` when it leaves it. Along a straight line the
+    result is :func:`aft`'s, rotated (see :mod:`microslip.frequency._aft_plane`
+    for the algorithm). Unlike one direction, the periodic state is in general
+    reached only asymptotically (a circular orbit in gross slip): an element is
+    periodic when its slider repeats to rounding (32 ulps of the motion).
+
+    Parameters
+    ----------
+    model : MicroslipModel
+        The contact (isotropic: the same ``kt`` in both directions).
+    t : array_like, shape (2, 2H+1)
+        Fourier coefficients of the two tangential displacement components (m),
+        one row per direction, ``[c0, a1, b1, ..., aH, bH]``.
+    n : array_like, shape (2H+1,)
+        Fourier coefficients of the normal approach (m).
+    samples, max_periods
+        As in :func:`aft` (curved orbits need more samples than lines: the
+        sampled radial return is first order in the step there).
+
+    Returns
+    -------
+    PlaneAFTResult
+        Coefficients and Jacobians, with the number of periods marched.
+
+    Raises
+    ------
+    NotPeriodicError
+        When some element's slider still moves by more than 32 ulps of the
+        motion after ``max_periods`` periods.
+
+    Examples
+    --------
+    A circle in gross slip: the force, of magnitude ``mu N``, turns with it.
+
+    >>> from math import hypot
+    >>> from microslip import MicroslipModel
+    >>> from microslip.frequency import aft_plane
+    >>> jenkins = MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0)  # slip force 1 N at n = 1 µm
+    >>> r = aft_plane(jenkins, t=[[0, 3e-4, 0], [0, 0, 3e-4]], n=[1e-6, 0, 0])
+    >>> r.T.shape, r.dT_dt.shape, round(hypot(r.T[0, 1], r.T[0, 2]), 3)
+    ((2, 3), (2, 2, 3, 3), 1.0)
+    """
+    model = _check_model("model", model)
+    t, H = harmonics_of("t", t)
+    n, _ = harmonics_of("n", n)
+    if t.ndim != 2 or t.shape[0] != 2:
+        raise ValueError(f"t must have shape (2, 2H+1): the coefficients of the two tangential directions, "
+                         f"got shape {t.shape}")
+    if n.shape != t.shape[1:]:
+        raise ValueError(f"n must have shape {t.shape[1:]} (the coefficients of the normal approach), got {n.shape}")
+    Ns = check_samples(samples, H)
+    max_periods = _checks.positive_int("max_periods", max_periods)
+    nb = n.size
+    F = np.empty((3, nb))
+    Jac = np.empty((3, 3, nb, nb))
+    periods = _aft_plane._aft_plane(model.kt, model.kn, model.gaps, model.mu, np.ascontiguousarray(t[0]),
+                                    np.ascontiguousarray(t[1]), np.ascontiguousarray(n), *_aft.tables(H, Ns),
+                                    _aft_plane.transposed_projection(H, Ns), max_periods, F, Jac)
+    check_periodic(int(periods), max_periods)
+    return PlaneAFTResult(F[:2].copy(), F[2].copy(), Jac[:2, :2].copy(), Jac[:2, 2].copy(), Jac[2, 2].copy(),
+                          int(periods), Ns)
+
+
 def aft_batch(models: Sequence[MicroslipModel], t, n, *, samples: int | None = None,
               max_periods: int = MAX_PERIODS) -> AFTResult:
     """Periodic forces of ``nc`` contacts at once (one compiled call).
@@ -396,3 +507,50 @@ def friction_work(packed, xt, xn, synthesis, max_periods: int = MAX_PERIODS) -> 
         steps = 0.5 * (Ti + np.roll(Ti, 1, axis=0)) * (slider - np.roll(slider, 1, axis=0))
         work[c] = np.maximum(steps, 0.0)[cond != STICK].sum()
     return work, opens
+
+
+def friction_work_plane(packed, planar, xt, xt2, xn, synthesis, max_periods: int, work, opens) -> None:
+    """:func:`friction_work` of the contacts on their planes (``planar``), written into ``work`` and ``opens``.
+
+    The same definition on the plane: from the AFT's periodic state, one
+    period marched, the work ``(T_k-1 + T_k) . (s_k - s_k-1) / 2`` of each
+    element's force on its slider's travel summed over the steps where the
+    slider moves, each step's work floored at zero.
+
+    Parameters
+    ----------
+    packed : tuple
+        The contacts' laws, :func:`pack_models`.
+    planar : ndarray of bool, shape (nc,)
+        Which contacts move on their planes.
+    xt, xt2, xn : ndarray, shape (nc, 2H+1)
+        Fourier coefficients of each contact's two tangential displacements and normal approach (m).
+    synthesis : ndarray, shape (Ns, 2H+1)
+        The AFT's synthesis table.
+    max_periods : int
+        Periods marched at most.
+    work : ndarray, shape (nc,)
+        J per cycle, overwritten for the contacts on their planes.
+    opens : ndarray of bool, shape (nc,)
+        Whether some element opens and closes during the cycle, likewise.
+    """
+    from .._kernels import STICK
+    from ._plane_march import march_plane, periodic_state
+
+    kt, kn, gaps, offsets, mu = packed
+    Ns = synthesis.shape[0]
+    for c in np.flatnonzero(planar):
+        lo, hi = offsets[c], offsets[c + 1]
+        k, g = kt[lo:hi], gaps[lo:hi]
+        s = np.empty((2, hi - lo))
+        periods = periodic_state(k, kn[lo:hi], g, mu[c], xt[c], xt2[c], xn[c], synthesis, max_periods, s)
+        check_periodic(int(periods), max_periods)
+        t = np.stack([synthesis @ xt[c], synthesis @ xt2[c]], axis=1)  # (Ns, 2)
+        n = np.ascontiguousarray(synthesis @ xn[c])
+        opens[c] = bool(np.any((n.min() <= g) & (n.max() > g)))
+        Ti, cond = np.empty((Ns, hi - lo, 2)), np.empty((Ns, hi - lo), dtype=np.int8)
+        march_plane(k, kn[lo:hi], g, mu[c], np.ascontiguousarray(t[:, 0]), np.ascontiguousarray(t[:, 1]), n, s,
+                    np.empty((Ns, 2)), np.empty(Ns), Ti, cond)
+        slider = t[:, None, :] - Ti / k[None, :, None]  # T = kt (t - s) in every condition
+        steps = 0.5 * np.sum((Ti + np.roll(Ti, 1, axis=0)) * (slider - np.roll(slider, 1, axis=0)), axis=-1)
+        work[c] = np.maximum(steps, 0.0)[cond != STICK].sum()

@@ -17,7 +17,9 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
 
     [[contact]]                         # one table per contact
     model = "contact.json"              # from 'microslip tune' (MicroslipModel.save)
-    tangential = [0.866, 0.5]           # t = b_t . q: a DOF index, a list per DOF, or {"0" = 1, "1" = -1}
+    tangential = [0.866, 0.5]           # t = b_t . q: a DOF index, a list per DOF, or {"0" = 1, "1" = -1};
+                                        # two directions for a contact moving on its plane: [dir1, dir2], e.g.
+                                        # [{"0" = 1}, {"1" = 1}], ["12:x", "12:y"] or [[1.0, 0.0], [0.0, 1.0]]
     normal = [-0.5, 0.866]              # n = b_n . q + approach (omit to impose the approach)
     preload = "37.5N"                   # static force on the structure along normal, shared between the
                                         # contact and the structure's springs (the report prints what the
@@ -283,6 +285,8 @@ def _matrix(value, what: str, path) -> np.ndarray:
 
 
 def _direction(value, what: str, path):
+    if isinstance(value, list) and any(isinstance(v, dict) for v in value):  # two directions, each a table
+        return [_direction(v, f"{what}[{i}]", path) for i, v in enumerate(value)]
     if isinstance(value, dict):
         try:  # keys: DOF indices ("0") or names with a DOF map ("1204:x")
             return {(int(k) if k.strip().lstrip("-").isdigit() else k): float(v) for k, v in value.items()}

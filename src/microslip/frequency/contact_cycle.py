@@ -9,7 +9,9 @@ condition. Each sample is then in one of four states:
 
 * ``"stuck"`` -- every closed element sticks;
 * ``"microslip"`` -- some closed elements slip, not all;
-* ``"gross slip"`` -- every closed element slips: ``|T| = mu N``;
+* ``"gross slip"`` -- every closed element slips: ``|T| = mu N`` (on the contact
+  plane ``|T| <= mu N``: each element's force has its full length ``mu N_i``
+  but points along its own slider's lag);
 * ``"lift-off"`` -- no element is closed: ``N = T = 0``.
 """
 
@@ -20,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..common import _checks
+from . import _aft, _plane_march
 from .aft import MAX_PERIODS, NotPeriodicError, synthesise
 from .response import FrequencyResponse
 
@@ -51,6 +54,9 @@ class ContactCycle:
         Each element's condition: 0 open, 1 stick, 2 slip.
     state : ndarray of int, shape (samples,)
         The contact's state, an index into :data:`SLIP_STATES`.
+    t2, T2 : ndarray, shape (samples,), or None
+        For a contact moving on its plane, the second tangential displacement
+        (m) and force (N) (``t``, ``T`` being the first); None otherwise.
     """
 
     name: str
@@ -63,6 +69,13 @@ class ContactCycle:
     mu: float
     condition: np.ndarray
     state: np.ndarray
+    t2: np.ndarray | None = None
+    T2: np.ndarray | None = None
+
+    @property
+    def magnitude(self) -> np.ndarray:
+        """``|T|`` (N), shape ``(samples,)``: the tangential force's size (both components on the plane)."""
+        return np.abs(self.T) if self.T2 is None else np.hypot(self.T, self.T2)
 
     def fractions(self) -> dict:
         """``{state: fraction of the period}`` for each of :data:`SLIP_STATES` (fractions sum to 1)."""
@@ -74,6 +87,9 @@ class ContactCycle:
 
     def plot(self, axes=None, *, legend: bool = True):
         """Normal force, and tangential force within ``+-mu N``, over the period; the slip state shaded.
+
+        For a contact on its plane the tangential axes show both components
+        and the magnitude ``|T|`` within ``mu N``.
 
         Parameters
         ----------
@@ -101,10 +117,17 @@ class ContactCycle:
         closed = np.append(phase[:-1], 1.0)
         ax_n.plot(closed, np.append(self.N, self.N[0]), color="k")
         ax_n.set_ylabel("normal force N (N)")
-        ax_t.plot(closed, np.append(self.T, self.T[0]), color="k", label="T")
         slip = np.append(self.mu * self.N, self.mu * self.N[0])
-        ax_t.plot(closed, slip, "--", color="0.4", lw=0.8, label="± μN")
-        ax_t.plot(closed, -slip, "--", color="0.4", lw=0.8)
+        if self.T2 is None:
+            ax_t.plot(closed, np.append(self.T, self.T[0]), color="k", label="T")
+            ax_t.plot(closed, slip, "--", color="0.4", lw=0.8, label="± μN")
+            ax_t.plot(closed, -slip, "--", color="0.4", lw=0.8)
+        else:
+            size = np.hypot(self.T, self.T2)
+            ax_t.plot(closed, np.append(size, size[0]), color="k", label="|T|")
+            ax_t.plot(closed, slip, "--", color="0.4", lw=0.8, label="μN")
+            for comp, style, name in ((self.T, ":", "T1"), (self.T2, "-.", "T2")):
+                ax_t.plot(closed, np.append(comp, comp[0]), style, color="k", lw=0.8, label=name)
         ax_t.set_ylabel("tangential force T (N)")
         ax_t.set_xlabel("time / period")
         ax_t.set_xlim(0.0, 1.0)
@@ -230,6 +253,10 @@ def contact_cycle(result, contact, point: int, *, samples: int | None = None,
     model = result.structure.contacts[c].model
     xt, xn = result.contact_t[k, c], result.contact_n[k, c]
     t, n = synthesise(xt, Ns), synthesise(xn, Ns)
+    omega = float(result.omega[k])
+    time = 2 * np.pi / omega * np.arange(Ns) / Ns
+    if result.structure.contacts[c].planar:
+        return _plane_cycle(names[c], omega, time, model, xt, result.contact_t2[k, c], xn, Ns, periods)
     state = model.simulate([xt[0]], [xn[0]], per_element=False, work=False).state  # the static step
     for _ in range(periods):
         r = model.simulate(t, n, state, work=False)
@@ -238,6 +265,17 @@ def contact_cycle(result, contact, point: int, *, samples: int | None = None,
         state = r.state
     else:
         raise NotPeriodicError(f"contact {names[c]!r} did not reach a periodic state within {periods} periods")
-    omega = float(result.omega[k])
-    return ContactCycle(names[c], omega, 2 * np.pi / omega * np.arange(Ns) / Ns, t, n, r.T, r.N, float(model.mu),
-                        r.condition, slip_states(r.condition))
+    return ContactCycle(names[c], omega, time, t, n, r.T, r.N, float(model.mu), r.condition, slip_states(r.condition))
+
+
+def _plane_cycle(name, omega, time, model, xt, xt2, xn, Ns, max_periods) -> ContactCycle:
+    """:func:`contact_cycle` of a contact on its plane: from the AFT's periodic state, one period."""
+    E = _aft.tables((xt.size - 1) // 2, Ns)[0]
+    s = np.empty((2, model.elements))
+    if _plane_march.periodic_state(model.kt, model.kn, model.gaps, model.mu, xt, xt2, xn, E, max_periods, s) < 0:
+        raise NotPeriodicError(f"contact {name!r} did not reach a periodic state within {max_periods} periods")
+    t, t2, n = E @ xt, E @ xt2, E @ xn
+    T, N, cond = np.empty((Ns, 2)), np.empty(Ns), np.empty((Ns, model.elements), dtype=np.int8)
+    _plane_march.march_plane(model.kt, model.kn, model.gaps, model.mu, t, t2, n, s, T, N, np.empty((0, 0, 2)), cond)
+    return ContactCycle(name, omega, time, t, n, T[:, 0].copy(), N, float(model.mu), cond, slip_states(cond),
+                        t2, T[:, 1].copy())

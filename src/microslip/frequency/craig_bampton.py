@@ -115,6 +115,7 @@ def _kept(structure: Structure, keep) -> np.ndarray:
         raise ValueError("keep must not repeat a DOF")
     Bt, Bn, _ = structure.contact_directions()
     used = np.any(Bt != 0, axis=1) | np.any(Bn != 0, axis=1) | (structure.preload_force() != 0)
+    used |= np.any(structure.second_tangential_directions() != 0, axis=1)
     if isinstance(structure, CyclicStructure):
         Btn, Bnn = structure.contact_directions_next()
         used |= np.any(Btn != 0, axis=1) | np.any(Bnn != 0, axis=1)

@@ -29,7 +29,7 @@ import scipy.sparse as sp
 
 from ..common import _checks
 from ..model import MicroslipModel
-from .structure import Contact, Structure, direction
+from .structure import Contact, Structure, direction, lists_two_directions
 
 
 @dataclass(frozen=True)
@@ -147,6 +147,9 @@ class CyclicStructure(Structure):
         """
         if not isinstance(model, MicroslipModel):
             raise TypeError(f"model must be a microslip MicroslipModel, got {type(model).__name__}")
+        if lists_two_directions(tangential, self.ndof):
+            raise ValueError("tangential: a contact of a cyclic sector moves along one direction; two tangential "
+                             "directions (a contact on its plane) are for a Structure")
         bt, bt_next = self._split("tangential", tangential)
         if not (bt.any() or bt_next.any()):
             raise ValueError("tangential must not be all zeros")
@@ -292,7 +295,8 @@ def contact_terms(structure: Structure, index: int) -> tuple[list, list]:
     """Contact ``index``'s directions as terms ``(dof, coefficient, next_sector)``: ``(tangential, normal)``.
 
     The plain form of a contact's directions, to copy it onto another structure
-    (more DOFs, kept DOFs) or to write it to a file.
+    (more DOFs, kept DOFs) or to write it to a file. A contact on its plane has
+    two lists of terms in ``tangential``, one per direction.
     """
     c = structure.contacts[index]
     t_next, n_next = (structure.next_directions[index] if isinstance(structure, CyclicStructure)
@@ -302,6 +306,8 @@ def contact_terms(structure: Structure, index: int) -> tuple[list, list]:
         return ([(int(i), float(own[i]), False) for i in np.flatnonzero(own)]
                 + [(int(j), float(nxt[j]), True) for j in np.flatnonzero(nxt)])
 
+    if c.planar:
+        return [terms(c.tangential, t_next), terms(c.tangential2, np.zeros(structure.ndof))], terms(c.normal, n_next)
     return terms(c.tangential, t_next), terms(c.normal, n_next)
 
 
@@ -318,5 +324,7 @@ def add_contact_terms(target: Structure, model, tangential, normal, *, position=
         return out
 
     normal_spec = spec(normal)
-    return target.add_contact(model, tangential=spec(tangential), normal=normal_spec or None,
+    planar = isinstance(tangential[0], (list, tuple)) and isinstance(tangential[0][0], (list, tuple))
+    return target.add_contact(model, tangential=[spec(t) for t in tangential] if planar else spec(tangential),
+                              normal=normal_spec or None,
                               preload=preload or None, approach=approach, name=name)

@@ -26,8 +26,9 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..common import _checks
-from . import _aft, _hbm
-from .aft import MAX_PERIODS, check_harmonics, check_periodic, check_samples, cycle_work, friction_work
+from . import _aft, _aft_plane, _hbm
+from .aft import (MAX_PERIODS, check_harmonics, check_periodic, check_samples, cycle_work, friction_work,
+                  friction_work_plane)
 from .structure import Structure
 
 DENSE_LIMIT = 600  # unknowns up to which dense linear algebra is used
@@ -110,6 +111,7 @@ class HarmonicBalance:
             self.Mx = sp.kron(sp.csr_matrix(W), sp.csr_matrix(structure.M), format="csc")
         # contact directions, (ndof, nc), and offsets of the normal approach
         self.Bt, self.Bn, self.n0 = structure.contact_directions()
+        self.Bt2 = structure.second_tangential_directions()
 
     def _setup(self, structure, force, harmonics, samples, max_periods, unknown_dofs: int) -> None:
         """What every form of the equations shares: sizes, AFT tables, excitation, the contacts' laws."""
@@ -136,13 +138,18 @@ class HarmonicBalance:
         self.JTn = np.zeros((nc, nb, nb))
         self.JNn = np.zeros((nc, nb, nb))
         self.periods = np.zeros(nc, dtype=np.int64)
+        # contacts on their planes: the second tangential force and the derivatives it adds (zero elsewhere)
+        self.planar = np.array([c.planar for c in structure.contacts], dtype=bool)
+        self.Bt2 = np.zeros((unknown_dofs, nc))  # the second directions on the unknowns (set by each form)
+        self.FT2 = np.zeros((nc, nb))
+        self.JT12, self.JT21, self.JT22, self.JT2n = (np.zeros((nc, nb, nb)) for _ in range(4))
         self._J_dummy = np.empty((0, 0))
         self._Rw_dummy = np.empty(self.n)
 
     @property
     def compiled(self) -> bool:
-        """True when the residual and Jacobian come from the compiled dense kernel."""
-        return self.dense and isinstance(self.Kx, np.ndarray)
+        """True when the residual and Jacobian come from the compiled dense kernel (contacts along one direction)."""
+        return self.dense and isinstance(self.Kx, np.ndarray) and not self.planar.any()
 
     # -- pieces ---------------------------------------------------------------
     def local(self, x) -> tuple[np.ndarray, np.ndarray]:
@@ -157,12 +164,22 @@ class HarmonicBalance:
         xn[:, 0] += self.n0
         return xt, xn
 
+    def _local2(self, x) -> np.ndarray:
+        """Coefficients of every contact's second tangential displacement (m), ``(nc, 2H+1)`` (zero on one direction)."""
+        return np.ascontiguousarray((np.reshape(x, (self.nb, self.ndof)) @ self.Bt2).T)
+
     def _aft(self, x) -> None:
         if not self.nc:
             return
         xt, xn = self._local(x)
-        _aft.aft_batch(*self.packed, xt, xn, *self.tables, self.max_periods,
-                       self.FT, self.FN, self.JTt, self.JTn, self.JNn, self.periods)
+        if self.planar.any():
+            _aft_plane.aft_mixed_batch(*self.packed, self.planar, xt, self._local2(x), xn, *self.tables,
+                                       _aft_plane.transposed_projection(self.H, self.samples), self.max_periods,
+                                       self.FT, self.FN, self.JTt, self.JTn, self.JNn, self.FT2, self.JT12, self.JT21,
+                                       self.JT22, self.JT2n, self.periods)
+        else:
+            _aft.aft_batch(*self.packed, xt, xn, *self.tables, self.max_periods,
+                           self.FT, self.FN, self.JTt, self.JTn, self.JNn, self.periods)
         check_periodic(self.periods, self.max_periods)
 
     def dynamic_stiffness(self, omega: float):
@@ -270,8 +287,11 @@ class HarmonicBalance:
         """
         rows, cols, which, contact, value = [], [], [], [], []
         for c in range(self.nc):
-            bt, bn = self.Bt[:, c], self.Bn[:, c]
-            for k, (u, v) in enumerate(((bt, bt), (bt, bn), (bn, bn))):
+            bt, bn, bt2 = self.Bt[:, c], self.Bn[:, c], self.Bt2[:, c]
+            pairs = ((bt, bt), (bt, bn), (bn, bn))
+            if self.planar[c]:  # the blocks of JT12, JT21, JT22, JT2n (see _contact_jacobian)
+                pairs += ((bt, bt2), (bt2, bt), (bt2, bt2), (bt2, bn))
+            for k, (u, v) in enumerate(pairs):
                 iu, iv = np.flatnonzero(u), np.flatnonzero(v)
                 I, Jj = np.meshgrid(iu, iv, indexing="ij")
                 rows.append(I.ravel())
@@ -289,7 +309,10 @@ class HarmonicBalance:
     def _contact_jacobian(self):
         # one pass: every non-zero of every contact's outer products times its harmonic block
         R, C, which, contact, value, p, q = self._pattern
-        blocks = np.stack([self.JTt, self.JTn, self.JNn])  # (3, nc, nb, nb)
+        blocks = [self.JTt, self.JTn, self.JNn]
+        if self.planar.any():
+            blocks += [self.JT12, self.JT21, self.JT22, self.JT2n]
+        blocks = np.stack(blocks)  # (3 or 7, nc, nb, nb)
         data = (blocks[which[None, :], contact[None, :], p[:, None], q[:, None]] * value[None, :]).ravel()
         if self.dense:  # summed into the dense matrix (contacts may share DOFs)
             return np.bincount(self._dense_pattern, weights=data, minlength=self.n * self.n).reshape(self.n, self.n)
@@ -355,7 +378,10 @@ class HarmonicBalance:
     # -- quantities along a curve ------------------------------------------------------
     def _contact_residual(self) -> np.ndarray:
         """The contact forces' share of the residual (N), shape ``(n,)``, from the last AFT."""
-        return (self.FT.T @ self.Bt.T + self.FN.T @ self.Bn.T).ravel()
+        R = self.FT.T @ self.Bt.T + self.FN.T @ self.Bn.T
+        if self.planar.any():
+            R += self.FT2.T @ self.Bt2.T
+        return R.ravel()
 
     def static_directions(self) -> tuple[np.ndarray, np.ndarray]:
         """Each contact's directions in the static problem ``(Bt, Bn)``, shape ``(ndof, nc)`` each."""
@@ -373,7 +399,8 @@ class HarmonicBalance:
     def curve_quantities(self, xs, omegas, *, viscous: bool = True) -> dict:
         """Contact displacements and forces and the work per cycle at solutions ``xs`` ``(points, n)``.
 
-        Returns a dict of arrays: ``t, n, T, N`` (m, N), shape ``(points, nc, 2H+1)``;
+        Returns a dict of arrays: ``t, n, T, N`` (m, N), shape ``(points, nc, 2H+1)``, and ``t2, T2``
+        the second tangential displacement and force of the contacts on their planes (zero for the others);
         ``excitation``, ``viscous`` (J, ``(points,)``): work of the excitation and energy
         dissipated by ``C`` per cycle; ``contacts`` (J, ``(points, nc)``): energy dissipated by
         each contact, the friction work of its elements over the sampled period (never
@@ -398,6 +425,7 @@ class HarmonicBalance:
                "T": np.zeros((P, self.nc, self.nb)), "N": np.zeros((P, self.nc, self.nb))}
         out["contacts"] = np.zeros((P, self.nc))
         out["opens"] = np.zeros((P, self.nc), dtype=bool)
+        out["t2"], out["T2"] = np.zeros((P, self.nc, self.nb)), np.zeros((P, self.nc, self.nb))
         for k in range(P):
             if self.nc:
                 out["t"][k], out["n"][k] = self._local(xs[k])
@@ -405,6 +433,11 @@ class HarmonicBalance:
                 out["T"][k], out["N"][k] = self.FT, self.FN
                 out["contacts"][k], out["opens"][k] = friction_work(self.packed, out["t"][k], out["n"][k],
                                                                     self.tables[0], self.max_periods)
-        out["contacts_harmonic"] = cycle_work(out["T"], out["t"]) + cycle_work(out["N"], out["n"])
+            if self.planar.any():
+                out["t2"][k], out["T2"][k] = self._local2(xs[k]), self.FT2
+                friction_work_plane(self.packed, self.planar, out["t"][k], out["t2"][k], out["n"][k],
+                                    self.tables[0], self.max_periods, out["contacts"][k], out["opens"][k])
+        out["contacts_harmonic"] = (cycle_work(out["T"], out["t"]) + cycle_work(out["N"], out["n"])
+                                    + cycle_work(out["T2"], out["t2"]))
         out["excitation"], out["viscous"] = excitation, viscous
         return out

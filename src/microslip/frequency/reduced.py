@@ -39,6 +39,7 @@ def retained_dofs(structure: Structure, f_ext: np.ndarray) -> np.ndarray:
     """DOFs the reduced equations keep: those the contacts' directions or the excitation/preloads touch."""
     Bt, Bn, _ = structure.contact_directions()
     used = np.any(Bt != 0, axis=1) | np.any(Bn != 0, axis=1) | np.any(f_ext != 0, axis=0)
+    used |= np.any(structure.second_tangential_directions() != 0, axis=1)
     return np.flatnonzero(used)
 
 
@@ -121,6 +122,7 @@ class ReducedHarmonicBalance(HarmonicBalance):
         Bt, Bn, self.n0 = structure.contact_directions()
         self.Bt = np.ascontiguousarray(Bt[self.retained])
         self.Bn = np.ascontiguousarray(Bn[self.retained])
+        self.Bt2 = np.ascontiguousarray(structure.second_tangential_directions()[self.retained])
 
     def dynamic_stiffness(self, omega: float):
         """The condensed ``Z(omega)``, dense ``(n, n)`` (N/m)."""
@@ -134,7 +136,8 @@ class ReducedHarmonicBalance(HarmonicBalance):
         """Static condensed stiffness plus every contact element closed and stuck (N/m), ``(m, m)``."""
         K = self.linear.operator(1.0, 0)[0].copy()
         for c, contact in enumerate(self.structure.contacts):
-            for b, k in ((self.Bt[:, c], contact.model.kt.sum()), (self.Bn[:, c], contact.model.kn.sum())):
+            for b, k in ((self.Bt[:, c], contact.model.kt.sum()), (self.Bn[:, c], contact.model.kn.sum()),
+                         (self.Bt2[:, c], contact.model.kt.sum())):
                 K += k * np.outer(b, b)
         return K
 

@@ -118,6 +118,15 @@ class FrequencyResponse:
         (:class:`~microslip.frequency.stability.Bifurcation`: kind, frequency,
         fractional point index; ``b.interpolate(r.amplitude(dof))`` gives an
         amplitude there).
+    contact_t2, contact_T2 : ndarray, shape (points, nc, nb)
+        For a contact moving on its plane (two tangential directions): the
+        coefficients of its second tangential displacement (m) and force (N),
+        ``contact_t`` and ``contact_T`` holding the first; zero for a contact
+        along one direction.
+    static_tangential_force2 : ndarray, shape (nc,)
+        The second tangential component of each contact's static force (N),
+        zero for a contact along one direction (``|T0| = mu N0`` for the
+        vector ``(T0, T0_2)`` means gross slip statically).
     contact_harmonic_work : ndarray, shape (points, nc)
         The contacts' energy per cycle from the force harmonics kept (J): with
         the excitation's and the viscous work it balances exactly at a
@@ -155,6 +164,9 @@ class FrequencyResponse:
     bifurcations: list = field(default_factory=list)
     leading_exponent: np.ndarray | None = field(default=None, repr=False)
     recovery: object = field(default=None, repr=False)
+    contact_t2: np.ndarray | None = field(default=None, repr=False)
+    contact_T2: np.ndarray | None = field(default=None, repr=False)
+    static_tangential_force2: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self):
         if self.dofs is None:
@@ -329,6 +341,8 @@ class FrequencyResponse:
         for c, contact in enumerate(self.structure.contacts):
             cols[f"{contact.name} N static [N]"] = self.contact_N[:, c, 0]
             cols[f"{contact.name} T h1 [N]"] = np.hypot(self.contact_T[:, c, 1], self.contact_T[:, c, 2])
+            if contact.planar:
+                cols[f"{contact.name} T2 h1 [N]"] = np.hypot(self.contact_T2[:, c, 1], self.contact_T2[:, c, 2])
             cols[f"{contact.name} dissipation [J]"] = self.contact_dissipation[:, c]
         if self.stable is not None:
             cols["stable [-]"] = self.stable.astype(int)
@@ -478,7 +492,8 @@ def _check_determined(structure: Structure) -> None:
 
 
 def _static_state(hb, *, tolerance: float = 1e-10):
-    """``(x0, N0, T0, closed)``: the static unknowns of ``hb`` (H = 0), each contact's static forces (N), closed elements."""
+    """``(x0, N0, T0, closed, T0_2)``: the static unknowns of ``hb`` (H = 0), each contact's static forces (N),
+    closed elements, the second tangential force (N, zero for a contact along one direction)."""
     structure = hb.structure
     # start from the structure with every contact element closed and stuck
     rhs = hb.f.copy()
@@ -498,7 +513,7 @@ def _static_state(hb, *, tolerance: float = 1e-10):
     hb._aft(x)
     closed = np.array([int(np.count_nonzero(n[i, 0] > c.model.gaps)) for i, c in enumerate(structure.contacts)],
                       dtype=np.int64)
-    return x, hb.FN[:, 0].copy(), hb.FT[:, 0].copy(), closed
+    return x, hb.FN[:, 0].copy(), hb.FT[:, 0].copy(), closed, hb.FT2[:, 0].copy()
 
 
 def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5, samples: int | None = None,
@@ -718,11 +733,12 @@ def _check_resolution(q: dict, samples: int, contacts, omegas) -> None:
 
 
 def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> FrequencyResponse:
-    """The result object from the solutions ``xs`` and the static state ``(N0, T0, closed)``."""
+    """The result object from the solutions ``xs`` and the static state ``(N0, T0, closed, T0_2)``."""
     q = hb.curve_quantities(xs, omegas)
     _check_resolution(q, hb.samples, hb.structure.contacts, omegas)
     reduced = isinstance(hb, ReducedHarmonicBalance)
-    extra = {"contact_harmonic_work": q["contacts_harmonic"]}
+    extra = {"contact_harmonic_work": q["contacts_harmonic"], "contact_t2": q["t2"], "contact_T2": q["T2"],
+             "static_tangential_force2": static[3]}
     if reduced:
         linear = hb.linear
         extra.update(dofs=hb.retained, reduction="modal" if hasattr(linear, "modes") else "exact",
@@ -736,4 +752,4 @@ def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> 
                                         else modal_error(linear, float(omegas[peak])))
     return FrequencyResponse(hb.structure, hb.H, hb.samples, omegas, xs.reshape(omegas.size, hb.nb, hb.ndof),
                              q["t"], q["n"], q["T"], q["N"], q["excitation"], q["viscous"], q["contacts"], iters,
-                             *static, complete=complete, **extra)
+                             *static[:3], complete=complete, **extra)

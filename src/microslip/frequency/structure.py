@@ -129,6 +129,52 @@ def direction(name: str, spec, ndof: int, *, allow_none: bool = False, dof_map=N
     return b
 
 
+def _is_number(x) -> bool:
+    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
+
+
+def lists_two_directions(spec, ndof: int) -> bool:
+    """Whether a contact's ``tangential`` gives two directions (the contact plane) or one.
+
+    Two directions: a list or tuple of exactly two items of which at least one
+    is a direction that is not a bare number (a DOF name, a mapping, a
+    sequence of ``ndof`` coefficients), e.g. ``["12:x", "12:y"]`` or
+    ``[{0: 1, 2: -1}, {1: 1, 3: -1}]``; a 2-D array of shape ``(2, ndof)``;
+    or two integers ``[i, j]``, two DOF indices. Anything else is one
+    direction (a flat list of ``ndof`` numbers is one direction's
+    coefficients). Two integers on a structure of two DOFs could be either,
+    and are refused.
+    """
+    if isinstance(spec, np.ndarray):
+        return spec.ndim == 2
+    if not isinstance(spec, (list, tuple)) or len(spec) != 2:
+        return False
+    if not all(_is_number(x) for x in spec):
+        return True
+    if all(isinstance(x, (int, np.integer)) for x in spec):
+        if ndof == 2:
+            raise ValueError(f"tangential = {list(spec)!r} is ambiguous on a structure of 2 DOFs: two DOF indices "
+                             f"(two tangential directions) or the 2 coefficients of one direction; write "
+                             f"[{{{spec[0]}: 1.0}}, {{{spec[1]}: 1.0}}] for two directions, or floats "
+                             f"[{float(spec[0])!r}, {float(spec[1])!r}] for one")
+        return True
+    return False
+
+
+def tangential_directions(spec, ndof: int, dof_map=None) -> tuple[np.ndarray, np.ndarray | None]:
+    """A contact's tangential direction(s): ``(b_t, None)``, or ``(b_t1, b_t2)`` for two (:func:`lists_two_directions`).
+
+    Two directions must be independent (they span the contact plane).
+    """
+    if not lists_two_directions(spec, ndof):
+        return direction("tangential", spec, ndof, dof_map=dof_map), None
+    b1, b2 = (direction(f"tangential[{k}]", spec[k], ndof, dof_map=dof_map) for k in range(2))
+    if abs(b1 @ b2) >= (1.0 - 1e-12) * np.linalg.norm(b1) * np.linalg.norm(b2):
+        raise ValueError("tangential[1] must not be parallel to tangential[0]: the two directions span the contact "
+                         "plane")
+    return b1, b2
+
+
 @dataclass(frozen=True, eq=False)
 class Contact:
     """A microslip contact attached to a structure (made by :meth:`Structure.add_contact`).
@@ -139,7 +185,8 @@ class Contact:
         The contact law.
     tangential, normal : ndarray, shape (ndof,)
         ``t = tangential . q``, ``n = normal . q + approach`` (``normal`` is
-        zero for a contact whose approach is imposed).
+        zero for a contact whose approach is imposed). For a contact moving on
+        its plane, ``tangential`` is the first of its two directions.
     preload : float
         External static force (N) applied to the structure along ``normal``
         (the force vector ``preload * normal``); not the contact's normal
@@ -148,6 +195,9 @@ class Contact:
         Imposed normal approach (interference) at ``q = 0`` (m).
     name : str
         Label used in results and files.
+    tangential2 : ndarray, shape (ndof,), or None
+        The second tangential direction of a contact moving on its plane
+        (``t2 = tangential2 . q``); None for a contact along one direction.
     """
 
     model: MicroslipModel
@@ -156,6 +206,12 @@ class Contact:
     preload: float
     approach: float
     name: str
+    tangential2: np.ndarray | None = None
+
+    @property
+    def planar(self) -> bool:
+        """True for a contact with two tangential directions (moving on its plane)."""
+        return self.tangential2 is not None
 
 
 class Structure:
@@ -258,10 +314,20 @@ class Structure:
         ----------
         model : MicroslipModel
             The contact law (e.g. from :func:`microslip.tune`).
-        tangential : int, str, mapping or array_like
+        tangential : int, str, mapping, array_like, or a list of two of these
             ``t = b_t . q``: a DOF index (relative to ground), ``{dof: coef}``
             or ``ndof`` coefficients; with a DOF map a DOF may be named
-            ``"node:component"``.
+            ``"node:component"``. Two directions ``[b_t1, b_t2]`` make a
+            contact that moves on its plane (each element an isotropic
+            Jenkins slider there, :func:`~microslip.frequency.aft_plane`),
+            e.g. ``[0, 1]`` (DOFs 0 and 1), ``["12:x", "12:y"]``,
+            ``[{0: 1, 2: -1}, {1: 1, 3: -1}]`` or a ``(2, ndof)`` array; they
+            are the plane's orthonormal coordinates (two perpendicular unit
+            displacements). A list of two items is two directions when one of
+            them is not a bare number, or when both are integers (DOF indices);
+            a flat list of ``ndof`` numbers is one direction. Two integers on a
+            structure of two DOFs could be either and are refused: write
+            ``[{0: 1.0}, {1: 1.0}]`` or ``[0.0, 1.0]``.
         normal : int, str, mapping, array_like or None
             ``n = b_n . q + approach``, same forms; ``None``: the normal
             approach is not coupled to the structure (it is ``approach``).
@@ -290,7 +356,7 @@ class Structure:
         """
         if not isinstance(model, MicroslipModel):
             raise TypeError(f"model must be a microslip MicroslipModel, got {type(model).__name__}")
-        bt = direction("tangential", tangential, self.ndof, dof_map=self.dof_map)
+        bt, bt2 = tangential_directions(tangential, self.ndof, self.dof_map)
         bn = direction("normal", normal, self.ndof, allow_none=True, dof_map=self.dof_map)
         P = 0.0 if preload is None else _checks.positive_scalar("preload", preload, allow_zero=True)
         n0 = 0.0 if approach is None else _checks.real_scalar("approach", approach)
@@ -307,7 +373,7 @@ class Structure:
             raise TypeError(f"name must be a non-empty string, got {name!r}")
         if any(c.name == name for c in self.contacts):
             raise ValueError(f"name {name!r} is already used by another contact")
-        contact = Contact(model, bt, bn, P, n0, name)
+        contact = Contact(model, bt, bn, P, n0, name, bt2)
         self.contacts.append(contact)
         return contact
 
@@ -326,6 +392,12 @@ class Structure:
         Bt = np.array([c.tangential for c in self.contacts]).T.reshape(self.ndof, nc)
         Bn = np.array([c.normal for c in self.contacts]).T.reshape(self.ndof, nc)
         return Bt, Bn, np.array([c.approach for c in self.contacts])
+
+    def second_tangential_directions(self) -> np.ndarray:
+        """Every contact's second tangential direction as columns, shape ``(ndof, nc)`` (zero for one direction)."""
+        nc = len(self.contacts)
+        return np.array([np.zeros(self.ndof) if c.tangential2 is None else c.tangential2
+                         for c in self.contacts]).T.reshape(self.ndof, nc)
 
     def add_static_force(self, force) -> None:
         """Add an external static force (N), ``(ndof,)`` (e.g. a centrifugal load), acting in every solution."""
@@ -346,12 +418,16 @@ class Structure:
     def stuck_stiffness(self):
         """Stiffness with every contact element closed and stuck (N/m), shape ``(ndof, ndof)``.
 
-        ``K + sum_c (sum kt) b_t b_t^T + (sum kn) b_n b_n^T``, stored like ``K``
-        (dense array or sparse CSR): the largest stiffness the contacts can add.
+        ``K + sum_c (sum kt) b_t b_t^T + (sum kn) b_n b_n^T`` (and ``(sum kt) b_t2 b_t2^T``
+        for a contact on its plane), stored like ``K`` (dense array or sparse
+        CSR): the largest stiffness the contacts can add.
         """
         K = self.K.copy()
         for c in self.contacts:
-            for b, k in ((c.tangential, c.model.kt.sum()), (c.normal, c.model.kn.sum())):
+            pairs = ((c.tangential, c.model.kt.sum()), (c.normal, c.model.kn.sum()))
+            if c.planar:
+                pairs += ((c.tangential2, c.model.kt.sum()),)
+            for b, k in pairs:
                 if sp.issparse(K):
                     col = sp.csr_matrix(b[:, None])
                     K = K + k * (col @ col.T)

@@ -35,8 +35,8 @@ import scipy.sparse as sp
 from ..common import _checks
 from .._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from ..common._progress import Progress
-from . import _aft, _transient
-from .aft import MAX_HARMONICS, MAX_PERIODS, MAX_TABLE, check_table
+from . import _aft, _plane_march, _transient, _transient_plane
+from .aft import MAX_HARMONICS, MAX_PERIODS, MAX_TABLE, check_periodic, check_table
 from .hbm import excitation
 from .response import FrequencyResponse, static_solution
 from .structure import Structure, direction
@@ -118,28 +118,40 @@ def _periodic_start(structure: Structure, coefficients, steps: int):
     then marched along the motion sampled at the ``steps`` time steps, period
     after period, until its state repeats (at most ``aft.MAX_PERIODS``): the
     convention of :mod:`microslip.frequency.aft`. ``sliders`` (m) is that
-    state at the end of a period.
+    state at the end of a period (with contacts on their planes, both
+    components: see :class:`PeriodMap`).
     """
     H = (coefficients.shape[0] - 1) // 2
     q = _aft.tables(H, steps)[0] @ coefficients  # tau_k = 2 pi k / steps
     Bt, Bn, n0 = structure.contact_directions()
-    t, n = q @ Bt, q @ Bn + n0
+    Bt2 = structure.second_tangential_directions()
+    t, t2, n = q @ Bt, q @ Bt2, q @ Bn + n0
     kt, kn, gaps, offsets, mu = structure.packed_models()
-    sliders = np.zeros(kt.size)
+    planar = _planar(structure)
+    sliders = np.zeros((2, kt.size))
     T, N = np.empty(steps), np.empty(steps)
     for i in range(len(structure.contacts)):
         lo, hi = offsets[i], offsets[i + 1]
         law = (kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i])
-        mean = coefficients[0] @ Bt[:, i], coefficients[0] @ Bn[:, i] + n0[i]
-        march(*law, np.array([mean[0]]), np.array([mean[1]]), sliders[lo:hi], T[:1], N[:1], NO_WORK, NO_ELEMENTS,
-              NO_CONDITIONS)
-        path = np.roll(t[:, i], -1), np.roll(n[:, i], -1)  # tau_1, ..., tau_(steps-1), 2 pi: the period ends at 0
+        mean = coefficients[0] @ Bt[:, i], coefficients[0] @ Bt2[:, i], coefficients[0] @ Bn[:, i] + n0[i]
+        roll = [np.roll(x[:, i], -1) for x in (t, t2, n)]  # tau_1, ..., tau_(steps-1), 2 pi: the period ends at 0
+        if planar[i]:  # the AFT's own periodic state, on these samples
+            periods = _plane_march.periodic_state_of_samples(*law, *mean, *roll, MAX_PERIODS, sliders[:, lo:hi])
+            check_periodic(int(periods), MAX_PERIODS)
+            continue
+        s = sliders[0, lo:hi]
+        march(*law, np.array([mean[0]]), np.array([mean[2]]), s, T[:1], N[:1], NO_WORK, NO_ELEMENTS, NO_CONDITIONS)
         for _ in range(MAX_PERIODS):
-            before = sliders[lo:hi].copy()
-            march(*law, *path, sliders[lo:hi], T, N, NO_WORK, NO_ELEMENTS, NO_CONDITIONS)
-            if np.array_equal(before, sliders[lo:hi]):
+            before = s.copy()
+            march(*law, roll[0], roll[2], s, T, N, NO_WORK, NO_ELEMENTS, NO_CONDITIONS)
+            if np.array_equal(before, s):
                 break
-    return q[-1].copy(), q[0].copy(), sliders
+    return q[-1].copy(), q[0].copy(), sliders.ravel() if planar.any() else sliders[0].copy()
+
+
+def _planar(structure: Structure) -> np.ndarray:
+    """Which contacts move on their planes, ``(nc,)`` bool."""
+    return np.array([c.planar for c in structure.contacts], dtype=bool)
 
 
 class PeriodMap:
@@ -147,8 +159,11 @@ class PeriodMap:
 
     Its state is ``(q_prev, q, sliders)``: the displacements (m) one step before
     and at the start of a period, ``(ndof,)`` each, and the sliders of every contact
-    element (m), ``(elements,)``. :meth:`period` maps a state to the state one
-    period later (the Poincare map of shooting and Floquet analyses).
+    element (m), ``(elements,)``; when some contact moves on its plane, both
+    components of every slider, ``(2 elements,)`` (the first components, then
+    the second; the second unused on a contact along one direction).
+    :meth:`period` maps a state to the state one period later (the Poincare map
+    of shooting and Floquet analyses).
 
     Parameters
     ----------
@@ -173,6 +188,7 @@ class PeriodMap:
         self.force = force
         self.K = K
         self.Bt, self.Bn, self.n0 = structure.contact_directions()
+        self.Bt2, self.planar = structure.second_tangential_directions(), _planar(structure)
         # stability: dt < 2 / omega_max with every contact element closed and stuck
         K_max = structure.stuck_stiffness()
         K_max = K_max.toarray() if sp.issparse(K_max) else K_max
@@ -202,23 +218,36 @@ class PeriodMap:
         q = static_solution(self.structure, self.force)
         kt, kn, gaps, offsets, mu = self.packed
         sliders = np.zeros(kt.size)
+        if self.planar.any():
+            both = np.zeros((2, kt.size))
+            sliders = both[0]
         for i in range(len(self.structure.contacts)):
             lo, hi = offsets[i], offsets[i + 1]
+            if self.planar[i]:
+                both[:, lo:hi] = _plane_march.static_sliders(self.structure.contacts[i].model, self.Bt[:, i] @ q,
+                                                             self.Bt2[:, i] @ q, self.Bn[:, i] @ q + self.n0[i])
+                continue
             march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([self.Bt[:, i] @ q]),
                   np.array([self.Bn[:, i] @ q + self.n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), NO_WORK,
                   NO_ELEMENTS, NO_CONDITIONS)
-        return q.copy(), q, sliders
+        return q.copy(), q, both.ravel() if self.planar.any() else sliders
 
     def integrate(self, q_prev, q, sliders, out) -> None:
         """March ``out.shape[0]`` steps from the start of a period, updating ``q_prev, q, sliders`` in place.
 
         ``out`` (shape ``(steps, ndof)``) receives the displacements (m) at times ``dt, 2 dt, ...``.
         """
+        if self.planar.any():
+            _transient_plane.integrate_plane(self.A_inv, self.K, self.B1, self.B0, self.f, self.Bt, self.Bt2, self.Bn,
+                                             self.n0, self.planar, *self.packed, sliders.reshape(2, -1), q_prev, q,
+                                             out.shape[0], out)
+            return
         _transient.integrate(self.A_inv, self.K, self.B1, self.B0, self.f, self.Bt, self.Bn, self.n0,
                              *self.packed, sliders, q_prev, q, out.shape[0], out)
 
     def period(self, state) -> np.ndarray:
-        """The state ``[q_prev, q, sliders]`` (shape ``(2 ndof + elements,)``) one period later."""
+        """The state ``[q_prev, q, sliders]`` (shape ``(2 ndof + elements,)``, or ``(2 ndof + 2 elements,)`` with
+        contacts on their planes) one period later."""
         ndof = self.structure.ndof
         state = np.array(state, dtype=float)
         q_prev, q, sliders = state[:ndof], state[ndof:2 * ndof], state[2 * ndof:]

@@ -1,0 +1,816 @@
+"""Compiled AFT of one contact on the contact plane: two tangential directions plus normal (private).
+
+Plain float64 arrays in, arrays out; the checked public wrapper is
+:func:`microslip.frequency.aft.aft_plane`. Fourier layout and tables as in
+:mod:`microslip.frequency._aft`.
+
+The element. Element ``i`` is an isotropic Jenkins slider on the plane: with
+``r = mu kn_i (n - g_i) / kt_i`` (its stick radius, m) and ``d = t - s_i``
+(2-vectors), it is open for ``n <= g_i`` (no force, ``s_i = t``), sticks for
+``|d| <= r`` (``T_i = kt_i d``) and slips otherwise: ``u = d / |d|``,
+``s_i = t - r u``, ``T_i = mu kn_i (n - g_i) u`` (the trial force returned
+radially onto the disc of radius ``mu N_i``). Along a straight line this is
+the one-direction return mapping of :mod:`microslip._kernels`, to the bit
+(``d / |d|`` is exactly ``+-1`` there).
+
+The march. As in one direction: the contact is closed at ``t = 0`` with every
+slider at 0, the static part ``(c0 of t, c0 of n)`` is applied as one step,
+then whole periods are marched. On the plane the periodic state is in general
+reached only asymptotically (a circular orbit in gross slip), so an element is
+periodic when its slider at the start of a period moves by at most
+``32 eps`` times the size of the motion over one period. A slipping element
+contracts by ``alpha = r / |d|`` per slip sample across its path, so an
+element that barely slips would need thousands of periods: once its residual
+falls, the march takes a Newton step on the fixed point of the period map,
+``s <- s + (I - dPhi/ds)^-1 (Phi(s) - s)`` (only while ``1 - rho``, the
+distance of the map's eigenvalue from 1, exceeds 1e-8). A step after which
+the residual does not fall is replaced by the plain step and the next ones are
+halved (after three halvings the element goes on plainly, or onto the corner
+of its stick region it creeps towards: its fixed point lies across a change
+of its slip pattern). An element that ends a period stuck
+throughout, or nearly neutral, after a Newton step keeps the state the plain
+march gives it (restarted from the static step and marched plainly): its
+state depends on its history, and that history is the physical one.
+
+Exact derivatives. With ``A_k`` the derivative of the slider after sample
+``k`` with respect to the slider before it (``I`` in stick, ``alpha v v^T``
+with ``v`` perpendicular to ``u`` in slip, 0 when open) and ``G_k`` its
+derivative with respect to the sample's ``(t, n)`` (0 in stick,
+``[I - alpha v v^T, -r/(n - g) u]`` in slip, ``[I, 0]`` when open),
+
+``ds_k = A_k ds_(k-1) + G_k dx_k`` and ``dT_k = kt A_k (dt_k - ds_(k-1)) + mu kn u dn_k`` (slip only).
+
+The local parts ``kt A_k dt_k`` and ``mu kn u dn_k`` give diagonal Jacobian
+blocks ``P diag(d) E`` (as in one direction, by product-to-sum identities).
+The history part ``-kt A_k ds_(k-1)`` is gathered by one backward sweep per
+element: ``Y_(m-1) = (Y_m - kt P[:, m] (x) I) A_m`` is the coefficient of
+``ds_m`` in the period's force coefficients, and each slip or open sample
+adds ``Y_m G_m`` to its column ``m``; the columns are multiplied by the
+basis rows at the end (one matrix product for the whole contact). The
+periodic state closes the sweep: the slider at the start of the period is the
+fixed point ``sigma = Phi(sigma, x)``, so ``dsigma = (I - Phi_s)^-1 Phi_x dx``
+with ``Phi_s = A_(Ns-1) ... A_0`` (rank one if the element slips, zero if
+it opens), which starts the sweep at ``Y_(Ns-1) = Z (I - Phi_s)^-1``, ``Z``
+the coefficient of ``sigma`` accumulated forward. An element stuck through
+the whole period (``Phi_s = I``) keeps the slider its history gave it: that
+history is marched again with the slider's derivative carried forward
+(rank-one updates, a few of them).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numba as nb
+import numpy as np
+
+from .._kernels import OPEN, SLIP, STICK
+from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
+
+#: the periodicity tolerance, in units of the motion's size times the machine epsilon
+PERIODIC_ULPS = 32.0
+#: a sample binds a slider on the edge of its stick region within this many periodicity tolerances
+BIND = 1000.0
+#: ``1 - rho`` (``rho`` the period map's eigenvalue) below which a plainly marched slider takes its
+#: derivative from its history rather than from the fixed point (whose formula divides by ``1 - rho``)
+FIXED_POINT_MARGIN = 1e-3
+#: ``1 - rho`` above which a Newton step on the fixed point is taken (below, the fixed point is nearly neutral:
+#: an element that touches its slip limit without slipping, whose state is its history's)
+NEWTON_MARGIN = 1e-8
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _step(rk, nk, t1, t2, s1, s2):  # pragma: no cover - compiled
+    """One element, one sample: ``(code, s1, s2, alpha, q)``, the arithmetic of :func:`_period`.
+
+    ``rk = mu kn / kt``, ``nk = n - gap``; the slider ``(s1, s2)`` before the
+    sample. In slip ``alpha = r / |d|`` and ``q = 1 / |d|`` (``d = t - s``
+    before the sample; the force is ``mu kn nk q d``); 0 otherwise.
+    """
+    if nk <= 0.0:
+        return OPEN, t1, t2, 0.0, 0.0
+    r = rk * nk
+    d1 = t1 - s1
+    d2 = t2 - s2
+    dd2 = d1 * d1 + d2 * d2
+    if dd2 <= r * r:
+        return STICK, s1, s2, 0.0, 0.0
+    q = 1.0 / math.sqrt(dd2)
+    al = r * q
+    return SLIP, t1 - al * d1, t2 - al * d2, al, q
+
+
+@nb.njit(cache=True, nogil=True)
+def _static(rk, nk, t1, t2):  # pragma: no cover - compiled
+    """The static step from the virgin slider ``(0, 0)``: ``(code, s1, s2, alpha, u1, u2)``."""
+    return _step(rk, nk, t1, t2, 0.0, 0.0)
+
+
+@nb.njit(cache=True, nogil=True)
+def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # pragma: no cover - compiled
+    """Derivative ``D`` (2, 3, nb) of the slider after the static step and ``periods`` plain periods.
+
+    Forward mode: ``D <- G_k (x) E[k] + A_k D`` (rank-one ``A_k``). Returns the slider.
+    """
+    nbasis = E.shape[1]
+    Ns = E.shape[0]
+    for a in range(2):
+        for b in range(3):
+            for q in range(nbasis):
+                D[a, b, q] = 0.0
+    code, s1, s2, al, qq = _static(rk, xn_0 - gi, x1_0, x2_0)
+    u1 = x1_0 * qq
+    u2 = x2_0 * qq
+    if code == OPEN:
+        D[0, 0, 0] = 1.0
+        D[1, 1, 0] = 1.0
+    elif code == SLIP:
+        v1 = -u2
+        v2 = u1
+        D[0, 0, 0] = 1.0 - al * v1 * v1
+        D[0, 1, 0] = -al * v1 * v2
+        D[1, 0, 0] = -al * v2 * v1
+        D[1, 1, 0] = 1.0 - al * v2 * v2
+        D[0, 2, 0] = -rk * u1
+        D[1, 2, 0] = -rk * u2
+    for _ in range(periods):
+        for k in range(Ns):
+            u1 = t1[k] - s1
+            u2 = t2[k] - s2
+            code, s1, s2, al, qq = _step(rk, n[k] - gi, t1[k], t2[k], s1, s2)
+            u1 *= qq
+            u2 *= qq
+            if code == STICK:
+                continue
+            if code == OPEN:
+                for b in range(3):
+                    for q in range(nbasis):
+                        D[0, b, q] = E[k, q] if b == 0 else 0.0
+                        D[1, b, q] = E[k, q] if b == 1 else 0.0
+                continue
+            v1 = -u2
+            v2 = u1
+            for b in range(3):
+                for q in range(nbasis):
+                    w = al * (v1 * D[0, b, q] + v2 * D[1, b, q])
+                    D[0, b, q] = w * v1
+                    D[1, b, q] = w * v2
+            for q in range(nbasis):
+                e = E[k, q]
+                D[0, 0, q] += (1.0 - al * v1 * v1) * e
+                D[0, 1, q] -= al * v1 * v2 * e
+                D[1, 0, q] -= al * v2 * v1 * e
+                D[1, 1, q] += (1.0 - al * v2 * v2) * e
+                D[0, 2, q] -= rk * u1 * e
+                D[1, 2, q] -= rk * u2 * e
+    return s1, s2
+
+
+@lru_cache(maxsize=32)
+def transposed_projection(H: int, Ns: int) -> np.ndarray:
+    """``P.T`` of :func:`~microslip.frequency._aft.tables`, C-contiguous ``(Ns, 2H+1)`` (read-only)."""
+    PT = np.ascontiguousarray(tables(H, Ns)[1].T)
+    PT.setflags(write=False)
+    return PT
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved):  # pragma: no cover
+    """March every element over one period from sliders ``s1, s2`` (updated in place).
+
+    Writes, per sample ``k`` and element ``i``, the condition ``code[k, i]``,
+    ``alpha[k, i]`` and the perpendicular ``v = (V1, V2)`` of a slip, and the
+    element's force ``Te1, Te2``; ``C`` (4, J) receives the period map's
+    derivative ``dPhi/ds`` (row-major 2x2 per element), ``moved[i]`` 1 if
+    element ``i`` slipped or opened. A stick costs a comparison; a slip one
+    square root and one division (``s = t - alpha d``, ``T = mu N d / |d|``).
+    """
+    J = kt.shape[0]
+    for i in range(J):
+        C[0, i] = 1.0
+        C[1, i] = 0.0
+        C[2, i] = 0.0
+        C[3, i] = 1.0
+        moved[i] = 0.0
+    for k in range(t1.shape[0]):
+        tk1 = t1[k]
+        tk2 = t2[k]
+        nk0 = n[k]
+        for i in range(J):
+            nk = nk0 - gaps[i]
+            if nk <= 0.0:  # open: no force, the slider follows t, the period map forgets
+                s1[i] = tk1
+                s2[i] = tk2
+                Te1[k, i] = 0.0
+                Te2[k, i] = 0.0
+                code[k, i] = OPEN
+                C[0, i] = 0.0
+                C[1, i] = 0.0
+                C[2, i] = 0.0
+                C[3, i] = 0.0
+                moved[i] = 1.0
+                continue
+            r = rk[i] * nk
+            d1 = tk1 - s1[i]
+            d2 = tk2 - s2[i]
+            dd2 = d1 * d1 + d2 * d2
+            if dd2 <= r * r:  # stick
+                Te1[k, i] = kt[i] * d1
+                Te2[k, i] = kt[i] * d2
+                code[k, i] = STICK
+                continue
+            q = 1.0 / math.sqrt(dd2)
+            al = r * q
+            g = mu * kn[i] * nk * q
+            s1[i] = tk1 - al * d1
+            s2[i] = tk2 - al * d2
+            Te1[k, i] = g * d1
+            Te2[k, i] = g * d2
+            code[k, i] = SLIP
+            alpha[k, i] = al
+            v1 = -d2 * q
+            v2 = d1 * q
+            V1[k, i] = v1
+            V2[k, i] = v2
+            # C <- A C = alpha v v^T C
+            w1 = al * (v1 * C[0, i] + v2 * C[2, i])
+            w2 = al * (v1 * C[1, i] + v2 * C[3, i])
+            C[0, i] = v1 * w1
+            C[1, i] = v1 * w2
+            C[2, i] = v2 * w1
+            C[3, i] = v2 * w2
+            moved[i] = 1.0
+
+
+@nb.njit(cache=True, nogil=True)
+def _binding_pair(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
+    """The two samples nearest to binding the slider ``(s1, s2)``: ``(a, ga, b, gb)``.
+
+    ``g = |s - t_k| - r_k`` (positive: outside sample ``k``'s disc); ``a`` the
+    largest, ``b`` the largest among the samples whose direction from the
+    slider is at least 1e-3 from ``a``'s (``b = -1``: none). ``a = -1`` when
+    the element opens: it has no stick region.
+    """
+    a = -1
+    ga = -np.inf
+    for k in range(t1.shape[0]):
+        nk = n[k] - gi
+        if nk <= 0.0:
+            return -1, ga, -1, ga
+        g = math.hypot(t1[k] - s1, t2[k] - s2) - rk * nk
+        if g > ga:
+            ga = g
+            a = k
+    da = math.hypot(t1[a] - s1, t2[a] - s2)
+    b = -1
+    gb = -np.inf
+    for k in range(t1.shape[0]):
+        d = math.hypot(t1[k] - s1, t2[k] - s2)
+        if abs((t1[a] - s1) * (t2[k] - s2) - (t2[a] - s2) * (t1[k] - s1)) < 1e-3 * d * da:
+            continue
+        g = d - rk * (n[k] - gi)
+        if g > gb:
+            gb = g
+            b = k
+    return a, ga, b, gb
+
+
+@nb.njit(cache=True, nogil=True)
+def _corner(t1, t2, n, gi, rk, s1, s2, tol):  # pragma: no cover - compiled
+    """The two samples whose discs meet at ``(s1, s2)``, a corner of the element's stick region, or ``(-1, -1)``.
+
+    The stick region is the intersection of the discs ``|s - t_k| <= r_k``; a
+    slider that creeps onto it from outside lands on its edge, generically at
+    a corner where two circles meet. There it is fixed by those two samples
+    (not by its history): both within ``BIND`` tolerances of their circles
+    (:func:`_binding_pair`).
+    """
+    a, ga, b, gb = _binding_pair(t1, t2, n, gi, rk, s1, s2)
+    if a < 0 or b < 0 or ga < -BIND * tol or gb < -BIND * tol:
+        return -1, -1
+    return a, b
+
+
+@nb.njit(cache=True, nogil=True)
+def _corner_point(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
+    """The corner of the stick region nearest a slider creeping onto it: ``(found, c1, c2)``.
+
+    The two samples whose discs the slider ``(s1, s2)`` violates most
+    (:func:`_binding_pair`); of the two points where their circles meet, the
+    nearer one, if it lies in every disc (radii shrunk by 16 ulps).
+    """
+    a, _, b, _ = _binding_pair(t1, t2, n, gi, rk, s1, s2)
+    if a < 0 or b < 0:
+        return False, s1, s2
+    shrink = 1.0 - 16 * 2.220446049250313e-16
+    ra = rk * (n[a] - gi) * shrink
+    rb = rk * (n[b] - gi) * shrink
+    e1 = t1[b] - t1[a]
+    e2 = t2[b] - t2[a]
+    L = math.hypot(e1, e2)
+    if L == 0.0 or L > ra + rb or L < abs(ra - rb):
+        return False, s1, s2
+    x = (L * L + ra * ra - rb * rb) / (2.0 * L)
+    h = math.sqrt(max(ra * ra - x * x, 0.0))
+    best = np.inf
+    c1 = s1
+    c2 = s2
+    for side in (-1.0, 1.0):
+        p1 = t1[a] + (x * e1 - side * h * e2) / L
+        p2 = t2[a] + (x * e2 + side * h * e1) / L
+        dist = math.hypot(p1 - s1, p2 - s2)
+        if dist < best:
+            best = dist
+            c1 = p1
+            c2 = p2
+    for k in range(t1.shape[0]):
+        if math.hypot(c1 - t1[k], c2 - t2[k]) > rk * (n[k] - gi):
+            return False, s1, s2
+    return True, c1, c2
+
+
+@nb.njit(cache=True, nogil=True)
+def _corner_derivative(t1, t2, rk, s1, s2, a, b, E, D):  # pragma: no cover - compiled
+    """``D`` (2, 3, nb): the derivative of the corner where the circles of samples ``a`` and ``b`` meet.
+
+    Each binding sample ``j`` keeps ``|t_j - s| = r_j``: ``u_j . ds = u_j . dt_j - rk dn_j``.
+    """
+    nbasis = E.shape[1]
+    u = np.empty((2, 2))
+    for row, j in enumerate((a, b)):
+        d = math.hypot(t1[j] - s1, t2[j] - s2)
+        u[row, 0] = (t1[j] - s1) / d
+        u[row, 1] = (t2[j] - s2) / d
+    det = u[0, 0] * u[1, 1] - u[0, 1] * u[1, 0]
+    inv = np.array([[u[1, 1], -u[0, 1]], [-u[1, 0], u[0, 0]]]) / det
+    for c in range(2):
+        for q in range(nbasis):
+            ea = E[a, q]
+            eb = E[b, q]
+            D[c, 0, q] = inv[c, 0] * u[0, 0] * ea + inv[c, 1] * u[1, 0] * eb
+            D[c, 1, q] = inv[c, 0] * u[0, 1] * ea + inv[c, 1] * u[1, 1] * eb
+            D[c, 2, q] = -rk * (inv[c, 0] * ea + inv[c, 1] * eb)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
+           code, alpha, V1, V2, Te1, Te2, C, moved, corner):  # pragma: no cover - compiled
+    """Static step, then periods until every element's slider repeats to ``tol`` (Newton-accelerated).
+
+    On return the arrays of :func:`_period` hold the periodic period;
+    ``count[i]`` is the number of plain periods since element ``i`` last
+    started from the static step, ``tried[i]`` 1 if a Newton step brought it
+    where it is, 2 if that is a corner of its stick region, the samples
+    ``corner[:, i]`` fixing it. Returns the periods marched, ``-1`` past
+    ``max_periods``.
+    """
+    J = kt.shape[0]
+    el = np.empty((8, J))
+    b1, b2 = el[0], el[1]  # slider at the start of the period
+    st1, st2 = el[2], el[3]  # after the static step (the restart point)
+    prev = el[4]  # residual of the previous period
+    p1, p2 = el[5], el[6]  # the plain step's end, when a Newton step was taken instead
+    lam = el[7]  # the Newton steps' length, halved each time one does not reduce the residual
+    newton = np.ones(J, dtype=np.int64)
+    stepped = np.zeros(J, dtype=np.int64)  # 1: this period started from a Newton step
+    for i in range(J):
+        _, a1, a2, _, _ = _step(rk[i], xn[0] - gaps[i], x1[0], x2[0], 0.0, 0.0)
+        st1[i] = a1
+        st2[i] = a2
+        s1[i] = a1
+        s2[i] = a2
+        prev[i] = np.inf
+        count[i] = 0
+        tried[i] = 0
+        lam[i] = 1.0
+    periods = 0
+    while True:
+        for i in range(J):
+            b1[i] = s1[i]
+            b2[i] = s2[i]
+        _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved)
+        periods += 1
+        done = True
+        for i in range(J):
+            count[i] += 1
+            r1 = s1[i] - b1[i]
+            r2 = s2[i] - b2[i]
+            res = max(abs(r1), abs(r2))
+            restart = False
+            newton_step = stepped[i]
+            stepped[i] = 0
+            if tried[i] and 1.0 - (C[0, i] + C[3, i]) <= NEWTON_MARGIN:
+                # stuck (C = I), or nearly neutral, through a period a Newton step led to: the Newton steps
+                # closed in on a corner of its stick region, where the plain march ends too; or its state must be
+                # its history's
+                a, b = _corner(t1, t2, n, gaps[i], rk[i], s1[i], s2[i], tol) if res <= tol else (-1, -1)
+                if a >= 0:
+                    tried[i] = 2
+                    corner[0, i] = a
+                    corner[1, i] = b
+                    continue
+                restart = True
+            elif res <= tol:
+                continue
+            elif newton_step and res >= prev[i]:
+                # the Newton step did not reduce the residual: back to the plain step it replaced, shorter steps
+                s1[i] = p1[i]
+                s2[i] = p2[i]
+                lam[i] *= 0.5
+                if lam[i] < 1.0 / 8:
+                    # the fixed point lies across a change of the slip pattern, where the slider creeps onto a
+                    # corner of its stick region: there if the two discs it violates most meet inside the others
+                    # (the next period checks it, see _corner), else plain periods
+                    found, c1, c2 = _corner_point(t1, t2, n, gaps[i], rk[i], s1[i], s2[i])
+                    if found:
+                        s1[i] = c1
+                        s2[i] = c2
+                    newton[i] = 0
+                res = np.inf
+            elif newton[i] and count[i] >= 2 and res < prev[i] and 1.0 - (C[0, i] + C[3, i]) > NEWTON_MARGIN:
+                if newton_step:
+                    lam[i] = min(1.0, 2.0 * lam[i])  # the last step reduced the residual
+                m11 = 1.0 - C[0, i]
+                m12 = -C[1, i]
+                m21 = -C[2, i]
+                m22 = 1.0 - C[3, i]
+                det = m11 * m22 - m12 * m21
+                n1 = b1[i] + lam[i] * (m22 * r1 - m12 * r2) / det
+                n2 = b2[i] + lam[i] * (-m21 * r1 + m11 * r2) / det
+                if math.isfinite(n1) and math.isfinite(n2):
+                    p1[i] = s1[i]
+                    p2[i] = s2[i]
+                    s1[i] = n1
+                    s2[i] = n2
+                    tried[i] = 1
+                    stepped[i] = 1
+            done = False
+            prev[i] = res
+            if restart:
+                s1[i] = st1[i]
+                s2[i] = st2[i]
+                newton[i] = 0
+                tried[i] = 0
+                count[i] = 0
+                prev[i] = np.inf
+                stepped[i] = 0
+        if done:
+            return periods
+        if periods >= max_periods:
+            return -1
+
+
+@nb.njit(cache=True, nogil=True, fastmath=True)
+def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no cover - compiled
+    """The coefficient ``Z = beta (x) I + z (x) w^T`` of the slider at the start of the period.
+
+    ``Z = sum_k -kt P[:, k] (x) C_k`` with ``C_k = A_k ... A_0``: the identity
+    up to the first slip, ``c_k v_k w^T`` after it (``w`` the first slip's
+    ``v``), zero from the first opening on. Writes ``beta`` (nb) and ``z``
+    (2, nb); returns ``(w1, w2, c, l1, l2)``: ``w``, and ``Phi_s = C_(Ns-1)
+    = c l w^T`` (``c = 1``, ``l = w = 0`` for an element that sticks
+    throughout, whose ``Phi_s`` is the identity; ``c = 0`` once it opens).
+    """
+    Ns = PT.shape[0]
+    nbasis = PT.shape[1]
+    beta[:] = 0.0
+    z[:] = 0.0
+    z1 = z[0]
+    z2 = z[1]
+    w1 = 0.0
+    w2 = 0.0
+    l1 = 0.0
+    l2 = 0.0
+    cc = 1.0
+    first = True  # no slip yet: C is the identity
+    run = -1
+    for k in range(Ns + 1):
+        c = code[k, i] if k < Ns else OPEN
+        if c == STICK:
+            if run < 0:
+                run = k
+            continue
+        if run >= 0:
+            if first:
+                for p in range(nbasis):
+                    beta[p] -= kti * (cum[k, p] - cum[run, p])
+            else:
+                f1 = -kti * cc * l1
+                f2 = -kti * cc * l2
+                for p in range(nbasis):
+                    seg = cum[k, p] - cum[run, p]
+                    z1[p] += f1 * seg
+                    z2[p] += f2 * seg
+            run = -1
+        if k == Ns:
+            break
+        if c == OPEN:
+            return w1, w2, 0.0, l1, l2
+        al = alpha[k, i]
+        v1 = V1[k, i]
+        v2 = V2[k, i]
+        if first:
+            first = False
+            w1 = v1
+            w2 = v2
+            cc = al
+        else:
+            cc *= al * (v1 * l1 + v2 * l2)
+        l1 = v1
+        l2 = v2
+        f1 = -kti * cc * l1
+        f2 = -kti * cc * l2
+        for p in range(nbasis):
+            z1[p] += f1 * PT[k, p]
+            z2[p] += f2 * PT[k, p]
+    return w1, w2, cc, l1, l2
+
+
+@nb.njit(cache=True, nogil=True, fastmath=True)
+def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used):  # pragma: no cover
+    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (6, nb) for its slip and open samples.
+
+    ``Y = beta (x) I + y (x) w^T`` (``beta`` (nb), ``y`` (2, nb), both
+    overwritten) is the coefficient of the slider at the end of the period;
+    the form is kept through the sweep (a slip makes it ``y (x) v^T``, a
+    stick adds to ``beta``, an opening clears it).
+    """
+    Ns = PT.shape[0]
+    nbasis = PT.shape[1]
+    y1 = y[0]
+    y2 = y[1]
+    bare = False  # beta known to be zero (after a slip or an opening): the cheaper update
+    hi = Ns  # the stick samples m + 1, ..., hi - 1 are still to be applied to Y
+    for m in range(Ns - 1, -1, -1):
+        c = code[m, i]
+        if c == STICK:
+            continue
+        if hi > m + 1:
+            for p in range(nbasis):
+                beta[p] -= kti * (cum[hi, p] - cum[m + 1, p])
+            bare = False
+        hi = m
+        Um = U[m]
+        if not used[m]:
+            used[m] = True
+            Um[:] = 0.0
+        if c == OPEN:
+            for p in range(nbasis):
+                Um[0, p] += beta[p] + y1[p] * w1
+                Um[1, p] += y1[p] * w2
+                Um[3, p] += y2[p] * w1
+                Um[4, p] += beta[p] + y2[p] * w2
+                beta[p] = 0.0
+                y1[p] = 0.0
+                y2[p] = 0.0
+            bare = True
+            continue
+        al = alpha[m, i]
+        v1 = V1[m, i]
+        v2 = V2[m, i]
+        u1 = v2
+        u2 = -v1
+        # G = [I - al v v^T | -rk u]; w^T G = h
+        wv = w1 * v1 + w2 * v2
+        h1 = w1 - al * wv * v1
+        h2 = w2 - al * wv * v2
+        h3 = -rki * (w1 * u1 + w2 * u2)
+        g11 = 1.0 - al * v1 * v1
+        g12 = -al * v1 * v2
+        g22 = 1.0 - al * v2 * v2
+        g13 = -rki * u1
+        g23 = -rki * u2
+        if bare:  # consecutive slips: Y = y (x) w^T
+            awv = al * wv
+            for p in range(nbasis):
+                a1 = y1[p]
+                a2 = y2[p]
+                Um[0, p] += a1 * h1
+                Um[1, p] += a1 * h2
+                Um[2, p] += a1 * h3
+                Um[3, p] += a2 * h1
+                Um[4, p] += a2 * h2
+                Um[5, p] += a2 * h3
+                q = -al * kti * PT[m, p]
+                y1[p] = q * v1 + awv * a1
+                y2[p] = q * v2 + awv * a2
+            w1 = v1
+            w2 = v2
+            continue
+        bare = True
+        for p in range(nbasis):
+            bp = beta[p]
+            a1 = y1[p]
+            a2 = y2[p]
+            Um[0, p] += bp * g11 + a1 * h1
+            Um[1, p] += bp * g12 + a1 * h2
+            Um[2, p] += bp * g13 + a1 * h3
+            Um[3, p] += bp * g12 + a2 * h1
+            Um[4, p] += bp * g22 + a2 * h2
+            Um[5, p] += bp * g23 + a2 * h3
+            q = al * (bp - kti * PT[m, p])
+            y1[p] = q * v1 + al * wv * a1
+            y2[p] = q * v2 + al * wv * a2
+            beta[p] = 0.0
+        w1 = v1
+        w2 = v2
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_periods,
+               F, Jac):  # pragma: no cover - compiled
+    """AFT of one contact on the plane. Writes ``F`` (3, nb) and ``Jac`` (3, 3, nb, nb).
+
+    ``F`` holds the coefficients of ``T1, T2, N``; ``Jac[a, b]`` the
+    derivative of output ``a`` with respect to the coefficients of input
+    ``b`` (``t1, t2, n``); ``PT`` is :func:`transposed_projection`. Returns
+    the number of periods marched until every element was periodic, or
+    ``-1`` if some element was not after ``max_periods``.
+    """
+    nbasis = x1.shape[0]
+    Ns = E.shape[0]
+    J = kt.shape[0]
+    smp = np.zeros((12, Ns))  # per-sample work arrays
+    t1 = smp[0]
+    t2 = smp[1]
+    n = smp[2]
+    _synthesise(E, x1, t1)
+    _synthesise(E, x2, t2)
+    _synthesise(E, xn, n)
+    T1s, T2s, Nsum = smp[3], smp[4], smp[5]  # the forces' samples
+    d11, d12, d22, c1, c2, dcl = smp[6], smp[7], smp[8], smp[9], smp[10], smp[11]  # local derivative sums
+    el = np.empty((4, J))
+    rk, s1, s2, moved = el[0], el[1], el[2], el[3]
+    ivec = np.empty((2, J), dtype=np.int64)
+    count, tried = ivec[0], ivec[1]
+    code = np.empty((Ns, J), dtype=np.int8)
+    per = np.empty((5, Ns, J))  # per sample and element: alpha, v of a slip; the element's force
+    alpha, V1, V2, Te1, Te2 = per[0], per[1], per[2], per[3], per[4]
+    C = np.empty((4, J))
+    size = 0.0
+    for k in range(Ns):
+        size = max(size, abs(t1[k]) + abs(t2[k]))
+    rmax = 0.0
+    for i in range(J):
+        rk[i] = mu * kn[i] / kt[i]
+        for k in range(Ns):
+            rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
+    tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
+    corner = np.empty((2, J), dtype=np.int64)
+    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
+                     code, alpha, V1, V2, Te1, Te2, C, moved, corner)
+    # -- the periodic period: forces and the local derivatives ---------------------------
+    for k in range(Ns):
+        f1 = 0.0
+        f2 = 0.0
+        fn = 0.0
+        for i in range(J):
+            c = code[k, i]
+            f1 += Te1[k, i]
+            f2 += Te2[k, i]
+            if c == OPEN:
+                continue
+            fn += kn[i] * (n[k] - gaps[i])
+            dcl[k] += kn[i]
+            if c == STICK:
+                d11[k] += kt[i]
+                d22[k] += kt[i]
+                continue
+            a = kt[i] * alpha[k, i]
+            v1 = V1[k, i]
+            v2 = V2[k, i]
+            d11[k] += a * v1 * v1
+            d12[k] += a * v1 * v2
+            d22[k] += a * v2 * v2
+            g = mu * kn[i]
+            c1[k] += g * v2
+            c2[k] -= g * v1
+        T1s[k] = f1
+        T2s[k] = f2
+        Nsum[k] = fn
+    _project(P, T1s, T2s, F[0], F[1])
+    for p in range(nbasis):
+        acc = 0.0
+        for k in range(Ns):
+            acc += P[p, k] * Nsum[k]
+        F[2, p] = acc
+    CS = np.empty((2, nbasis))
+    for which in range(7):
+        d = (d11, d12, d12, d22, c1, c2, dcl)[which]
+        a = (0, 0, 1, 1, 0, 1, 2)[which]
+        b = (0, 1, 0, 1, 2, 2, 2)[which]
+        _dft(cos2, sin2, d, CS[0], CS[1])
+        _diagonal_jacobian(CS[0], CS[1], Ns, Jac[a, b])
+    for b in range(2):
+        Jac[2, b] = 0.0
+    # -- the history parts, element by element -------------------------------------------
+    U = np.empty((Ns, 6, nbasis))  # column m's coefficients (rows zeroed when first used), times E[m] at the end
+    used = np.zeros(Ns, dtype=np.bool_)
+    beta = np.empty(nbasis)
+    y = np.empty((2, nbasis))
+    D = np.empty((2, 3, nbasis))
+    for i in range(J):
+        kti = kt[i]
+        w1, w2, cc, l1, l2 = _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, y)
+        stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
+        rho = 1.0 if stuck else cc * (l1 * w1 + l2 * w2)  # the eigenvalue of Phi_s = c l w^T
+        if tried[i] == 2 or (not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN):
+            # the slider at the start of the period is (nearly) neutral to the period map: at a corner of its
+            # stick region, fixed by the two samples whose circles meet there; or stuck through the period, or
+            # slipping so little that its state is the one its history gave it: the plain march from the
+            # static step is repeated with the slider's derivative carried along.
+            if tried[i] == 2:
+                _corner_derivative(t1, t2, rk[i], s1[i], s2[i], corner[0, i], corner[1, i], E, D)
+            else:
+                _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, count[i] - 1, D)
+            for b in range(3):
+                for q in range(nbasis):
+                    wd = w1 * D[0, b, q] + w2 * D[1, b, q]
+                    for a in range(2):
+                        da = D[a, b, q]
+                        for p in range(nbasis):
+                            Jac[a, b, p, q] += beta[p] * da + y[a, p] * wd
+            if stuck:
+                continue
+            beta[:] = 0.0
+            y[:] = 0.0
+        elif cc != 0.0:
+            # Y at the end of the period: Z (I - Phi_s)^-1 = Z + Z Phi_s / (1 - rho), still beta I + y w^T
+            f = cc / (1.0 - rho)
+            lw = l1 * w1 + l2 * w2
+            for p in range(nbasis):
+                y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
+                y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
+        _element_columns(i, kti, rk[i], code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used)
+    # -- the used columns times their basis rows: one matrix product ------------------------------
+    rows = np.flatnonzero(used)
+    if rows.size == 0:
+        return periods
+    if rows.size < Ns:  # gather the used rows
+        Uc = np.empty((rows.size, 6 * nbasis))
+        Ec = np.empty((rows.size, nbasis))
+        for j in range(rows.size):
+            Uc[j] = U[rows[j]].reshape(6 * nbasis)
+            Ec[j] = E[rows[j]]
+        acc = np.dot(Uc.T, Ec)
+    else:
+        acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
+    for r in range(6):
+        a = r // 3
+        b = r % 3
+        for p in range(nbasis):
+            for q in range(nbasis):
+                Jac[a, b, p, q] += acc[r * nbasis + p, q]
+    return periods
+
+
+@nb.njit(cache=True, nogil=True)
+def aft_plane_batch(kt, kn, gaps, offsets, mu, X1, X2, XN, E, P, cos2, sin2, cum, PT, max_periods,
+                    F, Jac, periods):  # pragma: no cover - compiled
+    """AFT of many contacts on the plane; contact ``c`` owns elements ``offsets[c]:offsets[c+1]``.
+
+    ``X1, X2, XN`` have shape ``(nc, nb)``, ``F`` ``(nc, 3, nb)``, ``Jac``
+    ``(nc, 3, 3, nb, nb)``; ``periods`` (int64, ``nc``) receives each
+    contact's period count (``-1``: not periodic within ``max_periods``).
+    """
+    for c in range(X1.shape[0]):
+        a = offsets[c]
+        b = offsets[c + 1]
+        periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], X1[c], X2[c], XN[c], E, P, cos2, sin2, cum, PT,
+                                max_periods, F[c], Jac[c])
+
+
+@nb.njit(cache=True, nogil=True)
+def aft_mixed_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, sin2, cum, PT, max_periods,
+                    FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods):  # pragma: no cover - compiled
+    """AFT of contacts along one direction and on their planes (``planar[c]``), in one call.
+
+    The one-direction arrays as :func:`microslip.frequency._aft.aft_batch`
+    (for a contact on its plane: its first direction's); ``FT2`` (nc, nb)
+    the second tangential force, ``JT12, JT21, JT22, JT2n`` (nc, nb, nb) the
+    derivatives of ``T1`` by ``t2``, ``T2`` by ``t1``, ``t2`` and ``n``
+    (zero for a one-direction contact).
+    """
+    nbasis = XT.shape[1]
+    F = np.empty((3, nbasis))
+    Jac = np.empty((3, 3, nbasis, nbasis))
+    for c in range(XT.shape[0]):
+        a = offsets[c]
+        b = offsets[c + 1]
+        if not planar[c]:
+            periods[c] = _aft_contact(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XN[c], E, P, cos2, sin2, cum,
+                                      max_periods, FT[c], FN[c], JTt[c], JTn[c], JNn[c])
+            continue
+        periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XT2[c], XN[c], E, P, cos2, sin2, cum,
+                                PT, max_periods, F, Jac)
+        FT[c] = F[0]
+        FT2[c] = F[1]
+        FN[c] = F[2]
+        JTt[c] = Jac[0, 0]
+        JT12[c] = Jac[0, 1]
+        JTn[c] = Jac[0, 2]
+        JT21[c] = Jac[1, 0]
+        JT22[c] = Jac[1, 1]
+        JT2n[c] = Jac[1, 2]
+        JNn[c] = Jac[2, 2]
