@@ -109,3 +109,18 @@ def test_a_mode_that_folds_back_in_amplitude_is_a_warning():
     with pytest.warns(IncompleteCurveWarning, match="the mode turned back at modal amplitude"):
         folded = nonlinear_modes(s, 1, (1e-5, 1e-2), harmonics=3, control=StepControl(ds_initial=0.2, ds_max=0.2))
     assert folded.complete and folded.modal_amplitude.max() < 1e-4
+
+
+def test_the_mode_and_its_synthesis_draw_and_write(mode, tmp_path):
+    top, bottom = mode.plot(dof=1)
+    assert top.get_xscale() == "log" and bottom.get_ylabel() == "damping ratio (%)"
+    assert len(bottom.lines) == 2  # total and contacts' share (the viscous damping is not zero)
+    path = mode.to_csv(tmp_path / "mode.csv")
+    header = path.read_text().splitlines()[0].split(",")
+    assert header[:4] == ["modal amplitude [kg^0.5 m]", "omega [rad/s]", "f [Hz]", "damping ratio [-]"]
+    assert "excitation work [J]" not in header and len(path.read_text().splitlines()) == mode.points + 1
+    assert repr(mode).startswith("NonlinearModes(mode=1, points=") and len(repr(mode)) < 300
+    synthesis = mode.synthesize([0.0, 3.0])
+    ax = synthesis.plot(dof=1)
+    lo, hi = ax.get_xlim()
+    assert lo < synthesis.peak_omega / (2 * np.pi) < hi and hi - lo < 0.3 * hi  # around the resonance

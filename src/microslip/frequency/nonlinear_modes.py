@@ -32,7 +32,7 @@ from .response import (FrequencyResponse, IncompleteCurveWarning, _check_determi
 from .structure import Structure
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class NonlinearModes(FrequencyResponse):
     """A damped nonlinear mode along its amplitude (from :func:`nonlinear_modes`).
 
@@ -78,6 +78,12 @@ class NonlinearModes(FrequencyResponse):
     linear_mode: np.ndarray | None = field(default=None, repr=False)
     modal_mass: np.ndarray | None = field(default=None, repr=False)
     modal_damping: np.ndarray | None = field(default=None, repr=False)
+
+    def __repr__(self) -> str:
+        return (f"NonlinearModes(mode={self.mode}, points={self.points}, modal amplitude "
+                f"{self.modal_amplitude[0]:.3g} to {self.modal_amplitude[-1]:.3g} kg^1/2 m, frequency "
+                f"{self.omega[0]:.6g} to {self.omega[-1]:.6g} rad/s, damping ratio {self.damping_ratio.min():.3g} to "
+                f"{self.damping_ratio.max():.3g}, harmonics={self.harmonics}, reduction={self.reduction!r})")
 
     def frequency(self, unit: str = "rad/s") -> np.ndarray:
         """The mode's natural frequency at every point, ``(points,)``: rad/s, or Hz with ``unit="Hz"``."""

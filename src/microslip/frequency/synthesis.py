@@ -110,8 +110,13 @@ class SynthesizedResponse:
         if backbone:
             ax.plot(self.mode.omega * to_unit, (self.mode.amplitude(dof, harmonic if dof is not None else None)
                                                 * factor), ":", color="0.4", label="backbone")
-        ax.set_xlim(self.omega.min() * to_unit, self.omega.max() * to_unit)
-        ax.set_ylim(0, 1.15 * self.amplitude(dof, harmonic).max() * factor)
+        # around the resonance: its half-power band and one and a half times its width on either side
+        amplitude = self.amplitude(dof, harmonic)
+        band = self.omega[amplitude >= amplitude.max() / np.sqrt(2)]
+        width = max(float(np.ptp(band)), 1e-3 * self.peak_omega)
+        ax.set_xlim(max(band.min() - 1.5 * width, self.omega.min()) * to_unit,
+                    min(band.max() + 1.5 * width, self.omega.max()) * to_unit)
+        ax.set_ylim(0, 1.15 * amplitude.max() * factor)
         ax.set_xlabel(f"excitation frequency ({frequency_unit})")
         ax.set_ylabel("modal amplitude (kg^1/2 m)" if dof is None else f"amplitude ({unit})")
         ax.grid(True, alpha=0.3)
