@@ -110,17 +110,23 @@ class SynthesizedResponse:
         if backbone:
             ax.plot(self.mode.omega * to_unit, (self.mode.amplitude(dof, harmonic if dof is not None else None)
                                                 * factor), ":", color="0.4", label="backbone")
-        # around the resonance: its half-power band and one and a half times its width on either side
-        amplitude = self.amplitude(dof, harmonic)
-        band = self.omega[amplitude >= amplitude.max() / np.sqrt(2)]
-        width = max(float(np.ptp(band)), 1e-3 * self.peak_omega)
-        ax.set_xlim(max(band.min() - 1.5 * width, self.omega.min()) * to_unit,
-                    min(band.max() + 1.5 * width, self.omega.max()) * to_unit)
-        ax.set_ylim(0, 1.15 * amplitude.max() * factor)
+        lo, hi = resonance_band(self, dof, harmonic)
+        ax.set_xlim(lo * to_unit, hi * to_unit)
+        ax.set_ylim(0, 1.15 * self.amplitude(dof, harmonic).max() * factor)
         ax.set_xlabel(f"excitation frequency ({frequency_unit})")
         ax.set_ylabel("modal amplitude (kg^1/2 m)" if dof is None else f"amplitude ({unit})")
         ax.grid(True, alpha=0.3)
         return ax
+
+
+def resonance_band(response: SynthesizedResponse, dof=None, harmonic: int | None = 1) -> tuple[float, float]:
+    """``(lo, hi)`` (rad/s): the half-power band of the synthesised resonance (amplitude of ``dof`` above
+    ``1/sqrt(2)`` of its peak) widened by one and a half times its width on either side, within the curve: where
+    the synthesis is meant to describe the forced response."""
+    amplitude = response.amplitude(dof, harmonic)
+    band = response.omega[amplitude >= amplitude.max() / np.sqrt(2)]
+    width = max(float(np.ptp(band)), 1e-3 * response.peak_omega)
+    return max(band.min() - 1.5 * width, response.omega.min()), min(band.max() + 1.5 * width, response.omega.max())
 
 
 def _interpolate(mode, values, a) -> np.ndarray:
