@@ -1,27 +1,12 @@
 """``microslip modes``: the frf configuration with a [modes] table to a nonlinear mode, plots and a report."""
 
-import shutil
-
 import numpy as np
 import pytest
 
 from microslip.cli import main
 from microslip.common._table import read_table
 from microslip.frequency.config import ConfigError, load_config
-from _paths import EXAMPLES
-
-
-@pytest.fixture
-def config_dir(tmp_path):
-    shutil.copy(EXAMPLES / "inclined_block.toml", tmp_path / "block.toml")
-    shutil.copy(EXAMPLES / "sphere_4_elements.json", tmp_path / "sphere_4_elements.json")
-    return tmp_path
-
-
-def _edit(path, old, new):
-    text = path.read_text()
-    assert old in text
-    path.write_text(text.replace(old, new))
+from test_hbm_cli import _edit, config_dir  # noqa: F401  (the example block's configuration, as frf's tests)
 
 
 def test_modes_writes_the_mode_its_synthesis_and_a_report(config_dir, capsys):
