@@ -276,3 +276,23 @@ def test_a_reduced_blade_starts_from_its_stuck_linear_mode():
     assert abs(modal.omega[0] / np.sqrt(lam) - 1) < modal.reduction_error
     assert exact.omega[-1] < 0.97 * exact.omega[0]  # the contacts slip by the end of the range
     assert abs(modal.omega[-1] / exact.omega[-1] - 1) < modal.reduction_error
+
+
+def test_the_stuck_mode_of_a_large_sparse_structure_is_found_by_the_sparse_eigensolver():
+    """Above 500 sparse DOFs the linear mode comes from shift-invert Lanczos: the same mode as a dense solution."""
+    import scipy.sparse as sp
+
+    from microslip.frequency.epmc import SPARSE_EIGEN, stuck_mode
+
+    n = SPARSE_EIGEN + 100
+    K = sp.diags([np.full(n, 2e6), np.full(n - 1, -1e6), np.full(n - 1, -1e6)], [0, 1, -1], format="csr")
+    M = sp.diags(np.linspace(0.1, 0.2, n), format="csr")
+    s = Structure(M, None, K)
+    s.add_contact(MicroslipModel([2e5, 1e5], [1e9, 1e9], [0.0, 1e-6], 0.5), tangential=3, normal=None,
+                  approach=5e-7)  # the second element is open: only the first one's stiffness counts
+    lam, phi = stuck_mode(s, np.zeros(n), 2)
+    K_stuck = K.toarray()
+    K_stuck[3, 3] += 2e5
+    lam_dense, vec = sla.eigh(K_stuck, M.toarray(), subset_by_index=[1, 1])
+    assert abs(lam / lam_dense[0] - 1) < 1e-10
+    assert abs(abs(phi @ M @ vec[:, 0]) - 1) < 1e-8 and phi[np.argmax(np.abs(phi))] > 0

@@ -452,21 +452,40 @@ class _SpectralInterior:
 
     def projection(self, W: float, w_i, xi: float = 0.0):
         """``(g, dg/dW, dg/dxi)``, complex ``(m,)``: ``w_i . q_i = g . q_r`` for the interior amplitudes of
-        :meth:`interior` (damping ``C - xi M``); None when ``D`` is singular or only some modes are kept."""
+        :meth:`interior` (damping ``C - xi M``); None when ``D`` is singular.
+
+        ``w_i . q_i = (Psi^T w_i) . q_r - sum_k (G^T q_r)_k (phi_k . w_i) / d_k`` over every mode; with only some
+        modes kept the others' share ``sum_k x_k (phi_k . w_i) / d_k`` is the series of :class:`_Tail` with
+        ``w_i`` as one more column (raises :class:`_TooFewModes` where it would converge too slowly).
+        """
         Wa = np.array([float(W)])
         d = self._d(Wa, xi)
-        if d is None or self.tail is not None:
+        if d is None:
             return None
         u = 1.0 / d[0]
-        e = self.phi.T @ w_i  # the modes' share of w_i
+        e = self.phi.T @ w_i  # the kept modes' share of w_i
         f, fp, fx = (a[0] for a in self._factors(Wa, xi))
         c = self.c - xi if (self.damped or xi) else 0.0
-        X = [self.X[j * self.m:(j + 1) * self.m] for j in range(f.size)]
-        weights = (e * u, e * (2 * W - 1j * c) * u * u, e * (1j * W) * u * u)  # e/d and its W, xi derivatives
-        g = self.psi.T @ w_i - sum(f[j] * (X[j] @ weights[0]) for j in range(f.size))
-        gW = -sum(fp[j] * (X[j] @ weights[0]) + f[j] * (X[j] @ weights[1]) for j in range(f.size))
-        gx = -sum(fx[j] * (X[j] @ weights[0]) + f[j] * (X[j] @ weights[2]) for j in range(f.size))
+        # X diag(e/d) and its W and xi derivatives: one column per block of G (rows of X)
+        cols = [self.X @ (e * u), self.X @ (e * (2 * W - 1j * c) * u * u), self.X @ (e * (1j * W) * u * u)]
+        if self.tail is not None:
+            p = self.X.shape[0]
+            parts = self._tail_for(w_i).add(Wa, True, xi, True)  # (1, p + 1, p + 1) each: the last column
+            cols = [col + part[0, :p, p] for col, part in zip(cols, parts)]
+        m = self.m
+        block = [[col[j * m:(j + 1) * m] for j in range(f.size)] for col in cols]
+        g = self.psi.T @ w_i - sum(f[j] * block[0][j] for j in range(f.size))
+        gW = -sum(fp[j] * block[0][j] + f[j] * block[1][j] for j in range(f.size))
+        gx = -sum(fx[j] * block[0][j] + f[j] * block[2][j] for j in range(f.size))
         return g, gW, gx
+
+    def _tail_for(self, w_i) -> _Tail:
+        """The series of the omitted modes with ``w_i`` as one more coupling column (kept for the last ``w_i``)."""
+        key = w_i.tobytes()
+        if getattr(self, "_weighted", (None,))[0] != key:
+            t = self.tail
+            self._weighted = (key, _Tail(t.solve, t.M, t.phi, t.lam_c, np.column_stack([t.Bs, w_i]), t.a, t.b))
+        return self._weighted[1]
 
 
 def _key(W: float, xi: float = 0.0):
@@ -528,6 +547,7 @@ class Condensation:
         self._damped = harmonic_matrices is not None or (np.any(C.data) if sp.issparse(C) else np.any(C))
         self._cache = (None, None, None)
         self._static = None
+        self._static_factor = None  # the static interior's factorisation, for recovery
 
     def _blocks(self, h: int):
         """``(M, C, K)`` of harmonic ``h``, each split into ``(rr, ri, ir, ii)`` blocks (computed once)."""
@@ -697,7 +717,12 @@ class Condensation:
         q_i = spectral.interior(W_omega, np.asarray(q_r), xi) if spectral is not None else None
         if q_i is not None:
             return np.asarray(q_i, dtype=complex)
-        solve = self._factor(self._zii(h, blocks, key))
+        if W_omega == 0.0:  # the static interior does not change: factorised once
+            if self._static_factor is None:
+                self._static_factor = self._factor(self._zii(h, blocks, key))
+            solve = self._static_factor
+        else:
+            solve = self._factor(self._zii(h, blocks, key))
         if solve is None:
             raise SingularInteriorError(f"the held structure is singular at harmonic {h} ({W_omega:.6g} rad/s)")
         return -np.asarray(solve(np.asarray(self._z(blocks, key, 2) @ q_r)), dtype=complex)
@@ -728,7 +753,10 @@ class Condensation:
         if not np.any(w_i):
             return w_r, zero, zero.copy()
         spectral = self._spectral.get(1 if self._per_harmonic else 0)
-        result = spectral.projection(omega, w_i, xi) if spectral is not None else None
+        try:
+            result = spectral.projection(omega, w_i, xi) if spectral is not None else None
+        except _TooFewModes:  # the omitted modes' series would converge too slowly here: factorised
+            result = None
         if result is not None:
             return w_r + result[0], result[1], result[2]
         # w_i . q_i = -u^T Z_ir q_r with u = Z_ii^-T w_i; d/dtheta: -u^T Z_ir' + v^T Z_ir, v = Z_ii^-T Z_ii'^T u

@@ -41,8 +41,16 @@ from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
 from .structure import Structure
 
-#: DOFs up to which the linear mode is found by a dense eigensolution
+#: DOFs up to which the linear mode is found by a dense eigensolution (sparse matrices: a sparse one above
+#: :data:`SPARSE_EIGEN`)
 DENSE_EIGEN = 2000
+SPARSE_EIGEN = 500
+#: the normalisation equations are divided by this: on the contact DOFs the modal coordinate goes through the
+#: held structure's dynamic stiffness, whose poles near the mode's frequency (a natural frequency of the structure
+#: with its contact DOFs held) make it sensitive to omega and leave a rounding floor of about 1e-10 in it, above
+#: which Newton's method could not converge at a tolerance of 1e-9. The modal amplitude reported is the
+#: solution's own (:meth:`EpmcEquations.modal_amplitude`), whatever the residual of these equations.
+NORMALISATION = 100.0
 
 
 class DampedReducedBalance(ReducedHarmonicBalance):
@@ -125,7 +133,7 @@ def stuck_mode(structure: Structure, q0, mode: int) -> tuple[float, np.ndarray]:
             elif k:
                 K = K + k * np.outer(b, b)
     ndof = structure.ndof
-    if ndof <= DENSE_EIGEN:
+    if ndof <= (SPARSE_EIGEN if sp.issparse(K) else DENSE_EIGEN):
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
         Md = structure.M.toarray() if sp.issparse(structure.M) else np.asarray(structure.M)
         lam, vec = sla.eigh(0.5 * (Kd + Kd.T), Md, subset_by_index=[mode - 1, mode - 1])
@@ -154,8 +162,10 @@ class EpmcEquations:
         The static solution (m) on the unknown DOFs.
     weight : ndarray, shape (ndof,)
         ``M phi`` over every DOF of the structure (kg^1/2).
-    phi : ndarray, shape (hb.ndof,)
-        The linear mode on the unknown DOFs (kg^-1/2).
+    shape_scale : float
+        The largest entry of the linear mode over every DOF (kg^-1/2): the scale of
+        ``psi`` (the contact DOFs may move far more, relative to the modal
+        amplitude, once the contacts slide than while they stick).
     omega_scale : float
         The linear mode's natural frequency (rad/s).
     force_scale : float
@@ -170,14 +180,14 @@ class EpmcEquations:
     solve = HarmonicBalance.solve
     augmented = HarmonicBalance.augmented
 
-    def __init__(self, hb, x_static, weight, phi, omega_scale: float, force_scale: float):
+    def __init__(self, hb, x_static, weight, shape_scale: float, omega_scale: float, force_scale: float):
         self.hb = hb
         self.m = hb.ndof
         self.n = hb.n + 2
         self.x_static = np.zeros(hb.n)
         self.x_static[:self.m] = x_static
         self.weight = weight
-        self.psi_scale = float(np.max(np.abs(phi)))
+        self.psi_scale = shape_scale
         self.omega_scale = omega_scale
         self.rho = force_scale
 
@@ -215,11 +225,12 @@ class EpmcEquations:
         g, g_omega, g_xi = hb.functional(self.weight, omega)
         p = self._first(y)
         eta = g @ p
+        normal = np.array([eta.real - 1.0, eta.imag]) / NORMALISATION
         if not jacobian:
-            return np.concatenate([hb._evaluate(x, omega, jacobian=False) / scale, [eta.real - 1.0, eta.imag]])
+            return np.concatenate([hb._evaluate(x, omega, jacobian=False) / scale, normal])
         R, J, R_omega = hb._evaluate(x, omega)
         R_xi = hb.xi_derivative(x, omega)
-        r = np.concatenate([R / scale, [eta.real - 1.0, eta.imag]])
+        r = np.concatenate([R / scale, normal])
         m, c = self.m, self.psi_scale
         # d(g . p)/d(y_a1) = g c, d/d(y_b1) = -i g c; rows [Re, Im]
         rows = np.zeros((2, self.n))
@@ -228,6 +239,7 @@ class EpmcEquations:
         e_omega, e_xi = (gp @ p * self.omega_scale for gp in (g_omega, g_xi))
         rows[:, -2] = e_omega.real, e_omega.imag
         rows[:, -1] = e_xi.real, e_xi.imag
+        rows /= NORMALISATION
         columns = np.stack([R_omega, R_xi], axis=1) * (self.omega_scale / scale)
         Jx = J * (a * c / scale)  # dx/dy = a c
         if sp.issparse(Jx):

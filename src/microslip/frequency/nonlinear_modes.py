@@ -24,7 +24,7 @@ from ..common._progress import Progress
 from .aft import MAX_PERIODS, check_harmonics
 from .continuation import StepControl, continuation, newton
 from .cyclic import CyclicStructure
-from .epmc import DampedBalance, DampedReducedBalance, EpmcEquations, stuck_mode
+from .epmc import DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedReducedBalance, EpmcEquations, stuck_mode
 from .hbm import HarmonicBalance, excitation
 from .reduced import ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs
 from .response import (FrequencyResponse, IncompleteCurveWarning, _check_determined, _check_resolution,
@@ -194,7 +194,8 @@ def _amplitude_range(amplitude) -> tuple[float, float]:
 
 def _check_mode(structure: Structure, mode) -> int:
     mode = _checks.positive_int("mode", mode)
-    limit = structure.ndof if structure.ndof <= 2000 else structure.ndof - 1
+    limit = structure.ndof if structure.ndof <= (SPARSE_EIGEN if structure.sparse else DENSE_EIGEN) \
+        else structure.ndof - 1  # a sparse eigensolver finds fewer than all
     if mode > limit:
         raise ValueError(f"mode must be at most {limit} (the structure has {structure.ndof} DOFs), got {mode}")
     return mode
@@ -308,7 +309,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     retained = getattr(hb, "retained", np.arange(structure.ndof))
     phi_u = phi[retained]
     rho = float(np.max(np.abs(hb.stuck_stiffness() @ phi_u)))
-    eq = EpmcEquations(hb, x0, structure.M @ phi, phi_u, float(np.sqrt(lam)), rho)
+    eq = EpmcEquations(hb, x0, structure.M @ phi, float(np.max(np.abs(phi))), float(np.sqrt(lam)), rho)
 
     s0, s1 = np.log(lo), np.log(hi)
     x = np.zeros(hb.n)
@@ -352,9 +353,10 @@ def _collect(eq: EpmcEquations, ys, ss, iters, static, complete, mode, lam, phi,
     P = ss.size
     xs = np.empty((P, hb.n))
     omegas, xis = np.empty(P), np.empty(P)
+    a = np.empty(P)
     for k in range(P):
         xs[k], omegas[k], xis[k] = eq.unpack(ys[k], ss[k])
-    a = np.exp(ss)
+        a[k] = eq.modal_amplitude(xs[k], omegas[k], xis[k]).real  # exp(s) to the tolerance of the normalisation
     q = HarmonicBalance.curve_quantities(hb, xs, omegas, viscous=False)
     energy = np.empty((P, 4))
 
