@@ -327,7 +327,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
                       f"{result.modal_amplitude[-1]:.6g} kg^1/2 m, before the end of the range ({hi:.6g}); raise "
                       f"StepControl.max_points (or ds_max) to follow the whole mode", IncompleteCurveWarning,
                       stacklevel=2)
-    elif result.modal_amplitude[-1] < hi * (1 - 1e-9):
+    elif ss[-1] < s1 - 1e-9:  # left the range at its start
         turn = int(np.argmax(result.modal_amplitude))
         warnings.warn(f"the mode turned back at modal amplitude {result.modal_amplitude[turn]:.6g} kg^1/2 m "
                       f"({result.omega[turn]:.6g} rad/s) and left the range at its start: a fold in amplitude, "
