@@ -233,6 +233,16 @@ def a_point():
 
 
 @cache
+def a_mode():
+    return microslip.nonlinear_modes(jenkins_structure(), 1, (1e-5, 1e-2), harmonics=1)
+
+
+@cache
+def a_synthesis():
+    return a_mode().synthesize([0.5])
+
+
+@cache
 def a_steady_state():
     return steady_state(jenkins_structure(), [1.0], 100.0, steps_per_period=64, harmonics=1, max_periods=20)
 
@@ -644,6 +654,17 @@ CASES += [
     case("microslip.frequency_response", lambda: microslip.frequency_response, refused_only=True,
          structure=L(jenkins_structure), force=[1.0], omega=(90.0, 110.0), harmonics=1, samples=16, progress=False,
          max_periods=100),
+    # a mode takes a second once its arguments are accepted
+    case("microslip.nonlinear_modes", lambda: microslip.nonlinear_modes, refused_only=True,
+         structure=L(jenkins_structure), mode=1, amplitude=(1e-5, 1e-3), harmonics=1, samples=16, progress=False,
+         max_periods=100),
+    case("NonlinearModes.frequency", lambda: a_mode().frequency, unit="Hz"),
+    case("NonlinearModes.amplitude", lambda: a_mode().amplitude, dof=0, harmonic=1),
+    case("NonlinearModes.shape", lambda: a_mode().shape, point=0),
+    case("NonlinearModes.columns", lambda: a_mode().columns, dofs=[0]),
+    case("NonlinearModes.synthesize", lambda: a_mode().synthesize, force=[0.5], omega=(100.0, 160.0), points=50),
+    case("SynthesizedResponse.amplitude", lambda: a_synthesis().amplitude, dof=0, harmonic=1),
+    case("SynthesizedResponse.peak", lambda: a_synthesis().peak, dof=0, harmonic=1),
     case("frequency.steady_state", lambda: steady_state, structure=L(jenkins_structure), force=[1.0], omega=100.0,
          steps_per_period=64, harmonics=1, tolerance=1e-7, max_periods=20, progress=False, start=L(a_point)),
     case("frequency.aft", lambda: aft, model=MODEL, t=[1e-7, 1e-7, 0.0], n=[N_APP, 0.0, 0.0], samples=16,
@@ -756,6 +777,8 @@ NOT_FUZZED = {
     "DesignCurve.plot": "draws",
     "ContactCycle.plot": "draws",
     "frequency.plot_contact_cycles": "draws",
+    "NonlinearModes.plot": "draws",
+    "SynthesizedResponse.plot": "draws",
     "ContactReference": "a protocol: what a reference provides, nothing to call",
 }
 
@@ -763,7 +786,7 @@ NOT_FUZZED = {
 RESULTS = {"AccuracyReport", "AFTResult", "PlaneAFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
-           "DesignCurve", "FEBlade", "FEMatrices", "ContactCycle"}
+           "DesignCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes", "SynthesizedResponse"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",
                   "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe")

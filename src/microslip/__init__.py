@@ -23,7 +23,7 @@ from .tuning import (ContactReference, TargetNotMet, TargetProblem, TargetTuning
 from .accuracy import AccuracyReport, accuracy, paths
 from .measured import (FittedBackbone, LoopTuning, MeasuredContact, Validation, fit_backbone, loops, tune_on_loops,
                        validate)
-from .frequency import FrequencyResponse, Structure, frequency_response
+from .frequency import FrequencyResponse, NonlinearModes, Structure, frequency_response, nonlinear_modes
 
 from .common._version import __version__
 
@@ -46,6 +46,7 @@ __all__ = [
     "MDRModel",
     "MeasuredContact",
     "MicroslipModel",
+    "NonlinearModes",
     "Response",
     "Sphere",
     "State",
@@ -62,6 +63,7 @@ __all__ = [
     "frequency_response",
     "loops",
     "mdr",
+    "nonlinear_modes",
     "paths",
     "smallest_elements",
     "tune",

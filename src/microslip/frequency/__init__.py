@@ -9,6 +9,9 @@
 * :func:`frequency_response` -- harmonic balance with pseudo-arclength
   continuation, returning a :class:`FrequencyResponse`;
 * :func:`frequency_point` -- the solution at one frequency;
+* :func:`nonlinear_modes` -- a damped nonlinear mode's frequency and damping
+  against its amplitude (extended periodic motion concept), returning a
+  :class:`NonlinearModes` that synthesises forced responses near the mode;
 * :func:`static_solution` -- the static equilibrium under preloads;
 * ``reduction="exact" | "modal" | "none"`` of those three -- harmonic balance on
   the contact DOFs, the rest of the structure condensed exactly or modally
@@ -38,8 +41,10 @@ from .design import DesignCurve, damper_design_curve
 from .condensation import SingularInteriorError
 from .contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
 from .hbm import HarmonicBalance
+from .nonlinear_modes import NonlinearModes, nonlinear_modes
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
+from .synthesis import SynthesizedResponse
 from .transient import SteadyState, steady_state
 
 __all__ = [
@@ -54,11 +59,13 @@ __all__ = [
     "FrequencyResponse",
     "HarmonicBalance",
     "IncompleteCurveWarning",
+    "NonlinearModes",
     "NotPeriodicError",
     "PlaneAFTResult",
     "SingularInteriorError",
     "StepControl",
     "SteadyState",
+    "SynthesizedResponse",
     "UnderPlatformDamper",
     "UnderResolvedWarning",
     "Structure",
@@ -72,6 +79,7 @@ __all__ = [
     "default_samples",
     "frequency_point",
     "frequency_response",
+    "nonlinear_modes",
     "plot_contact_cycles",
     "static_solution",
     "steady_state",

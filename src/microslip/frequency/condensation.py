@@ -231,9 +231,12 @@ class _Tail:
             self.V = self.lam_c * self._project(self.solve(np.asarray(self.M @ self.V)))
         return np.stack(self.R[:J])
 
-    def add(self, W, derivative: bool):
-        """``[sum_k x x^T / d_k, its W-derivative]`` over the omitted modes, each ``(len(W), p, p)``."""
-        q = W * W - 1j * W * self.a
+    def add(self, W, derivative: bool, xi: float = 0.0, xi_derivative: bool = False):
+        """``[sum_k x x^T / d_k, its W-derivative, its xi-derivative]`` over the omitted modes, each
+        ``(len(W), p, p)`` (the derivatives only when asked for); ``xi`` lowers the mass-proportional
+        damping ``a`` (the extended periodic motion concept's ``-xi M``)."""
+        a = self.a - xi
+        q = W * W - 1j * W * a
         p = 1.0 + 1j * W * self.b
         z = q / (p * self.lam_c)
         rho = float(np.max(np.abs(z)))
@@ -243,10 +246,13 @@ class _Tail:
         R = self._terms(J)
         zj = z[:, None] ** np.arange(J)[None]  # (H, J)
         out = [np.einsum("hj,jab->hab", zj / p[:, None], R)]
+        zjm1 = np.concatenate([np.zeros((W.size, 1), dtype=complex), zj[:, :-1]], axis=1)  # z^(j-1)
         if derivative:
-            dz = ((2 * W - 1j * self.a) * p - q * (1j * self.b)) / (self.lam_c * p * p)
-            zjm1 = np.concatenate([np.zeros((W.size, 1), dtype=complex), zj[:, :-1]], axis=1)  # z^(j-1)
+            dz = ((2 * W - 1j * a) * p - q * (1j * self.b)) / (self.lam_c * p * p)
             dcoef = np.arange(J)[None] * zjm1 * (dz / p)[:, None] - zj * (1j * self.b / (p * p))[:, None]
+            out.append(np.einsum("hj,jab->hab", dcoef, R))
+        if xi_derivative:  # dz/dxi = i W / (p lambda_c)
+            dcoef = np.arange(J)[None] * zjm1 * (1j * W / (self.lam_c * p * p))[:, None]
             out.append(np.einsum("hj,jab->hab", dcoef, R))
         return out
 
@@ -361,46 +367,61 @@ class _SpectralInterior:
         tail = _Tail(lu.solve, M, phi, float(lam[-1]), Bs, *rayleigh)
         return cls(lam, c, phi, psi, rr, Bs.T @ phi, gamma, tail)
 
-    def _factors(self, W):
-        """``(f, f')``, each ``(len(W), blocks)``: the coupling ``G = sum_j f_j X_j`` and ``dG/dW``."""
+    def _factors(self, W, xi: float = 0.0):
+        """``(f, f', f_xi)``, each ``(len(W), blocks)``: the coupling ``G = sum_j f_j X_j``, ``dG/dW`` and
+        ``dG/dxi`` with the damping ``C - xi M``."""
         if self.gamma is not None:
-            return (-W * W + 1j * self.gamma * W)[:, None], (-2 * W + 1j * self.gamma)[:, None]
-        return np.stack([-W * W, 1j * W], axis=1), np.stack([-2 * W, np.full(W.shape, 1j)], axis=1)
+            g = self.gamma - xi
+            return (-W * W + 1j * g * W)[:, None], (-2 * W + 1j * g)[:, None], (-1j * W)[:, None]
+        return (np.stack([-W * W - 1j * xi * W, 1j * W], axis=1), np.stack([-2 * W - 1j * xi, np.full(W.shape, 1j)],
+                                                                            axis=1),
+                np.stack([-1j * W, np.zeros(W.shape)], axis=1))
 
-    def _d(self, W):
-        """The diagonal of ``D`` for each frequency, ``(len(W), modes)``; None when one is singular."""
-        d = self.lam[None] - (W * W)[:, None] + ((1j * W)[:, None] * self.c[None] if self.damped else 0.0)
+    def _d(self, W, xi: float = 0.0):
+        """The diagonal of ``D`` for each frequency, ``(len(W), modes)``, with the damping ``C - xi M``;
+        None when one is singular."""
+        damped = self.damped or xi != 0.0
+        d = self.lam[None] - (W * W)[:, None] + ((1j * W)[:, None] * (self.c - xi)[None] if damped else 0.0)
         if np.any(np.abs(d) <= 1e-14 * np.max(np.abs(d), axis=1, keepdims=True)):
             return None
         return d
 
-    def evaluate(self, hs, omega: float, derivative: bool):
-        """``(S, S')``, each ``(len(hs), m, m)`` complex, for harmonics ``hs`` at ``omega``; None when ``D`` is singular.
+    def evaluate(self, hs, omega: float, derivative: bool, xi: float = 0.0, xi_derivative: bool = False):
+        """``(S, S', S_xi)``, each ``(len(hs), m, m)`` complex, for harmonics ``hs`` at ``omega`` with the damping
+        ``C - xi M`` (``S'``, ``S_xi = dS/dxi`` None unless asked for); None when ``D`` is singular.
 
         Raises :class:`_TooFewModes` when the tail's series would converge too slowly.
         """
         hs = np.asarray(hs, dtype=float)
         W = hs * omega
-        d = self._d(W)
+        d = self._d(W, xi)
         if d is None:
             return None
+        damped = self.damped or xi != 0.0
         u = 1.0 / d
-        weights = [u] if not derivative else [u, (2 * W[:, None] - 1j * self.c[None]) * u * u]  # 1/d, d(1/d)/dW
-        parts = [w.real for w in weights] + ([w.imag for w in weights] if self.damped else [])
+        weights = [u]
+        if derivative:
+            weights.append((2 * W[:, None] - 1j * (self.c - xi)[None]) * u * u)  # d(1/d)/dW
+        if xi_derivative:
+            weights.append(1j * W[:, None] * u * u)  # d(1/d)/dxi
+        parts = [w.real for w in weights] + ([w.imag for w in weights] if damped else [])
         Y = self.products(np.stack(parts, axis=1))  # (H, q, p, p) for the weights (H, q, modes)
         H, k = W.size, len(weights)
-        Yc = Y[:, :k] + (1j * Y[:, k:] if self.damped else 0.0)  # (H, k, p, p): X diag(w) X^T, complex w
+        Yc = Y[:, :k] + (1j * Y[:, k:] if damped else 0.0)  # (H, k, p, p): X diag(w) X^T, complex w
         if self.tail is not None:
-            Yc = Yc + np.stack(self.tail.add(W, derivative), axis=1)
-        f, fp = self._factors(W)
+            Yc = Yc + np.stack(self.tail.add(W, derivative, xi, xi_derivative), axis=1)
+        f, fp, fx = self._factors(W, xi)
         nb, m = f.shape[1], self.m
         Kr, Mr, Cr = self.rr
+        Cr = Cr - xi * Mr
         S = np.empty((H, m, m), dtype=complex)
         S[:] = Kr[None] - (W * W)[:, None, None] * Mr[None] + (1j * W)[:, None, None] * Cr[None]
-        dS = None
+        dS = dSx = None
         if derivative:
             dS = np.empty((H, m, m), dtype=complex)
             dS[:] = -2 * W[:, None, None] * Mr[None] + 1j * Cr[None]
+        if xi_derivative:
+            dSx = -(1j * W)[:, None, None] * Mr[None]
         for j in range(nb):
             for l in range(nb):
                 Bu = Yc[:, 0, j * m:(j + 1) * m, l * m:(l + 1) * m]
@@ -409,22 +430,81 @@ class _SpectralInterior:
                 if derivative:
                     Bd = Yc[:, 1, j * m:(j + 1) * m, l * m:(l + 1) * m]
                     dS -= (fp[:, j] * f[:, l] + f[:, j] * fp[:, l])[:, None, None] * Bu + ff * Bd
+                if xi_derivative:
+                    Bx = Yc[:, k - 1, j * m:(j + 1) * m, l * m:(l + 1) * m]
+                    dSx -= (fx[:, j] * f[:, l] + f[:, j] * fx[:, l])[:, None, None] * Bu + ff * Bx
         if derivative:
             dS *= hs[:, None, None]  # d/domega = h d/dW
-        return S, dS
+        return S, dS, dSx
 
-    def interior(self, W: float, q_r):
-        """Interior amplitudes ``Psi q_r - Phi D^-1 G^T q_r`` at the frequency ``W``; None when ``D`` is singular
-        or only some modes are kept (the interior is then solved by factorisation)."""
+    def interior(self, W: float, q_r, xi: float = 0.0):
+        """Interior amplitudes ``Psi q_r - Phi D^-1 G^T q_r`` at the frequency ``W`` with the damping ``C - xi M``;
+        None when ``D`` is singular or only some modes are kept (the interior is then solved by factorisation)."""
         Wa = np.array([float(W)])
-        d = self._d(Wa)
+        d = self._d(Wa, xi)
         if d is None or self.tail is not None:
             return None
-        f, _ = self._factors(Wa)
+        f = self._factors(Wa, xi)[0]
         m = self.m
         Gq = sum(f[0, j] * (self.X[j * m:(j + 1) * m].T @ q_r) for j in range(f.shape[1]))
         eta = Gq / (d[0] if np.ndim(Gq) == 1 else d[0][:, None])
         return self.psi @ q_r - self.phi @ eta
+
+    def projection(self, W: float, w_i, xi: float = 0.0):
+        """``(g, dg/dW, dg/dxi)``, complex ``(m,)``: ``w_i . q_i = g . q_r`` for the interior amplitudes of
+        :meth:`interior` (damping ``C - xi M``); None when ``D`` is singular.
+
+        ``w_i . q_i = (Psi^T w_i) . q_r - sum_k (G^T q_r)_k (phi_k . w_i) / d_k`` over every mode; with only some
+        modes kept the others' share ``sum_k x_k (phi_k . w_i) / d_k`` is the series of :class:`_Tail` with
+        ``w_i`` as one more column (raises :class:`_TooFewModes` where it would converge too slowly).
+        """
+        Wa = np.array([float(W)])
+        d = self._d(Wa, xi)
+        if d is None:
+            return None
+        u = 1.0 / d[0]
+        e = self.phi.T @ w_i  # the kept modes' share of w_i
+        f, fp, fx = (a[0] for a in self._factors(Wa, xi))
+        c = self.c - xi if (self.damped or xi) else 0.0
+        # X diag(e/d) and its W and xi derivatives: one column per block of G (rows of X)
+        cols = [self.X @ (e * u), self.X @ (e * (2 * W - 1j * c) * u * u), self.X @ (e * (1j * W) * u * u)]
+        if self.tail is not None:
+            p = self.X.shape[0]
+            parts = self._tail_for(w_i).add(Wa, True, xi, True)  # (1, p + 1, p + 1) each: the last column
+            cols = [col + part[0, :p, p] for col, part in zip(cols, parts)]
+        m = self.m
+        block = [[col[j * m:(j + 1) * m] for j in range(f.size)] for col in cols]
+        g = self.psi.T @ w_i - sum(f[j] * block[0][j] for j in range(f.size))
+        gW = -sum(fp[j] * block[0][j] + f[j] * block[1][j] for j in range(f.size))
+        gx = -sum(fx[j] * block[0][j] + f[j] * block[2][j] for j in range(f.size))
+        return g, gW, gx
+
+    def _tail_for(self, w_i) -> _Tail:
+        """The series of the omitted modes with ``w_i`` as one more coupling column (kept for the last ``w_i``)."""
+        key = w_i.tobytes()
+        if getattr(self, "_weighted", (None,))[0] != key:
+            t = self.tail
+            self._weighted = (key, _Tail(t.solve, t.M, t.phi, t.lam_c, np.column_stack([t.Bs, w_i]), t.a, t.b))
+        return self._weighted[1]
+
+
+def _key(W: float, xi: float = 0.0):
+    """``(W^2 + i W xi, W)``: the factor of ``M`` and of ``i C`` in ``Z = K - W^2 M + i W (C - xi M)``."""
+    return (W * W + 1j * W * xi if xi else W * W), W
+
+
+def _schur_derivative(blocks, a, b, W, V):
+    """The derivative of the Schur complement ``S`` along ``Z' = a M + b C`` (complex, ``(m, m)``).
+
+    ``S' = Z'_rr - Z'_ri W - V^T Z'_ir + V^T Z'_ii W`` with ``W = Z_ii^-1 Z_ir`` and
+    ``V^T = Z_ri Z_ii^-1`` (None when there is no interior).
+    """
+    bM, bC, _ = blocks
+    dS = np.array(a * bM[0] + b * bC[0], dtype=complex)
+    if W is not None:
+        dZii_W = a * (bM[3] @ W) + (b * (bC[3] @ W) if b else 0.0)
+        dS = dS - (a * bM[1] + b * bC[1]) @ W - V.T @ (a * bM[2] + b * bC[2]) + V.T @ dZii_W
+    return dS
 
 
 class Condensation:
@@ -467,6 +547,7 @@ class Condensation:
         self._damped = harmonic_matrices is not None or (np.any(C.data) if sp.issparse(C) else np.any(C))
         self._cache = (None, None, None)
         self._static = None
+        self._static_factor = None  # the static interior's factorisation, for recovery
 
     def _blocks(self, h: int):
         """``(M, C, K)`` of harmonic ``h``, each split into ``(rr, ri, ir, ii)`` blocks (computed once)."""
@@ -517,17 +598,18 @@ class Condensation:
             spectral = _SpectralInterior.full(blocks)
         return spectral
 
-    def _spectral_evaluate(self, spectral, h: int, hs, omega: float, derivative: bool):
+    def _spectral_evaluate(self, spectral, h: int, hs, omega: float, derivative: bool, xi: float = 0.0,
+                           xi_derivative: bool = False):
         """``spectral.evaluate``, computing more modes when the series would converge too slowly (None: factorise)."""
         try:
-            return spectral.evaluate(hs, omega, derivative)
+            return spectral.evaluate(hs, omega, derivative, xi, xi_derivative)
         except _TooFewModes as more:
             k = h if self._per_harmonic else 0
             self._spectral[k] = spectral = self._build_spectral(h, more.needed)
             if spectral is None:
                 return None
             try:
-                return spectral.evaluate(hs, omega, derivative)
+                return spectral.evaluate(hs, omega, derivative, xi, xi_derivative)
             except _TooFewModes:
                 return None
 
@@ -560,7 +642,8 @@ class Condensation:
 
         return real_factor
 
-    def harmonic(self, h: int, omega: float, *, derivative: bool = True):
+    def harmonic(self, h: int, omega: float, *, derivative: bool = True, xi: float = 0.0,
+                 xi_derivative: bool = False):
         """``(S, S')``: the condensed complex dynamic stiffness of harmonic ``h`` and its ``omega``-derivative.
 
         Parameters
@@ -571,11 +654,19 @@ class Condensation:
             Excitation frequency (rad/s).
         derivative : bool
             Also compute ``dS/domega``.
+        xi : float, default 0
+            A mass-proportional damping ``-xi M`` (1/s) added to ``C``: the
+            structure condensed is ``M, C - xi M, K`` (the extended periodic
+            motion concept's negative damping).
+        xi_derivative : bool, default False
+            Also return ``dS/dxi``.
 
         Returns
         -------
         S, dS : ndarray, shape (m, m), complex
             N/m and N s/m (``dS`` is None without ``derivative``).
+        dS_xi : ndarray, shape (m, m), complex
+            ``dS/dxi`` (N s/m); a third value, only with ``xi_derivative``.
 
         Raises
         ------
@@ -585,13 +676,15 @@ class Condensation:
             damping, or a part moves freely when they are held).
         """
         W_omega = h * omega
-        key = (W_omega * W_omega, W_omega)
+        key = _key(W_omega, xi)
         blocks = self._blocks(h)
         Zrr, Zri, Zir = (self._z(blocks, key, k) for k in range(3))
         spectral = self._spectral_for(h, omega) if self.interior.size else None
-        result = self._spectral_evaluate(spectral, h, [h], omega, derivative) if spectral is not None else None
+        result = self._spectral_evaluate(spectral, h, [h], omega, derivative, xi, xi_derivative) \
+            if spectral is not None else None
         if result is not None:
-            return result[0][0], (None if result[1] is None else result[1][0])
+            out = tuple(None if r is None else r[0] for r in result)
+            return out if xi_derivative else out[:2]
         if self.interior.size == 0:
             S = np.array(Zrr, dtype=complex)
             W = V = None
@@ -606,72 +699,126 @@ class Condensation:
             W = solve(np.asarray(Zir))  # real when the harmonic is static or undamped
             V = W if self._symmetric else solve(np.asarray(Zri).T.copy(), "T")
             S = np.array(Zrr - Zri @ W, dtype=complex)
-        if not derivative:
-            return S, None
-        bM, bC, _ = blocks
-        a, b = -2.0 * h * h * omega, 1j * h  # Z' = a M + b C
-        dS = np.array(a * bM[0] + b * bC[0], dtype=complex)
-        if W is not None:
-            dZii_W = a * (bM[3] @ W) + b * (bC[3] @ W)
-            dS = dS - (a * bM[1] + b * bC[1]) @ W - V.T @ (a * bM[2] + b * bC[2]) + V.T @ dZii_W
-        return S, dS
+        # Z' = a M + b C: dZ/domega with a = -2 h^2 omega - i h xi, b = i h; dZ/dxi with a = -i h omega, b = 0
+        dS = _schur_derivative(blocks, -2.0 * h * h * omega - 1j * h * xi, 1j * h, W, V) if derivative else None
+        if not xi_derivative:
+            return S, dS
+        return S, dS, _schur_derivative(blocks, -1j * W_omega, 0.0, W, V)
 
-    def interior_response(self, h: int, omega: float, q_r) -> np.ndarray:
-        """Complex amplitudes of the interior DOFs ``(ni, k)`` from those of the retained ones ``(m, k)`` (m)."""
+    def interior_response(self, h: int, omega: float, q_r, xi: float = 0.0) -> np.ndarray:
+        """Complex amplitudes of the interior DOFs ``(ni, k)`` from those of the retained ones ``(m, k)`` (m),
+        with the damping ``C - xi M``."""
         if self.interior.size == 0:
             return np.zeros((0,) + np.shape(q_r)[1:], dtype=complex)
         W_omega = h * omega
-        key = (W_omega * W_omega, W_omega)
+        key = _key(W_omega, xi)
         blocks = self._blocks(h)
         spectral = self._spectral.get(h if self._per_harmonic else 0)
-        q_i = spectral.interior(W_omega, np.asarray(q_r)) if spectral is not None else None
+        q_i = spectral.interior(W_omega, np.asarray(q_r), xi) if spectral is not None else None
         if q_i is not None:
             return np.asarray(q_i, dtype=complex)
-        solve = self._factor(self._zii(h, blocks, key))
+        if W_omega == 0.0:  # the static interior does not change: factorised once
+            if self._static_factor is None:
+                self._static_factor = self._factor(self._zii(h, blocks, key))
+            solve = self._static_factor
+        else:
+            solve = self._factor(self._zii(h, blocks, key))
         if solve is None:
             raise SingularInteriorError(f"the held structure is singular at harmonic {h} ({W_omega:.6g} rad/s)")
         return -np.asarray(solve(np.asarray(self._z(blocks, key, 2) @ q_r)), dtype=complex)
 
-    def _harmonics(self, omega: float, H: int):
-        """``[(S_h, S'_h) for h = 1..H]``: all at once through the spectral interior once it applies."""
-        spectral = self._spectral_for(1, omega) if self.interior.size and not self._per_harmonic else None
-        result = self._spectral_evaluate(spectral, 1, np.arange(1, H + 1), omega, True) if spectral is not None \
-            else None
+    def projection(self, w, omega: float, xi: float = 0.0):
+        """A linear functional of every DOF's first harmonic as one of the retained DOFs'.
+
+        Parameters
+        ----------
+        w : array_like, shape (ndof,)
+            Weights of every DOF (e.g. ``M phi``, a mode's modal coordinate).
+        omega : float
+            Frequency of the first harmonic (rad/s).
+        xi : float, default 0
+            Mass-proportional damping removed from ``C`` (1/s), as in :meth:`harmonic`.
+
+        Returns
+        -------
+        g, g_omega, g_xi : ndarray, shape (m,), complex
+            ``w . z = g . z_r`` for the complex amplitudes ``z`` of every DOF
+            recovered from those of the retained DOFs ``z_r`` at ``(omega, xi)``
+            (:meth:`interior_response`), and the derivatives of ``g`` in
+            ``omega`` and ``xi``.
+        """
+        w = np.asarray(w, dtype=float)
+        w_r, w_i = w[self.retained].astype(complex), w[self.interior]
+        zero = np.zeros(self.m, dtype=complex)
+        if not np.any(w_i):
+            return w_r, zero, zero.copy()
+        spectral = self._spectral.get(1 if self._per_harmonic else 0)
+        try:
+            result = spectral.projection(omega, w_i, xi) if spectral is not None else None
+        except _TooFewModes:  # the omitted modes' series would converge too slowly here: factorised
+            result = None
         if result is not None:
-            return list(zip(*result))
-        return [self.harmonic(h, omega) for h in range(1, H + 1)]
+            return w_r + result[0], result[1], result[2]
+        # w_i . q_i = -u^T Z_ir q_r with u = Z_ii^-T w_i; d/dtheta: -u^T Z_ir' + v^T Z_ir, v = Z_ii^-T Z_ii'^T u
+        blocks = self._blocks(1)
+        key = _key(omega, xi)
+        solve = self._factor(self._zii(1, blocks, key))
+        if solve is None:
+            raise SingularInteriorError(f"the held structure is singular at harmonic 1 ({omega:.6g} rad/s)")
+        Zir = self._z(blocks, key, 2)
+        u = solve(w_i.astype(complex), "T")
+        bM, bC, _ = blocks
+        out = [w_r - Zir.T @ u]
+        for a, b in ((-2.0 * omega - 1j * xi, 1j), (-1j * omega, 0.0)):  # Z' = a M + b C: d/domega, d/dxi
+            dZii_u = a * (bM[3].T @ u) + (b * (bC[3].T @ u) if b else 0.0)
+            v = solve(np.asarray(dZii_u, dtype=complex), "T")
+            out.append(-(a * bM[2] + b * bC[2]).T @ u + Zir.T @ v)
+        return tuple(out)
+
+    def _harmonics(self, omega: float, H: int, xi: float = 0.0, xi_derivative: bool = False):
+        """``[(S_h, S'_h[, dS_h/dxi]) for h = 1..H]``: all at once through the spectral interior once it applies."""
+        spectral = self._spectral_for(1, omega) if self.interior.size and not self._per_harmonic else None
+        result = self._spectral_evaluate(spectral, 1, np.arange(1, H + 1), omega, True, xi, xi_derivative) \
+            if spectral is not None else None
+        if result is not None:
+            return list(zip(*(result if xi_derivative else result[:2])))
+        return [self.harmonic(h, omega, xi=xi, xi_derivative=xi_derivative) for h in range(1, H + 1)]
 
     # -- the real harmonic-balance operator --------------------------------------------
-    def operator(self, omega: float, H: int):
+    def operator(self, omega: float, H: int, xi: float | None = None):
         """Real block-diagonal ``Z(omega)`` and ``dZ/domega``, shape ``((2H+1) m, (2H+1) m)`` (N/m, N s/m).
 
         Harmonic-major layout ``[c0 (m), a1 (m), b1 (m), ..., bH (m)]``, the
         layout of :class:`~microslip.frequency.hbm.HarmonicBalance`. Both are
         computed together and cached for the last ``(omega, H)`` (a Newton
         step asks for the one, then the other); the static block, which does
-        not depend on ``omega``, is computed once.
+        not depend on ``omega``, is computed once. With ``xi`` (1/s) the
+        damping is ``C - xi M`` and a third operator, ``dZ/dxi`` (N s/m), is
+        returned too.
         """
-        if self._cache[0] == (omega, H):
-            return self._cache[1], self._cache[2]
+        key = (omega, H, xi)
+        if self._cache[0] == key:
+            return self._cache[1:] if xi is not None else self._cache[1:3]
         m = self.m
         n = (2 * H + 1) * m
-        Z = np.zeros((n, n))
-        dZ = np.zeros((n, n))
+        blocks = [np.zeros((n, n)) for _ in range(2 if xi is None else 3)]
         if self._static is None:
             self._static = self.harmonic(0, 0.0, derivative=False)[0].real
-        Z[:m, :m] = self._static
-        for h, (S, dS) in enumerate(self._harmonics(omega, H), start=1):
+        blocks[0][:m, :m] = self._static
+        parts = self._harmonics(omega, H) if xi is None else self._harmonics(omega, H, xi, True)
+        for h, matrices in enumerate(parts, start=1):
             a = slice((2 * h - 1) * m, 2 * h * m)
             b = slice(2 * h * m, (2 * h + 1) * m)
-            for target, M in ((Z, S), (dZ, dS)):
+            for target, M in zip(blocks, matrices):
                 target[a, a] = target[b, b] = M.real
                 target[a, b] = M.imag
                 target[b, a] = -M.imag
-        self._cache = ((omega, H), Z, dZ)
-        return Z, dZ
+        self._cache = (key, *blocks)
+        return tuple(blocks)
 
-    def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
-        """Every DOF's real coefficients ``(2H+1, ndof)`` (m) from the retained ones ``(2H+1, m)``."""
+    def recover(self, coefficients, omega: float, H: int, xi: float = 0.0) -> np.ndarray:
+        """Every DOF's real coefficients ``(2H+1, ndof)`` (m) from the retained ones ``(2H+1, m)`` (damping
+        ``C - xi M``)."""
         coefficients = np.asarray(coefficients, dtype=float)
         ndof = self.m + self.interior.size
         out = np.zeros((2 * H + 1, ndof))
@@ -681,7 +828,7 @@ class Condensation:
         out[0, self.interior] = self.interior_response(0, omega, coefficients[0]).real
         for h in range(1, H + 1):
             z = coefficients[2 * h - 1] - 1j * coefficients[2 * h]
-            zi = self.interior_response(h, omega, z)
+            zi = self.interior_response(h, omega, z, xi)
             out[2 * h - 1, self.interior] = zi.real
             out[2 * h, self.interior] = -zi.imag
         return out

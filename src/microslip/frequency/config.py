@@ -65,6 +65,14 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # ds_max = 0.05
     # max_angle = 0.1
 
+    # [modes]                           # microslip modes: a nonlinear mode (extended periodic motion concept)
+    # mode = 1                          # the linear mode, contacts stuck, it starts from (1: the lowest)
+    # amplitude = [1e-8, 1e-4]          # its modal amplitude range, kg^1/2 m (a = sqrt(m) x for a rigid mass m)
+    # dof = "x"                         # the DOF whose amplitude the plots also show (default: the first plotted)
+    # compare = true                    # also solve [excitation]'s forced response over [sweep] by harmonic
+                                        # balance and compare it with the one synthesised from the mode
+                                        # ([excitation] and [sweep] omega are optional for microslip modes)
+
     # [design]                          # microslip design: the damper's peak-response curve
     # loads = ["3N", "20N", "300N"]     # centrifugal loads of the (one) damper: from sliding to stuck
     # dof = 2                           # the DOF whose peak is read
@@ -104,7 +112,8 @@ _CONTROL_KEYS = {f.name for f in fields(StepControl)}
 #: the keys each table accepts
 KEYS = {
     "the file": ("title", "structure", "cyclic", "contact", "damper", "excitation", "sweep", "design", "continuation",
-                 "output"),
+                 "output", "modes"),
+    "[modes]": ("mode", "amplitude", "dof", "compare"),
     "[cyclic]": ("sectors", "left", "right", "engine_order"),
     "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
     "[[damper.interface]]": ("model", "points", "angle", "platform", "name"),
@@ -144,6 +153,17 @@ class FrfConfig:
     dampers: list = field(default_factory=list)
     design_loads: np.ndarray | None = None
     design_dof: int | None = None
+    nonlinear_mode: ModesTable | None = None
+
+
+@dataclass
+class ModesTable:
+    """The ``[modes]`` table of ``microslip modes`` (SI units)."""
+
+    mode: int = 1
+    amplitude: tuple[float, float] = (1e-8, 1e-4)
+    dof: int = 0
+    compare: bool = True
 
 
 def _known(table: dict, where: str, path) -> None:
@@ -199,10 +219,10 @@ def _dof_names(value, ndof: int, path) -> list[str]:
     return list(value)
 
 
-def _plot_dofs(value, names: list[str], path) -> list[int]:
-    """``[output] plot``: DOF indices or names, as indices."""
+def _plot_dofs(value, names: list[str], path, where: str = "[output] plot") -> list[int]:
+    """``[output] plot`` (or ``where``): DOF indices or names, as indices."""
     if not isinstance(value, list):
-        raise ConfigError(f"{path}: [output] plot must be a list of DOFs (indices or names), got {value!r}")
+        raise ConfigError(f"{path}: {where} must be a list of DOFs (indices or names), got {value!r}")
     out = []
     for d in value:
         if isinstance(d, str) and d in names:
@@ -210,9 +230,9 @@ def _plot_dofs(value, names: list[str], path) -> list[int]:
         elif isinstance(d, int) and not isinstance(d, bool) and 0 <= d < len(names):
             out.append(d)
         elif isinstance(d, int) and not isinstance(d, bool):
-            raise ConfigError(f"{path}: [output] plot names DOF {d}; the structure has {len(names)}")
+            raise ConfigError(f"{path}: {where} names DOF {d}; the structure has {len(names)}")
         else:
-            raise ConfigError(f"{path}: [output] plot: {d!r} is not a DOF{_close(str(d), names)} (an index "
+            raise ConfigError(f"{path}: {where}: {d!r} is not a DOF{_close(str(d), names)} (an index "
                               f"from 0 to {len(names) - 1}, or one of the names {', '.join(names[:8])}"
                               f"{', ...' if len(names) > 8 else ''})")
     return out
@@ -296,8 +316,11 @@ def _direction(value, what: str, path):
     return value
 
 
-def load_config(path) -> FrfConfig:
+def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
     """Read and check a ``microslip frf`` configuration file.
+
+    With ``nonlinear`` (``microslip modes``) the ``[modes]`` table is required and
+    ``[excitation]`` and the range of ``[sweep]`` are optional.
 
     Raises
     ------
@@ -388,7 +411,7 @@ def load_config(path) -> FrfConfig:
     names = names + [f"damper{k} {axis}" for k in range(len(dampers)) for axis in ("X", "Y", "R")]
 
     # -- excitation ----------------------------------------------------------------------
-    ex = _get(data, "excitation", "the file", path)
+    ex = data.get("excitation", {}) if nonlinear else _get(data, "excitation", "the file", path)
     if not isinstance(ex, dict):
         raise ConfigError(f"{path}: [excitation] must be a table, got {ex!r}")
     force = {}
@@ -417,13 +440,15 @@ def load_config(path) -> FrfConfig:
             raise ConfigError(f"{path}: [excitation] {key} has no amplitude {key[6:]!r}")
 
     # -- sweep ---------------------------------------------------------------------------
-    sw = _table(_get(data, "sweep", "the file", path), "[sweep]", path)
-    if ("omega" in sw) == ("frequency" in sw):
+    sw = _table(data.get("sweep", {}) if nonlinear else _get(data, "sweep", "the file", path), "[sweep]", path)
+    if "omega" in sw and "frequency" in sw or not (nonlinear or "omega" in sw or "frequency" in sw):
         raise ConfigError(f"{path}: [sweep] needs exactly one of omega (rad/s) or frequency (Hz)")
     if "omega" in sw:
         omega = _frequency_range(sw["omega"], "[sweep] omega", path, "rad/s")
-    else:
+    elif "frequency" in sw:
         omega = _frequency_range(sw["frequency"], "[sweep] frequency", path, "Hz")
+    else:
+        omega = None
     harmonics = _checked(path, "", check_harmonics, sw.get("harmonics", 5), name="[sweep] harmonics")
     for h in force:
         if h > harmonics:
@@ -469,9 +494,38 @@ def load_config(path) -> FrfConfig:
                               minimum=0)
         if design_dof >= ndof:
             raise ConfigError(f"{path}: [design] dof names DOF {design_dof}; the structure has {ndof}")
+    mode_table = None
+    if nonlinear:
+        mode_table = _modes_table(_table(_get(data, "modes", "the file", path), "[modes]", path), names[:ndof],
+                                  plot_dofs, path)
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
-                     design_loads, design_dof)
+                     design_loads, design_dof, mode_table)
+
+
+def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> ModesTable:
+    """``[modes]`` checked: the mode, its amplitude range, the DOF shown, whether to compare."""
+    out = ModesTable(dof=plot_dofs[0] if plot_dofs else 0)
+    if "mode" in table:
+        out.mode = _checked(path, "", _checks.positive_int, "[modes] mode", table["mode"])
+        if out.mode > len(names):
+            raise ConfigError(f"{path}: [modes] mode must be at most the number of DOFs ({len(names)}), got "
+                              f"{out.mode}")
+    if "amplitude" in table:
+        value = table["amplitude"]
+        if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+            raise ConfigError(f"{path}: [modes] amplitude must be a list [start, end] of modal amplitudes "
+                              f"(kg^1/2 m), got {value!r}")
+        lo, hi = (_checked(path, "", _checks.positive_scalar, f"[modes] amplitude[{i}]", v)
+                  for i, v in enumerate(value))
+        if not lo < hi:
+            raise ConfigError(f"{path}: [modes] amplitude must rise from start to end, got {lo!r} >= {hi!r}")
+        out.amplitude = (lo, hi)
+    if "dof" in table:
+        out.dof = _plot_dofs([table["dof"]], names, path, "[modes] dof")[0]
+    if "compare" in table:
+        out.compare = _checked(path, "", _checks.flag, "[modes] compare", table["compare"])
+    return out
 
 
 def _cyclic(table: dict, structure: Structure, path):

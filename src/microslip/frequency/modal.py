@@ -106,21 +106,53 @@ class ModalCondensation:
         self.flex_full = flex  # (ndof, m): the shifted static flexibility, for recovery
         # the omitted modes' damping, the series sum_k (-i Omega)^k [F (C F)^k - kept modes' share]: under
         # stiffness-proportional damping it grows with their frequency and does not fade as modes are added
-        self.damping_terms = []  # (F (C F)^k E, (ndof, m); (L - s)^-1 (Cm (L - s)^-1)^k, (modes, modes); R_k, (m, m))
-        full, kept = flex, np.diag(1.0 / (lam - s))
-        for _ in range(DAMPING_ORDER if (C.count_nonzero() if sp.issparse(C) else np.any(C)) else 0):
-            full, kept = solve(np.asarray(C @ full)), (kept @ self.modal_damping) / (lam - s)
-            self.damping_terms.append((full, kept, full[self.retained] - self.phi_r @ kept @ self.phi_r.T))
+        # with a mass-proportional damping -xi M (:meth:`harmonic`'s xi) the series is that of C - xi M: its terms
+        # are the words in C and M of each order (computed when first needed), the k M's weighing (-xi)^k
+        self._solve, self._matrices = solve, {"C": C, "M": M}
+        self._modal = {"C": self.modal_damping, "M": np.eye(modes)}
+        self._words = {}  # word -> (F X1 F X2 ... F E, (ndof, m); its kept modes' share, (modes, modes); R, (m, m))
+        self.has_damping = bool(C.count_nonzero() if sp.issparse(C) else np.any(C))
+        self.damping_terms = [self._word("C" * k) for k in range(1, DAMPING_ORDER + 1)] if self.has_damping else []
         self.static = Condensation(M, C, K, self.retained)  # exact for h = 0
         self._cache = (None, None, None)
         self._static = None
 
-    def _dynamic(self, Omega: float, h: int, omega: float, derivative: bool):
-        """Modal part: ``D^-1`` and, with ``derivative``, ``D' `` (modes x modes, complex)."""
-        D = np.diag(self.eigenvalues - Omega * Omega).astype(complex) + (1j * Omega) * self.modal_damping
+    def _word(self, word: str):
+        """``(F X1 F X2 ... F E, (L - s)^-1 X1m (L - s)^-1 ..., R)`` of a word ``X1 X2 ...`` in ``C`` and ``M``."""
+        if word not in self._words:
+            if word:
+                full, kept, _ = self._word(word[1:])
+                full = self._solve(np.asarray(self._matrices[word[0]] @ full))
+                kept = (self._modal[word[0]] @ kept) / (self.eigenvalues - self.shift)[:, None]
+            else:
+                full, kept = self.flex_full, np.diag(1.0 / (self.eigenvalues - self.shift))
+            self._words[word] = (full, kept, full[self.retained] - self.phi_r @ kept @ self.phi_r.T)
+        return self._words[word]
+
+    def _series(self, xi: float, order: int = 0):
+        """``[(k, coefficient, word)]``: the omitted modes' damping terms of ``C - xi M`` (or of their
+        ``order``-th derivative in ``xi``, 0 or 1), each ``(-i Omega)^k coefficient R_word``."""
+        out = [(k, 1.0, "C" * k) for k in range(1, len(self.damping_terms) + 1)] if order == 0 else []
+        if not (xi or order):
+            return out
+        for k in range(1, DAMPING_ORDER + 1):
+            for bits in range(1, 2 ** k):  # the words with at least one M
+                word = "".join("M" if bits >> j & 1 else "C" for j in range(k))
+                masses = word.count("M")
+                if "C" in word and not self.has_damping or masses < order:
+                    continue
+                coef = (-xi) ** masses if order == 0 else -masses * (-xi) ** (masses - 1)
+                if coef:
+                    out.append((k, coef, word))
+        return out
+
+    def _dynamic(self, Omega: float, h: int, omega: float, derivative: bool, xi: float = 0.0):
+        """Modal part: ``D`` and, with ``derivative``, ``D'`` (modes x modes, complex), damping ``C - xi M``."""
+        damping = self.modal_damping - xi * np.eye(self.modes)
+        D = np.diag(self.eigenvalues - Omega * Omega).astype(complex) + (1j * Omega) * damping
         dD = None
         if derivative:
-            dD = np.diag(np.full(self.modes, -2.0 * h * h * omega)).astype(complex) + (1j * h) * self.modal_damping
+            dD = np.diag(np.full(self.modes, -2.0 * h * h * omega)).astype(complex) + (1j * h) * damping
         return D, dD
 
     @staticmethod
@@ -132,92 +164,143 @@ class ModalCondensation:
             raise SingularInteriorError(f"the modal receptance of the retained DOFs is singular at {where}; "
                                         f"keep more modes") from None
 
-    def _omitted(self, hs, omega: float, derivative: bool):
-        """The omitted modes' damping in the receptance of harmonics ``hs`` and its derivative in ``omega``.
+    def _omitted(self, hs, omega: float, derivative: bool, xi: float = 0.0, xi_derivative: bool = False):
+        """The omitted modes' damping in the receptance of harmonics ``hs`` and its derivatives.
 
-        ``sum_k (-i h omega)^k R_k`` and ``sum_k k (-i h) (-i h omega)^(k-1) R_k``, each
-        ``(len(hs), m, m)`` complex (m/N, m s/N); zeros without damping.
+        ``sum_k (-i h omega)^k R_k``, ``sum_k k (-i h) (-i h omega)^(k-1) R_k`` (in
+        ``omega``) and, with ``xi_derivative``, the derivative in ``xi``, each
+        ``(len(hs), m, m)`` complex (m/N, m s/N); ``R_k`` those of ``C - xi M``
+        (:meth:`_series`); zeros without damping.
         """
         m = self.phi_r.shape[0]
         extra = np.zeros((hs.size, m, m), dtype=complex)
         dextra = np.zeros_like(extra) if derivative else None
         z = -1j * hs * omega
-        for k, (_, _, R) in enumerate(self.damping_terms, 1):
+        for k, coef, word in self._series(xi):
+            R = coef * self._word(word)[2]
             extra += (z ** k)[:, None, None] * R
             if derivative:
                 dextra += (k * (-1j * hs) * z ** (k - 1))[:, None, None] * R
-        return extra, dextra
+        if not xi_derivative:
+            return extra, dextra
+        xextra = np.zeros_like(extra)
+        for k, coef, word in self._series(xi, 1):
+            xextra += (coef * z ** k)[:, None, None] * self._word(word)[2]
+        return extra, dextra, xextra
 
-    def _diagonal(self, hs, omega: float, derivative: bool):
-        """``(S, S')``, each ``(len(hs), m, m)``, for harmonics ``hs >= 1`` when the modal damping is diagonal."""
+    def _diagonal(self, hs, omega: float, derivative: bool, xi: float = 0.0, xi_derivative: bool = False):
+        """``(S, S'[, dS/dxi])``, each ``(len(hs), m, m)``, for harmonics ``hs >= 1`` when the modal damping is
+        diagonal (damping ``C - xi M``)."""
         hs = np.asarray(hs, dtype=float)
         W = hs * omega
-        d = self.eigenvalues[None] - (W * W)[:, None] + (1j * W)[:, None] * self._damping[None]
+        damping = self._damping - xi
+        d = self.eigenvalues[None] - (W * W)[:, None] + (1j * W)[:, None] * damping[None]
         if np.any(np.abs(d) <= 1e-14 * np.max(np.abs(d), axis=1, keepdims=True)):
             h = int(hs[np.argmin(np.min(np.abs(d), axis=1))])
             raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
                                         f"({h * omega:.6g} rad/s); add damping")
         u = 1.0 / d
-        weights = [u] if not derivative else [u, ((-2.0 * hs * hs * omega)[:, None]
-                                                   + (1j * hs)[:, None] * self._damping[None]) * u * u]  # D'/D^2
+        weights = [u]
+        if derivative:  # D'/D^2
+            weights.append(((-2.0 * hs * hs * omega)[:, None] + (1j * hs)[:, None] * damping[None]) * u * u)
+        if xi_derivative:  # D_xi/D^2
+            weights.append(-1j * W[:, None] * u * u)
         Y = self._products(np.stack([w.real for w in weights] + [w.imag for w in weights], axis=1))
         k = len(weights)
-        extra, dextra = self._omitted(hs, omega, derivative)
-        S = self._stiffness(Y[:, 0] + 1j * Y[:, k] + self.residual + extra, f"a harmonic of {omega:.6g} rad/s")
-        if not derivative:
-            return S, None
-        dG = -(Y[:, 1] + 1j * Y[:, k + 1]) + dextra
-        return S, -S @ dG @ S
+        extra = self._omitted(hs, omega, derivative, xi, xi_derivative)
+        S = self._stiffness(Y[:, 0] + 1j * Y[:, k] + self.residual + extra[0], f"a harmonic of {omega:.6g} rad/s")
+        out = [S, None]
+        if derivative:
+            out[1] = -S @ (-(Y[:, 1] + 1j * Y[:, k + 1]) + extra[1]) @ S
+        if xi_derivative:
+            out.append(-S @ (-(Y[:, k - 1] + 1j * Y[:, 2 * k - 1]) + extra[2]) @ S)
+        return tuple(out)
 
-    def harmonic(self, h: int, omega: float, *, derivative: bool = True):
-        """``(S, S')`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as :meth:`Condensation.harmonic`."""
+    def harmonic(self, h: int, omega: float, *, derivative: bool = True, xi: float = 0.0,
+                 xi_derivative: bool = False):
+        """``(S, S'[, dS/dxi])`` of harmonic ``h`` (complex, ``(m, m)``; N/m, N s/m), as
+        :meth:`Condensation.harmonic`."""
         if h == 0:
             S, _ = self.static.harmonic(0, omega, derivative=False)
-            return S, (np.zeros_like(S) if derivative else None)
+            zero = np.zeros_like(S)
+            return (S, zero if derivative else None) + ((zero,) if xi_derivative else ())
         if self._damping is not None:
-            S, dS = self._diagonal([h], omega, derivative)
-            return S[0], (None if dS is None else dS[0])
+            return tuple(None if r is None else r[0] for r in self._diagonal([h], omega, derivative, xi,
+                                                                              xi_derivative))
         Omega = h * omega
-        D, dD = self._dynamic(Omega, h, omega, derivative)
+        D, dD = self._dynamic(Omega, h, omega, derivative, xi)
         try:
             Y = np.linalg.solve(D, self.phi_r.T.astype(complex))  # D^-1 Phi_r^T, (modes, m)
         except np.linalg.LinAlgError:
             raise SingularInteriorError(f"an undamped kept mode resonates exactly at harmonic {h} "
                                         f"({Omega:.6g} rad/s); add damping") from None
-        extra, dextra = self._omitted(np.array([float(h)]), omega, derivative)
-        S = self._stiffness(self.phi_r @ Y + self.residual + extra[0], f"harmonic {h} ({Omega:.6g} rad/s)")
-        if not derivative:
-            return S, None
+        extra = self._omitted(np.array([float(h)]), omega, derivative, xi, xi_derivative)
+        S = self._stiffness(self.phi_r @ Y + self.residual + extra[0][0], f"harmonic {h} ({Omega:.6g} rad/s)")
+        out = [S, None]
         # G' = -Phi_r D^-1 D' D^-1 Phi_r^T ;  S' = -S G' S
-        Yt = np.linalg.solve(D.T, self.phi_r.T.astype(complex))
-        dG = -(Yt.T @ dD @ Y) + dextra[0]
-        return S, -S @ dG @ S
+        Yt = np.linalg.solve(D.T, self.phi_r.T.astype(complex)) if derivative or xi_derivative else None
+        if derivative:
+            out[1] = -S @ (-(Yt.T @ dD @ Y) + extra[1][0]) @ S
+        if xi_derivative:  # D_xi = -i Omega I
+            out.append(-S @ ((1j * Omega) * (Yt.T @ Y) + extra[2][0]) @ S)
+        return tuple(out)
 
     operator = Condensation.operator
 
-    def _harmonics(self, omega: float, H: int):
-        """``[(S_h, S'_h) for h = 1..H]`` (for :meth:`operator`)."""
+    def _harmonics(self, omega: float, H: int, xi: float = 0.0, xi_derivative: bool = False):
+        """``[(S_h, S'_h[, dS_h/dxi]) for h = 1..H]`` (for :meth:`operator`)."""
         if self._damping is not None:
-            return list(zip(*self._diagonal(np.arange(1, H + 1), omega, True)))
-        return [self.harmonic(h, omega) for h in range(1, H + 1)]
+            return list(zip(*self._diagonal(np.arange(1, H + 1), omega, True, xi, xi_derivative)))
+        return [self.harmonic(h, omega, xi=xi, xi_derivative=xi_derivative) for h in range(1, H + 1)]
 
-    def recover(self, coefficients, omega: float, H: int) -> np.ndarray:
+    def _receptance_row(self, w, h: int, omega: float, xi: float):
+        """``c`` with ``w . q = c . f`` for the response ``q`` (every DOF) to forces ``f`` on the retained DOFs at
+        harmonic ``h`` (complex, ``(m,)``), and its derivatives in ``omega`` and ``xi``."""
+        e = self.phi.T @ w
+        D, dD = self._dynamic(h * omega, h, omega, True, xi)
+        eD = np.linalg.solve(D.T, e.astype(complex))  # D^-T e
+        c = eD @ self.phi_r.T + w @ self.flex_full - (e / (self.eigenvalues - self.shift)) @ self.phi_r.T
+        dc = -(eD @ dD @ np.linalg.solve(D, self.phi_r.T.astype(complex)))
+        dx = (1j * h * omega) * (eD @ np.linalg.solve(D, self.phi_r.T.astype(complex)))
+        z = -1j * h * omega
+        for series, order in ((self._series(xi), 0), (self._series(xi, 1), 1)):
+            for k, coef, word in series:
+                full, kept, _ = self._word(word)
+                term = coef * (w @ full - (e @ kept) @ self.phi_r.T)
+                if order:
+                    dx = dx + z ** k * term
+                else:
+                    c = c + z ** k * term
+                    dc = dc + k * (-1j * h) * z ** (k - 1) * term
+        return c, dc, dx
+
+    def projection(self, w, omega: float, xi: float = 0.0):
+        """``(g, g_omega, g_xi)``, complex ``(m,)``: ``w . z = g . z_r`` for every DOF's first harmonic recovered
+        from the retained DOFs' (:meth:`recover`), as :meth:`Condensation.projection`."""
+        w = np.asarray(w, dtype=float)
+        S, dS, xS = self.harmonic(1, omega, xi=xi, xi_derivative=True)
+        c, dc, xc = self._receptance_row(w, 1, omega, xi)
+        return S.T @ c, dS.T @ c + S.T @ dc, xS.T @ c + S.T @ xc
+
+    def recover(self, coefficients, omega: float, H: int, xi: float = 0.0) -> np.ndarray:
         """Every DOF's real coefficients ``(2H+1, ndof)`` (m) from the retained ones ``(2H+1, m)``.
 
         The force on the retained DOFs is ``S q_r``; the response to it is the
-        modal sum plus the residual flexibility (static part: exact condensation).
+        modal sum plus the residual flexibility (static part: exact condensation);
+        damping ``C - xi M``.
         """
         coefficients = np.asarray(coefficients, dtype=float)
         out = np.empty((2 * H + 1, self.phi.shape[0]))
         out[0] = self.static.recover(coefficients[:1], omega, 0)[0]
         for h in range(1, H + 1):
             z = coefficients[2 * h - 1] - 1j * coefficients[2 * h]
-            S, _ = self.harmonic(h, omega, derivative=False)
+            S = self.harmonic(h, omega, derivative=False, xi=xi)[0]
             f = S @ z
-            D, _ = self._dynamic(h * omega, h, omega, False)
+            D, _ = self._dynamic(h * omega, h, omega, False, xi)
             eta = np.linalg.solve(D, self.phi_r.T @ f)
             q = self.phi @ eta + self.flex_full @ f - self.phi @ ((self.phi_r.T @ f) / (self.eigenvalues - self.shift))
-            for k, (full, kept, _) in enumerate(self.damping_terms, 1):
-                q += (-1j * h * omega) ** k * (full @ f - self.phi @ (kept @ (self.phi_r.T @ f)))
+            for k, coef, word in self._series(xi):
+                full, kept, _ = self._word(word)
+                q += coef * (-1j * h * omega) ** k * (full @ f - self.phi @ (kept @ (self.phi_r.T @ f)))
             out[2 * h - 1], out[2 * h] = q.real, -q.imag
         return out

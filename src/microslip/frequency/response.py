@@ -604,14 +604,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
                                                    reduction, modes, engine_order)
     report = Progress(10, enabled=progress)
-    reached = [0]
-
-    def tick(w, count):
-        done = int(10 * (w - lo) / (hi - lo))
-        while reached[0] < min(done, 10):
-            reached[0] += 1
-            report.step(f"omega = {w:.6g} rad/s, {count} points")
-
+    tick = tenths(report, lo, hi, lambda w, count: f"omega = {w:.6g} rad/s, {count} points")
     xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
                                                control=control, callback=tick)
     result = _collect(hb, xs, omegas, iters, static, complete)
@@ -622,6 +615,20 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         warnings.warn(incomplete_message(result, hi, control or StepControl()), IncompleteCurveWarning,
                       stacklevel=2)
     return replace(result, elapsed=time.perf_counter() - start)
+
+
+def tenths(report: Progress, lo: float, hi: float, describe):
+    """A continuation callback that announces on ``report`` each tenth of the parameter's range ``lo..hi``
+    reached, in the words of ``describe(value, points)``."""
+    reached = [0]
+
+    def tick(value, count):
+        done = int(10 * (value - lo) / (hi - lo))
+        while reached[0] < min(done, 10):
+            reached[0] += 1
+            report.step(describe(value, count))
+
+    return tick
 
 
 class IncompleteCurveWarning(RuntimeWarning):

@@ -1,0 +1,251 @@
+"""The equations of the extended periodic motion concept (EPMC, Krack 2015) for nonlinear modes.
+
+The unforced structure with an added mass-proportional damping ``-xi M q'``,
+
+``M q'' + (C - xi M) q' + K q + sum_c L_c F_c = f_static``,
+
+has periodic solutions of frequency ``omega``; ``xi`` (1/s) is the negative
+damping that makes up for what the viscous damping and the contacts dissipate,
+so ``omega`` is the mode's natural frequency and ``xi / (2 omega)`` its
+damping ratio at that amplitude. Harmonic balance as in
+:class:`~microslip.frequency.hbm.HarmonicBalance` (the contacts by AFT, the
+static term an unknown), on every DOF or on the contact DOFs with the rest of
+the structure condensed with the damping ``C - xi M``
+(:class:`~microslip.frequency.condensation.Condensation`,
+:class:`~microslip.frequency.modal.ModalCondensation`).
+
+Normalisation: the modal amplitude ``a`` is the first harmonic of the
+coordinate of the linear mode ``phi`` (the structure with its contacts stuck
+at the static state, mass-normalised): with ``z_1 = a_1 - i b_1`` the complex
+amplitude of every DOF's first harmonic,
+
+``phi^T M z_1 = a``   (real: the phase condition ``phi^T M b_1 = 0``).
+
+Unknowns, scaled so that every one is of order one along the curve: the
+vibration relative to the amplitude, ``x = [x0_static + a chi, a psi]``
+(``chi`` the shift of the static term, ``psi`` the harmonics), and ``omega``,
+``xi``; the parameter of the continuation is ``s = ln a``. The residual is the
+harmonic balance residual divided by ``a rho`` (``rho`` the stiffness force of
+the linear mode), so the tolerance is relative to the amplitude at every
+amplitude, plus the two normalisation equations.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .hbm import HarmonicBalance, harmonic_operators
+from .reduced import ReducedHarmonicBalance
+from .structure import Structure
+
+#: DOFs up to which the linear mode is found by a dense eigensolution (sparse matrices: a sparse one above
+#: :data:`SPARSE_EIGEN`)
+DENSE_EIGEN = 2000
+SPARSE_EIGEN = 500
+#: the normalisation equations are divided by this: on the contact DOFs the modal coordinate goes through the
+#: held structure's dynamic stiffness, whose poles near the mode's frequency (a natural frequency of the structure
+#: with its contact DOFs held) make it sensitive to omega and leave a rounding floor of about 1e-10 in it, above
+#: which Newton's method could not converge at a tolerance of 1e-9. The modal amplitude reported is the
+#: solution's own (:meth:`EpmcEquations.modal_amplitude`), whatever the residual of these equations.
+NORMALISATION = 100.0
+
+
+class DampedReducedBalance(ReducedHarmonicBalance):
+    """:class:`~.reduced.ReducedHarmonicBalance` with the damping ``C - xi M`` condensed with the structure.
+
+    ``xi`` (1/s) is set before each evaluation; :meth:`xi_derivative` gives ``dR/dxi``.
+    """
+
+    xi = 0.0
+
+    def dynamic_stiffness(self, omega: float):
+        """The condensed ``Z(omega)`` with the damping ``C - xi M``, dense ``(n, n)`` (N/m)."""
+        return self.linear.operator(omega, self.H, self.xi)[0]
+
+    def _omega_derivative(self, x, omega: float) -> np.ndarray:
+        return self.linear.operator(omega, self.H, self.xi)[1] @ x
+
+    def xi_derivative(self, x, omega: float) -> np.ndarray:
+        """``dR/dxi`` (N s), shape ``(n,)``."""
+        return self.linear.operator(omega, self.H, self.xi)[2] @ x
+
+    def functional(self, w, omega: float):
+        """``(g, g_omega, g_xi)``: ``w . z_1 = g . z_1r`` over every DOF (see :meth:`.Condensation.projection`)."""
+        return self.linear.projection(w, omega, self.xi)
+
+    def recover(self, x, omega: float) -> np.ndarray:
+        """Coefficients of every DOF ``(2H+1, ndof)`` (m) from the unknowns ``x``, with the damping ``C - xi M``."""
+        return self.linear.recover(np.reshape(x, (self.nb, self.ndof)), omega, self.H, self.xi)
+
+
+class DampedBalance(HarmonicBalance):
+    """:class:`~.hbm.HarmonicBalance` on every DOF with the damping ``C - xi M`` (``xi`` set before evaluating)."""
+
+    xi = 0.0
+
+    def __init__(self, structure: Structure, harmonics: int, **kwargs):
+        super().__init__(structure, {}, harmonics, **kwargs)
+        D = harmonic_operators(self.H)[0]
+        M = structure.M
+        self.MD = np.kron(D, M.toarray() if sp.issparse(M) else M) if self.dense else \
+            sp.kron(sp.csr_matrix(D), sp.csr_matrix(M), format="csc")
+
+    def _evaluate(self, x, omega: float, *, jacobian: bool = True):
+        out = super()._evaluate(x, omega, jacobian=jacobian)
+        if not self.xi:
+            return out
+        MDx = self.MD @ x
+        if not jacobian:
+            return out - omega * self.xi * MDx
+        R, J, Rw = out
+        return R - omega * self.xi * MDx, J - (omega * self.xi) * self.MD, Rw - self.xi * MDx
+
+    def xi_derivative(self, x, omega: float) -> np.ndarray:
+        return -omega * (self.MD @ x)
+
+    def functional(self, w, omega: float):
+        zero = np.zeros(self.ndof, dtype=complex)
+        return w.astype(complex), zero, zero
+
+    def recover(self, x, omega: float) -> np.ndarray:
+        return np.reshape(x, (self.nb, self.ndof))
+
+
+def stuck_mode(structure: Structure, q0, mode: int) -> tuple[float, np.ndarray]:
+    """``(lambda, phi)``: linear mode ``mode`` (1: the lowest) of the structure with its contacts stuck at ``q0``.
+
+    The contacts add the stiffness of the elements closed at the static state
+    ``q0`` (m, ``(ndof,)``): ``sum kt`` along ``b_t``, ``sum kn`` along ``b_n``.
+    ``phi`` is mass-normalised (``phi^T M phi = 1``, unit ``kg^-1/2``), its
+    largest entry positive; ``lambda`` is its squared natural frequency (rad^2/s^2).
+    """
+    Bt, Bn, n0 = structure.contact_directions()
+    K = structure.K.copy()
+    for c, contact in enumerate(structure.contacts):
+        closed = Bn[:, c] @ q0 + n0[c] > contact.model.gaps
+        for b, k in ((Bt[:, c], contact.model.kt[closed].sum()), (Bn[:, c], contact.model.kn[closed].sum())):
+            if k and sp.issparse(K):
+                col = sp.csr_matrix(b[:, None])
+                K = K + k * (col @ col.T)
+            elif k:
+                K = K + k * np.outer(b, b)
+    ndof = structure.ndof
+    if ndof <= (SPARSE_EIGEN if sp.issparse(K) else DENSE_EIGEN):
+        Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
+        Md = structure.M.toarray() if sp.issparse(structure.M) else np.asarray(structure.M)
+        lam, vec = sla.eigh(0.5 * (Kd + Kd.T), Md, subset_by_index=[mode - 1, mode - 1])
+        lam, phi = float(lam[0]), vec[:, 0]
+    else:
+        M = sp.csc_matrix(structure.M)
+        scale = float(np.median(np.abs(K.diagonal())) / np.median(M.diagonal()))
+        lam, vec = spla.eigsh(sp.csc_matrix(K), k=mode, M=M, sigma=-1e-6 * scale, which="LM")
+        order = np.argsort(lam)
+        lam, phi = float(lam[order[-1]]), vec[:, order[-1]]
+        phi = phi / np.sqrt(phi @ (M @ phi))
+    if not lam > 0:
+        raise ValueError(f"mode {mode} of the structure with its contacts stuck has no stiffness (natural frequency "
+                         f"{np.sqrt(max(lam, 0.0)):.3g} rad/s): a part of it moves freely")
+    return lam, phi * np.sign(phi[np.argmax(np.abs(phi))])
+
+
+class EpmcEquations:
+    """Residual and exact Jacobian of the EPMC equations in the scaled unknowns of the module docstring.
+
+    Parameters
+    ----------
+    hb : DampedBalance or DampedReducedBalance
+        The harmonic balance equations with the damping ``C - xi M``, unforced.
+    x_static : ndarray, shape (hb.ndof,)
+        The static solution (m) on the unknown DOFs.
+    weight : ndarray, shape (ndof,)
+        ``M phi`` over every DOF of the structure (kg^1/2).
+    shape_scale : float
+        The largest entry of the linear mode over every DOF (kg^-1/2): the scale of
+        ``psi`` (the contact DOFs may move far more, relative to the modal
+        amplitude, once the contacts slide than while they stick).
+    omega_scale : float
+        The linear mode's natural frequency (rad/s).
+    force_scale : float
+        ``rho`` (N / (kg^1/2 m)): the stiffness force of the mode, per unit modal amplitude.
+
+    Notes
+    -----
+    The problem interface of :func:`~microslip.frequency.continuation.continuation`:
+    ``_evaluate(y, s)`` returns the residual, ``dr/dy`` and ``dr/ds`` (``s = ln a``).
+    """
+
+    solve = HarmonicBalance.solve
+    augmented = HarmonicBalance.augmented
+
+    def __init__(self, hb, x_static, weight, shape_scale: float, omega_scale: float, force_scale: float):
+        self.hb = hb
+        self.m = hb.ndof
+        self.n = hb.n + 2
+        self.x_static = np.zeros(hb.n)
+        self.x_static[:self.m] = x_static
+        self.weight = weight
+        self.psi_scale = shape_scale
+        self.omega_scale = omega_scale
+        self.rho = force_scale
+
+    # -- between the scaled unknowns and the physical ones ---------------------------------------------
+    def unpack(self, y, s: float) -> tuple[np.ndarray, float, float]:
+        """``(x, omega, xi)``: the harmonic balance unknowns (m), the frequency (rad/s) and ``xi`` (1/s)."""
+        a = np.exp(s)
+        return self.x_static + a * self.psi_scale * y[:-2], y[-2] * self.omega_scale, y[-1] * self.omega_scale
+
+    def pack(self, x, omega: float, xi: float, s: float) -> np.ndarray:
+        """The scaled unknowns of ``(x, omega, xi)`` at ``s = ln a``."""
+        a = np.exp(s)
+        return np.concatenate([(x - self.x_static) / (a * self.psi_scale),
+                               [omega / self.omega_scale, xi / self.omega_scale]])
+
+    def _first(self, y) -> np.ndarray:
+        """``psi_a1 - i psi_b1`` (scaled by :attr:`psi_scale`): the first harmonic's complex amplitude per unit ``a``."""
+        m = self.m
+        return (y[m:2 * m] - 1j * y[2 * m:3 * m]) * self.psi_scale
+
+    def modal_amplitude(self, x, omega: float, xi: float) -> complex:
+        """``phi^T M z_1`` (kg^1/2 m) of the unknowns ``x`` at ``(omega, xi)``."""
+        self.hb.xi = xi
+        g = self.hb.functional(self.weight, omega)[0]
+        m = self.m
+        return complex(g @ (x[m:2 * m] - 1j * x[2 * m:3 * m]))
+
+    # -- the problem interface of the continuation ---------------------------------------------------
+    def _evaluate(self, y, s: float, *, jacobian: bool = True):
+        hb = self.hb
+        a = np.exp(s)
+        x, omega, xi = self.unpack(y, s)
+        hb.xi = xi
+        scale = a * self.rho  # the residual's scale at this amplitude
+        g, g_omega, g_xi = hb.functional(self.weight, omega)
+        p = self._first(y)
+        eta = g @ p
+        normal = np.array([eta.real - 1.0, eta.imag]) / NORMALISATION
+        if not jacobian:
+            return np.concatenate([hb._evaluate(x, omega, jacobian=False) / scale, normal])
+        R, J, R_omega = hb._evaluate(x, omega)
+        R_xi = hb.xi_derivative(x, omega)
+        r = np.concatenate([R / scale, normal])
+        m, c = self.m, self.psi_scale
+        # d(g . p)/d(y_a1) = g c, d/d(y_b1) = -i g c; rows [Re, Im]
+        rows = np.zeros((2, self.n))
+        rows[:, m:2 * m] = np.stack([g.real, g.imag]) * c
+        rows[:, 2 * m:3 * m] = np.stack([g.imag, -g.real]) * c
+        e_omega, e_xi = (gp @ p * self.omega_scale for gp in (g_omega, g_xi))
+        rows[:, -2] = e_omega.real, e_omega.imag
+        rows[:, -1] = e_xi.real, e_xi.imag
+        rows /= NORMALISATION
+        columns = np.stack([R_omega, R_xi], axis=1) * (self.omega_scale / scale)
+        Jx = J * (a * c / scale)  # dx/dy = a c
+        if sp.issparse(Jx):
+            Jy = sp.vstack([sp.hstack([Jx, sp.csr_matrix(columns)]), sp.csr_matrix(rows)], format="csc")
+        else:
+            Jy = np.block([[Jx, columns], [rows]])
+        r_s = np.zeros(self.n)
+        r_s[:-2] = J @ (x - self.x_static) / scale - r[:-2]  # dx/ds = x - x_static
+        return r, Jy, r_s
