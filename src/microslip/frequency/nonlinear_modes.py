@@ -378,8 +378,9 @@ def _collect(eq: EpmcEquations, ys, ss, iters, static, complete, mode, lam, phi,
         extra.update(dofs=hb.retained, recovery=recovery, modes=modes,
                      reduction_error=modal_error(hb.linear, float(omegas[-1])) if reduction == "modal" else None)
     return NonlinearModes(structure, hb.H, hb.samples, omegas, xs.reshape(P, hb.nb, hb.ndof), q["t"], q["n"], q["T"],
-                          q["N"], np.zeros(P), np.pi * omegas * damp_sum, q["contacts"], iters, *static,
+                          q["N"], np.zeros(P), np.pi * omegas * damp_sum, q["contacts"], iters, *static[:3],
                           complete=complete, reduction=reduction, contact_harmonic_work=q["contacts_harmonic"],
+                          contact_t2=q["t2"], contact_T2=q["T2"], static_tangential_force2=static[3],
                           mode=mode, modal_amplitude=a, xi=xis, damping_ratio=damping, viscous_damping_ratio=viscous,
                           contact_damping_ratio=contact, linear_frequency=float(np.sqrt(lam)), linear_mode=phi,
                           modal_mass=energy[:, 2] / a ** 2, modal_damping=energy[:, 3] / a ** 2, **extra)
