@@ -56,3 +56,21 @@ def test_time_integration_equals_its_twin():
     np.testing.assert_allclose(out, ref[0], rtol=0, atol=1e-12 * np.abs(ref[0]).max())
     np.testing.assert_allclose(sliders.reshape(2, -1), ref[3][0], rtol=0, atol=1e-12 * np.abs(ref[0]).max())
     assert np.abs(ref[3][0]).max() > 0  # the contact moved
+
+
+def test_time_integration_from_rest_starts_from_the_static_part_of_the_excitation_only():
+    """An array excitation is a first harmonic: the march starts at the static equilibrium under the
+    preloads alone (it used to be loaded statically by the first harmonic's amplitudes, and a complex
+    array was refused)."""
+    from microslip import MicroslipModel, Structure
+    from microslip.frequency import static_solution
+
+    s = Structure(np.eye(2), 0.02 * np.eye(2), np.diag([1e4, 2e4]))
+    s.add_contact(MicroslipModel(kt=[2e3], kn=[1e5], gaps=[0.0], mu=0.3), tangential=0, normal=1, preload=5.0)
+    preloaded = static_solution(s)
+    for force in ([3.0, 0.0], [3.0, 2.0j]):
+        q_prev, q, _ = PeriodMap(s, force, 100.0, 64).start()
+        np.testing.assert_array_equal(q, preloaded)
+    q_prev, q, _ = PeriodMap(s, {0: [1.0, 0.0], 1: [3.0, 0.0]}, 100.0, 64).start()
+    np.testing.assert_array_equal(q, static_solution(s, {0: [1.0, 0.0], 1: [3.0, 0.0]}))
+    assert q[0] != preloaded[0]  # the static part does load it

@@ -214,8 +214,12 @@ class PeriodMap:
         self.packed = structure.packed_models()
 
     def start(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(q_prev, q, sliders)`` at rest at the static equilibrium, the contacts loaded statically."""
-        q = static_solution(self.structure, self.force)
+        """``(q_prev, q, sliders)`` at rest at the static equilibrium, the contacts loaded statically.
+
+        The static force is the excitation's static part (key 0 of a mapping; an array is a first
+        harmonic and has none) plus the contacts' preloads.
+        """
+        q = static_solution(self.structure, self.force if isinstance(self.force, Mapping) else None)
         kt, kn, gaps, offsets, mu = self.packed
         sliders = np.zeros(kt.size)
         if self.planar.any():
