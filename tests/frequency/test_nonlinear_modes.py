@@ -352,8 +352,9 @@ def test_a_travelling_wave_mode_peaks_under_its_engine_order():
     assert np.iscomplexobj(mode.linear_mode) and np.abs(mode.linear_mode.imag).max() > 0.1
     assert abs(mode.omega[0] / np.sqrt(everyone[1]) - 1) < 1e-8 and abs(everyone[2] / everyone[1] - 1) < 1e-12
     w = np.conj(disk.M @ mode.linear_mode)  # a = phi^H M z_1 over the sector's DOFs
-    for force in (1.0, 30.0):  # N on the blade: microslip (damping ratio 1.2 % at the peak), gross slip (0.11 %)
-        curve = frequency_response(disk, [0.0, force, 0.0], (0.8 * mode.omega[0], 1.05 * mode.omega[0]), harmonics=3,
+    # N on the blade: microslip (damping ratio 1.2 % at the peak), gross slip (0.11 %); windows around the peaks
+    for force, window in ((1.0, (0.97, 1.01)), (30.0, (0.8, 1.0))):
+        curve = frequency_response(disk, [0.0, force, 0.0], tuple(np.multiply(window, mode.omega[0])), harmonics=3,
                                    engine_order=1, control=StepControl(ds_max=0.01))
         eta = [(c[:, 1] - 1j * c[:, 2]) for c in (curve.dof_coefficients(w.real), curve.dof_coefficients(w.imag))]
         a = np.abs(eta[0] + 1j * eta[1])
@@ -362,7 +363,7 @@ def test_a_travelling_wave_mode_peaks_under_its_engine_order():
         w_peak = curve.omega[k] - p[1] / (2 * p[0])
         a_peak = np.polyval(p, w_peak - curve.omega[k])
         backbone = np.interp(np.log(a_peak), np.log(mode.modal_amplitude), mode.omega)
-        assert abs(backbone / w_peak - 1) < 1e-3  # measured 5.6e-4 and 5e-6
+        assert abs(backbone / w_peak - 1) < 1e-3  # measured 6.7e-4 and 5e-6
         synthesis = mode.synthesize([0.0, force, 0.0])
-        assert abs(synthesis.peak()[1] / a_peak - 1) < 0.02  # measured 0.1 % and 6e-5
+        assert abs(synthesis.peak()[1] / a_peak - 1) < 0.02  # measured 0.09 % and 3e-5
         assert abs(synthesis.peak(1)[1] / curve.peak(1, 1)[1] - 1) < 0.02
