@@ -47,12 +47,26 @@ def test_nonlinear_modes_refuses_each_parameter_by_name(kwargs, error, words):
     assert words in str(info.value)
 
 
-def test_a_cyclic_sector_is_refused():
-    disk = CyclicStructure(np.eye(3) * 0.1, None, [[2e6, -1e6, 0], [-1e6, 2e6, -1e6], [0, -1e6, 1e6]], sectors=8,
-                           left=[0], right=[2])
-    disk.add_contact(MicroslipModel([1e4], [1e6], [0.0], 0.5), tangential=1, approach=1e-6)
-    with pytest.raises(TypeError, match="a CyclicStructure's sector is not supported"):
-        nonlinear_modes(disk)
+def disk():
+    d = CyclicStructure(np.eye(3) * 0.1, None, [[2e6, -1e6, 0], [-1e6, 2e6, -1e6], [0, -1e6, 1e6]], sectors=8,
+                        left=[0], right=[2])
+    d.add_contact(MicroslipModel([1e4], [1e6], [0.0], 0.5), tangential=1, approach=1e-6)
+    return d
+
+
+@pytest.mark.parametrize("structure, kwargs, words", [
+    (disk, {}, "nodal_diameter must be given for a CyclicStructure"),
+    (disk, {"nodal_diameter": 8}, "nodal_diameter must be below the number of sectors 8, got 8"),
+    (disk, {"nodal_diameter": -1}, "nodal_diameter must be an integer >= 0, got -1"),
+    (disk, {"nodal_diameter": 1, "reduction": "modal"}, "a sector's nonlinear mode is condensed exactly"),
+    (disk, {"nodal_diameter": 1, "mode": 3}, "mode must be at most 2 (the structure has 2 DOFs besides its right "
+                                             "boundary), got 3"),
+    (chain, {"nodal_diameter": 1}, "nodal_diameter is only for a CyclicStructure"),
+])
+def test_the_nodal_diameter_is_checked(structure, kwargs, words):
+    with pytest.raises(ValueError) as info:
+        nonlinear_modes(structure(), **kwargs)
+    assert words in str(info.value)
 
 
 def test_a_mode_without_stiffness_is_refused():

@@ -20,7 +20,8 @@ def add_parser(sub) -> None:
                     "that makes up for what the contacts and the viscous damping dissipate, solved by harmonic "
                     "balance (the contacts by alternating frequency-time) and followed from the linear mode with "
                     "the contacts stuck, over a range of modal amplitude, to gross slip. The TOML configuration is "
-                    "that of 'microslip frf' with a [modes] table (mode, amplitude range, the DOF shown, compare); "
+                    "that of 'microslip frf' with a [modes] table (mode, amplitude range, the DOF shown, compare; "
+                    "for a [cyclic] sector the nodal diameter, by default its engine_order); "
                     "[excitation] and the [sweep] range are optional (format: python -c 'import "
                     "microslip.frequency.config as c; print(c.__doc__)'). Writes modes.csv (the mode at every "
                     "amplitude: frequency, damping ratio and its viscous and contact shares, every DOF's harmonics "
@@ -88,12 +89,13 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
             f"nonlinear mode: the response keeps the mode's shape at its amplitude; valid near the resonance "
             f"where the mode is isolated, no other mode nor a harmonic of the excitation near it, light damping): "
             f"peak {a_syn * 1e6:.4g} µm of {name} at {f_syn:.6g} {_frequency(cfg, 1)[1]}.")
-    compare = cfg.nonlinear_mode.compare and cfg.omega is not None
+    # a sector's forced response compares when the excitation's engine order is the mode's nodal diameter
+    compare = cfg.nonlinear_mode.compare and cfg.omega is not None and cfg.engine_order == mode.engine_order
     if compare:
         hb_force = {h: v for h, v in _force(cfg).items() if h}
         curve = frequency_response(structure, hb_force, cfg.omega, harmonics=cfg.harmonics, samples=cfg.samples,
                                    control=cfg.control, progress=not quiet, reduction=cfg.reduction, modes=cfg.modes,
-                                   stability=False)
+                                   stability=False, engine_order=cfg.engine_order)
         amplitude = curve.amplitude(dof, 1)
         x, _ = _frequency(cfg, curve.omega)
         ax.plot(x, amplitude * 1e6, "--", label="harmonic balance")
@@ -145,7 +147,7 @@ def run(args) -> int:
             mode = nonlinear_modes(structure, table.mode, table.amplitude, harmonics=cfg.harmonics,
                                    samples=cfg.samples, reduction=cfg.reduction, modes=cfg.modes,
                                    control=None if cfg.control == StepControl() else cfg.control,
-                                   progress=not args.quiet)
+                                   progress=not args.quiet, nodal_diameter=table.nodal_diameter)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip modes: error: {exc}", file=sys.stderr)
         return 1
@@ -160,6 +162,7 @@ def run(args) -> int:
     f_lin, unit = _frequency(cfg, mode.linear_frequency)
     report = Report(f"microslip modes: {cfg.title}", parameters={
         "configuration": str(args.config), "DOFs": ndof, "contacts": len(structure.contacts), "mode": table.mode,
+        **({"nodal diameter": mode.engine_order} if mode.engine_order is not None else {}),
         "modal amplitude (kg^1/2 m)": f"{table.amplitude[0]:.3g} to {table.amplitude[1]:.3g}",
         "harmonics H": cfg.harmonics, "AFT samples per period": mode.samples, "reduction": mode.reduction,
         "modes": mode.modes if mode.modes else "-", "output": str(out)})

@@ -733,7 +733,7 @@ class Condensation:
         Parameters
         ----------
         w : array_like, shape (ndof,)
-            Weights of every DOF (e.g. ``M phi``, a mode's modal coordinate).
+            Weights of every DOF (e.g. ``M phi``, a mode's modal coordinate), real or complex.
         omega : float
             Frequency of the first harmonic (rad/s).
         xi : float, default 0
@@ -747,7 +747,7 @@ class Condensation:
             (:meth:`interior_response`), and the derivatives of ``g`` in
             ``omega`` and ``xi``.
         """
-        w = np.asarray(w, dtype=float)
+        w = np.asarray(w)  # complex for a cyclic sector: conj(M phi) in a nodal diameter
         w_r, w_i = w[self.retained].astype(complex), w[self.interior]
         zero = np.zeros(self.m, dtype=complex)
         if not np.any(w_i):

@@ -72,6 +72,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # compare = true                    # also solve [excitation]'s forced response over [sweep] by harmonic
                                         # balance and compare it with the one synthesised from the mode
                                         # ([excitation] and [sweep] omega are optional for microslip modes)
+    # nodal_diameter = 3                # with [cyclic]: the mode's nodal diameter (default: its engine_order)
 
     # [design]                          # microslip design: the damper's peak-response curve
     # loads = ["3N", "20N", "300N"]     # centrifugal loads of the (one) damper: from sliding to stuck
@@ -113,7 +114,7 @@ _CONTROL_KEYS = {f.name for f in fields(StepControl)}
 KEYS = {
     "the file": ("title", "structure", "cyclic", "contact", "damper", "excitation", "sweep", "design", "continuation",
                  "output", "modes"),
-    "[modes]": ("mode", "amplitude", "dof", "compare"),
+    "[modes]": ("mode", "amplitude", "dof", "compare", "nodal_diameter"),
     "[cyclic]": ("sectors", "left", "right", "engine_order"),
     "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
     "[[damper.interface]]": ("model", "points", "angle", "platform", "name"),
@@ -164,6 +165,7 @@ class ModesTable:
     amplitude: tuple[float, float] = (1e-8, 1e-4)
     dof: int = 0
     compare: bool = True
+    nodal_diameter: int | None = None
 
 
 def _known(table: dict, where: str, path) -> None:
@@ -498,6 +500,10 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
     if nonlinear:
         mode_table = _modes_table(_table(_get(data, "modes", "the file", path), "[modes]", path), names[:ndof],
                                   plot_dofs, path)
+        if engine_order is not None and mode_table.nodal_diameter is None:
+            mode_table.nodal_diameter = engine_order
+        elif engine_order is None and mode_table.nodal_diameter is not None:
+            raise ConfigError(f"{path}: [modes] nodal_diameter needs a [cyclic] table (one sector of a bladed disk)")
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
                      design_loads, design_dof, mode_table)
@@ -525,6 +531,9 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
         out.dof = _plot_dofs([table["dof"]], names, path, "[modes] dof")[0]
     if "compare" in table:
         out.compare = _checked(path, "", _checks.flag, "[modes] compare", table["compare"])
+    if "nodal_diameter" in table:
+        out.nodal_diameter = _checked(path, "", _checks.positive_int, "[modes] nodal_diameter",
+                                      table["nodal_diameter"], minimum=0)
     return out
 
 

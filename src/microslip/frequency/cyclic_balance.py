@@ -179,11 +179,15 @@ class CyclicHarmonicBalance(ReducedHarmonicBalance):
     def _full(self, x, omega: float) -> np.ndarray:
         """Coefficients of every sector DOF ``(2H+1, ndof)`` (m), the right boundary from the left one."""
         disk = self.structure
-        ind = self.linear.recover(np.reshape(x, (self.nb, self.ndof)), omega, self.H)
+        ind = self._independent(x, omega)
         out = np.zeros((self.nb, disk.ndof))
         out[:, disk.independent] = ind
         out[:, disk.right] = self.P @ ind[:, np.searchsorted(disk.independent, disk.left)]
         return out
+
+    def _independent(self, x, omega: float) -> np.ndarray:
+        """Coefficients of the sector's independent DOFs ``(2H+1, len(independent))`` (m) from the unknowns."""
+        return self.linear.recover(np.reshape(x, (self.nb, self.ndof)), omega, self.H)
 
 
 def check_engine_order(structure, engine_order):

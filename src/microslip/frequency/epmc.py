@@ -37,6 +37,8 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .cyclic import CyclicStructure
+from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
 from .structure import Structure
@@ -53,11 +55,9 @@ SPARSE_EIGEN = 500
 NORMALISATION = 100.0
 
 
-class DampedReducedBalance(ReducedHarmonicBalance):
-    """:class:`~.reduced.ReducedHarmonicBalance` with the damping ``C - xi M`` condensed with the structure.
-
-    ``xi`` (1/s) is set before each evaluation; :meth:`xi_derivative` gives ``dR/dxi``.
-    """
+class _MassDamped:
+    """The damping ``C - xi M`` in equations on the contact DOFs: the condensation carries ``xi`` (1/s), set before
+    each evaluation; :meth:`xi_derivative` gives ``dR/dxi``."""
 
     xi = 0.0
 
@@ -76,9 +76,24 @@ class DampedReducedBalance(ReducedHarmonicBalance):
         """``(g, g_omega, g_xi)``: ``w . z_1 = g . z_1r`` over every DOF (see :meth:`.Condensation.projection`)."""
         return self.linear.projection(w, omega, self.xi)
 
-    def recover(self, x, omega: float) -> np.ndarray:
-        """Coefficients of every DOF ``(2H+1, ndof)`` (m) from the unknowns ``x``, with the damping ``C - xi M``."""
+    def _recovered(self, x, omega: float) -> np.ndarray:
+        """Coefficients of every DOF the condensation holds, from the unknowns ``x``, with the damping ``C - xi M``."""
         return self.linear.recover(np.reshape(x, (self.nb, self.ndof)), omega, self.H, self.xi)
+
+
+class DampedReducedBalance(_MassDamped, ReducedHarmonicBalance):
+    """:class:`~.reduced.ReducedHarmonicBalance` with the damping ``C - xi M`` condensed with the structure."""
+
+    def _full(self, x, omega: float) -> np.ndarray:
+        return self._recovered(x, omega)
+
+
+class DampedCyclicBalance(_MassDamped, CyclicHarmonicBalance):
+    """:class:`~.cyclic_balance.CyclicHarmonicBalance` with the damping ``C - xi M`` condensed with the sector in
+    each harmonic's nodal diameter (``engine_order`` is the mode's nodal diameter)."""
+
+    def _independent(self, x, omega: float) -> np.ndarray:
+        return self._recovered(x, omega)
 
 
 class DampedBalance(HarmonicBalance):
@@ -110,45 +125,59 @@ class DampedBalance(HarmonicBalance):
         zero = np.zeros(self.ndof, dtype=complex)
         return w.astype(complex), zero, zero
 
-    def recover(self, x, omega: float) -> np.ndarray:
-        return np.reshape(x, (self.nb, self.ndof))
 
-
-def stuck_mode(structure: Structure, q0, mode: int) -> tuple[float, np.ndarray]:
-    """``(lambda, phi)``: linear mode ``mode`` (1: the lowest) of the structure with its contacts stuck at ``q0``.
+def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None = None):
+    """``(lambda, phi, M, C)``: linear mode ``mode`` (1: the lowest) of the structure with its contacts stuck at ``q0``.
 
     The contacts add the stiffness of the elements closed at the static state
     ``q0`` (m, ``(ndof,)``): ``sum kt`` along ``b_t``, ``sum kn`` along ``b_n``.
-    ``phi`` is mass-normalised (``phi^T M phi = 1``, unit ``kg^-1/2``), its
-    largest entry positive; ``lambda`` is its squared natural frequency (rad^2/s^2).
+    ``phi`` is mass-normalised (``phi^H M phi = 1``, unit ``kg^-1/2``), its
+    largest entry real and positive; ``lambda`` is its squared natural frequency
+    (rad^2/s^2); ``M`` and ``C`` the mass and damping matrices it goes with. For a
+    :class:`~.cyclic.CyclicStructure` the mode is that of ``nodal_diameter``, on
+    the sector's independent DOFs (complex unless the diameter is 0 or ``N/2``),
+    with that diameter's matrices (:meth:`~.cyclic.CyclicStructure.matrices`):
+    a contact to the next sector acts along ``b_own + exp(-i phi) b_next``.
     """
     Bt, Bn, n0 = structure.contact_directions()
-    K = structure.K.copy()
+    if nodal_diameter is None:
+        M, C, K, T, shift = structure.M, structure.C, structure.K.copy(), None, 0.0
+        Bt_next = Bn_next = np.zeros_like(Bt)
+    else:
+        phase = structure.phase(1, nodal_diameter)
+        M, C, K = structure.matrices(phase)
+        T = structure.constraint(phase)
+        shift = np.exp(-1j * phase) if phase else 1.0
+        Bt_next, Bn_next = structure.contact_directions_next()
     for c, contact in enumerate(structure.contacts):
-        closed = Bn[:, c] @ q0 + n0[c] > contact.model.gaps
-        for b, k in ((Bt[:, c], contact.model.kt[closed].sum()), (Bn[:, c], contact.model.kn[closed].sum())):
+        closed = (Bn[:, c] + Bn_next[:, c]) @ q0 + n0[c] > contact.model.gaps
+        for b, k in ((Bt[:, c] + shift * Bt_next[:, c], contact.model.kt[closed].sum()),
+                     (Bn[:, c] + shift * Bn_next[:, c], contact.model.kn[closed].sum())):
+            h = b if T is None else np.asarray(T.T @ b)  # t = h . z on the DOFs the matrices act on
             if k and sp.issparse(K):
-                col = sp.csr_matrix(b[:, None])
-                K = K + k * (col @ col.T)
+                col = sp.csr_matrix(h[:, None])
+                K = K + k * (col.conj() @ col.T)
             elif k:
-                K = K + k * np.outer(b, b)
-    ndof = structure.ndof
-    if ndof <= (SPARSE_EIGEN if sp.issparse(K) else DENSE_EIGEN):
+                K = K + k * np.outer(h.conj(), h)
+    n = K.shape[0]
+    if n <= (SPARSE_EIGEN if sp.issparse(K) else DENSE_EIGEN):
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
-        Md = structure.M.toarray() if sp.issparse(structure.M) else np.asarray(structure.M)
-        lam, vec = sla.eigh(0.5 * (Kd + Kd.T), Md, subset_by_index=[mode - 1, mode - 1])
+        Md = M.toarray() if sp.issparse(M) else np.asarray(M)
+        lam, vec = sla.eigh(0.5 * (Kd + Kd.conj().T), Md, subset_by_index=[mode - 1, mode - 1])
         lam, phi = float(lam[0]), vec[:, 0]
     else:
-        M = sp.csc_matrix(structure.M)
-        scale = float(np.median(np.abs(K.diagonal())) / np.median(M.diagonal()))
-        lam, vec = spla.eigsh(sp.csc_matrix(K), k=mode, M=M, sigma=-1e-6 * scale, which="LM")
+        Ms = sp.csc_matrix(M)
+        scale = float(np.median(np.abs(K.diagonal())) / np.median(np.abs(Ms.diagonal())))
+        lam, vec = spla.eigsh(sp.csc_matrix(K), k=mode, M=Ms, sigma=-1e-6 * scale, which="LM")
         order = np.argsort(lam)
         lam, phi = float(lam[order[-1]]), vec[:, order[-1]]
-        phi = phi / np.sqrt(phi @ (M @ phi))
+        phi = phi / np.sqrt(np.real(phi.conj() @ (Ms @ phi)))
     if not lam > 0:
         raise ValueError(f"mode {mode} of the structure with its contacts stuck has no stiffness (natural frequency "
                          f"{np.sqrt(max(lam, 0.0)):.3g} rad/s): a part of it moves freely")
-    return lam, phi * np.sign(phi[np.argmax(np.abs(phi))])
+    big = phi[np.argmax(np.abs(phi))]
+    phi = phi * (abs(big) / big)  # largest entry real and positive
+    return lam, (phi.real if not np.iscomplexobj(K) and not np.iscomplexobj(M) else phi), M, C
 
 
 class EpmcEquations:

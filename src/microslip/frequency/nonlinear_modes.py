@@ -24,8 +24,10 @@ from ..common._progress import Progress
 from .aft import MAX_PERIODS, check_harmonics
 from .continuation import StepControl, continuation, newton
 from .cyclic import CyclicStructure
-from .epmc import DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedReducedBalance, EpmcEquations, stuck_mode
+from .epmc import (DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedCyclicBalance, DampedReducedBalance, EpmcEquations,
+                   stuck_mode)
 from .hbm import HarmonicBalance, excitation
+from .cyclic_balance import CyclicHarmonicBalance, cyclic_linear_part, cyclic_reduction
 from .reduced import ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs
 from .response import (FrequencyResponse, IncompleteCurveWarning, _check_determined, _check_resolution,
                        _static_state, tenths)
@@ -61,7 +63,9 @@ class NonlinearModes(FrequencyResponse):
     linear_frequency : float
         Natural frequency of the linear mode, contacts stuck (rad/s).
     linear_mode : ndarray, shape (ndof,)
-        That mode, mass-normalised (kg^-1/2).
+        That mode, mass-normalised (kg^-1/2); for a cyclic sector, in the mode's
+        nodal diameter, on the sector's DOFs (complex amplitudes, the right
+        boundary from the left one).
     modal_mass, modal_damping : ndarray, shape (points,)
         ``z_1^H M z_1 / a^2`` (dimensionless, 1 for the linear mode) and
         ``z_1^H C z_1 / a^2`` (1/s) of the first harmonic: the single-mode
@@ -194,11 +198,28 @@ def _amplitude_range(amplitude) -> tuple[float, float]:
 
 def _check_mode(structure: Structure, mode) -> int:
     mode = _checks.positive_int("mode", mode)
-    limit = structure.ndof if structure.ndof <= (SPARSE_EIGEN if structure.sparse else DENSE_EIGEN) \
-        else structure.ndof - 1  # a sparse eigensolver finds fewer than all
-    if mode > limit:
-        raise ValueError(f"mode must be at most {limit} (the structure has {structure.ndof} DOFs), got {mode}")
+    n = structure.independent.size if isinstance(structure, CyclicStructure) else structure.ndof
+    limit = n if n <= (SPARSE_EIGEN if structure.sparse else DENSE_EIGEN) else n - 1  # a sparse eigensolver
+    if mode > limit:                                                                  # finds fewer than all
+        raise ValueError(f"mode must be at most {limit} (the structure has {n} DOFs"
+                         f"{' besides its right boundary' if n < structure.ndof else ''}), got {mode}")
     return mode
+
+
+def _check_diameter(structure: Structure, nodal_diameter):
+    """``nodal_diameter`` checked: required for a :class:`CyclicStructure` (0 to N - 1), refused otherwise."""
+    if not isinstance(structure, CyclicStructure):
+        if nodal_diameter is not None:
+            raise ValueError(f"nodal_diameter is only for a CyclicStructure; this structure is not cyclic, got "
+                             f"nodal_diameter = {nodal_diameter!r}")
+        return None
+    if nodal_diameter is None:
+        raise ValueError("nodal_diameter must be given for a CyclicStructure (the mode's number of nodal diameters, "
+                         f"0 to {structure.sectors // 2})")
+    nd = _checks.positive_int("nodal_diameter", nodal_diameter, minimum=0)
+    if nd >= structure.sectors:
+        raise ValueError(f"nodal_diameter must be below the number of sectors {structure.sectors}, got {nd}")
+    return nd
 
 
 #: points per decade of amplitude at least, with the default step control
@@ -209,6 +230,21 @@ def default_control(lo: float, hi: float) -> StepControl:
     """The step control of a mode from ``lo`` to ``hi`` (kg^1/2 m): steps of at most 1/20 decade of amplitude."""
     step = np.log(10.0) / POINTS_PER_DECADE / np.log(hi / lo)
     return StepControl(ds_initial=step, ds_max=step)
+
+
+def _cyclic_equations(disk: CyclicStructure, H: int, diameter: int, samples, max_periods, reduction, modes):
+    """As :func:`_equations` for a sector in a nodal diameter: condensed exactly in each harmonic's diameter."""
+    reduction, modes = cyclic_reduction(disk, reduction, modes)
+    if reduction == "modal":
+        raise ValueError("reduction: a sector's nonlinear mode is condensed exactly in each harmonic's nodal "
+                         "diameter; use reduction='exact' or 'auto' (a modal condensation of a sector with the "
+                         "mode's negative damping is not available)")
+    loads = excitation(disk, {}, H)
+    loads[0] += disk.preload_force()
+    linear = cyclic_linear_part(disk, loads, diameter, "exact")
+    return (CyclicHarmonicBalance(disk, {}, 0, diameter, linear),
+            DampedCyclicBalance(disk, {}, H, diameter, linear, samples=samples, max_periods=max_periods), "exact",
+            None)
 
 
 def _equations(structure: Structure, H: int, samples, max_periods, reduction, modes):
@@ -227,7 +263,7 @@ def _equations(structure: Structure, H: int, samples, max_periods, reduction, mo
 def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4), *, harmonics: int = 3,
                     samples: int | None = None, reduction: str = "auto", modes: int | None = None,
                     control: StepControl | None = None, progress: bool = False,
-                    max_periods: int = MAX_PERIODS) -> NonlinearModes:
+                    max_periods: int = MAX_PERIODS, nodal_diameter: int | None = None) -> NonlinearModes:
     """A damped nonlinear mode over a range of amplitudes (extended periodic motion concept).
 
     The unforced structure with the extra damping ``-xi M q'`` is solved for its
@@ -271,6 +307,14 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         Report progress on standard error.
     max_periods : int
         Periods allowed for each contact's state to become periodic.
+    nodal_diameter : int, optional
+        For a :class:`~microslip.frequency.CyclicStructure` (required there):
+        the mode's nodal diameter ``k`` (0 to ``N - 1``); the sector's mode is a
+        travelling wave, sector ``s + 1`` a fraction ``k / N`` of a period after
+        sector ``s``, harmonic ``h`` in diameter ``h k mod N`` (as the response
+        to engine order ``k``), condensed exactly in each diameter;
+        ``mode`` counts the modes of that diameter. The result reports this
+        sector (:attr:`NonlinearModes.engine_order` is ``k``).
 
     Returns
     -------
@@ -292,9 +336,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     start = time.perf_counter()
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
-    if isinstance(structure, CyclicStructure):
-        raise TypeError("structure: nonlinear_modes solves a whole Structure; a CyclicStructure's sector is not "
-                        "supported")
+    diameter = _check_diameter(structure, nodal_diameter)
     mode = _check_mode(structure, mode)
     lo, hi = _amplitude_range(amplitude)
     H = check_harmonics(harmonics)
@@ -303,24 +345,31 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     ctl = control or default_control(lo, hi)
     progress = _checks.flag("progress", progress)
     _check_determined(structure)
-    static_hb, hb, reduction, modes = _equations(structure, H, samples, max_periods, reduction, modes)
+    if diameter is None:
+        static_hb, hb, reduction, modes = _equations(structure, H, samples, max_periods, reduction, modes)
+    else:
+        static_hb, hb, reduction, modes = _cyclic_equations(structure, H, diameter, samples, max_periods,
+                                                            reduction, modes)
     x0, *static = _static_state(static_hb)
-    lam, phi = stuck_mode(structure, static_hb._full(x0, 1.0)[0], mode)
-    retained = getattr(hb, "retained", np.arange(structure.ndof))
-    phi_u = phi[retained]
+    lam, phi, M, C = stuck_mode(structure, static_hb._full(x0, 1.0)[0], mode, diameter)
+    phi_u = phi[hb.linear.retained] if hasattr(hb, "linear") else phi  # on the unknowns' DOFs
     rho = float(np.max(np.abs(hb.stuck_stiffness() @ phi_u)))
-    eq = EpmcEquations(hb, x0, structure.M @ phi, float(np.max(np.abs(phi))), float(np.sqrt(lam)), rho)
+    # a = phi^H M z_1 = w . z_1 over the DOFs the matrices act on
+    eq = EpmcEquations(hb, x0, np.conj(M @ phi), float(np.max(np.abs(phi))), float(np.sqrt(lam)), rho)
 
     s0, s1 = np.log(lo), np.log(hi)
     x = np.zeros(hb.n)
     x[:hb.ndof] = x0
-    x[hb.ndof:2 * hb.ndof] = lo * phi_u
-    y = eq.pack(x, np.sqrt(lam), float(phi @ (structure.C @ phi)), s0)
+    x[hb.ndof:2 * hb.ndof] = lo * phi_u.real  # z_1 = a_1 - i b_1 = lo phi
+    x[2 * hb.ndof:3 * hb.ndof] = -lo * phi_u.imag
+    y = eq.pack(x, np.sqrt(lam), float(np.real(np.conj(phi) @ (C @ phi))), s0)
     y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
     report = Progress(10, enabled=progress)
     tick = tenths(report, s0, s1, lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
     ys, ss, iters, complete = continuation(eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, callback=tick)
-    result = _collect(eq, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes)
+    if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
+        phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
+    result = _collect(eq, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes, diameter)
     report.done(f"nonlinear mode: {result.points} points")
     if not complete:
         warnings.warn(f"the continuation stopped at max_points = {ctl.max_points} points at modal amplitude "
@@ -346,7 +395,8 @@ def _energies(structure: Structure, X: np.ndarray) -> tuple[float, float, float,
     return float(h2 @ mass), float(h2 @ damp), float(mass[0]), float(damp[0])
 
 
-def _collect(eq: EpmcEquations, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes) -> NonlinearModes:
+def _collect(eq: EpmcEquations, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes,
+             diameter=None) -> NonlinearModes:
     """The result from the continuation's scaled points."""
     hb = eq.hb
     structure = hb.structure
@@ -362,7 +412,7 @@ def _collect(eq: EpmcEquations, ys, ss, iters, static, complete, mode, lam, phi,
 
     def recovery(k):
         hb.xi = xis[k]
-        return hb.recover(xs[k], float(omegas[k]))
+        return hb._full(xs[k], float(omegas[k]))
 
     for k in range(P):
         energy[k] = _energies(structure, recovery(k))
@@ -375,7 +425,7 @@ def _collect(eq: EpmcEquations, ys, ss, iters, static, complete, mode, lam, phi,
     reduced = isinstance(hb, ReducedHarmonicBalance)
     extra = {}
     if reduced:
-        extra.update(dofs=hb.retained, recovery=recovery, modes=modes,
+        extra.update(dofs=hb.retained, recovery=recovery, modes=modes, engine_order=diameter,
                      reduction_error=modal_error(hb.linear, float(omegas[-1])) if reduction == "modal" else None)
     return NonlinearModes(structure, hb.H, hb.samples, omegas, xs.reshape(P, hb.nb, hb.ndof), q["t"], q["n"], q["T"],
                           q["N"], np.zeros(P), np.pi * omegas * damp_sum, q["contacts"], iters, *static[:3],
