@@ -367,3 +367,18 @@ def test_a_travelling_wave_mode_peaks_under_its_engine_order():
         synthesis = mode.synthesize([0.0, force, 0.0])
         assert abs(synthesis.peak()[1] / a_peak - 1) < 0.02  # measured 0.09 % and 3e-5
         assert abs(synthesis.peak(1)[1] / curve.peak(1, 1)[1] - 1) < 0.02
+
+
+def test_a_contact_on_its_plane_sticks_along_both_directions_in_the_linear_mode():
+    """The stuck mode adds the closed elements' kt along the second tangential direction too: with x alone
+    stiffened the second mode would be y's 5e4 N/m instead of 5e4 + 2e4."""
+    from microslip import MicroslipModel, Structure
+    from microslip.frequency.epmc import stuck_mode
+
+    s = Structure(np.eye(2), np.zeros((2, 2)), np.diag([1e4, 5e4]))
+    s.add_contact(MicroslipModel(kt=[2e4], kn=[1e6], gaps=[0.0], mu=0.3), tangential=[{0: 1.0}, {1: 1.0}], normal=None,
+                  approach=1e-6)
+    lam1, phi1, _, _ = stuck_mode(s, np.zeros(2), 1)
+    lam2, _, _, _ = stuck_mode(s, np.zeros(2), 2)
+    assert lam1 == pytest.approx(3e4, rel=1e-12) and lam2 == pytest.approx(7e4, rel=1e-12)
+    assert abs(phi1[0]) == pytest.approx(1.0, rel=1e-12)

@@ -130,7 +130,8 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
     """``(lambda, phi, M, C)``: linear mode ``mode`` (1: the lowest) of the structure with its contacts stuck at ``q0``.
 
     The contacts add the stiffness of the elements closed at the static state
-    ``q0`` (m, ``(ndof,)``): ``sum kt`` along ``b_t``, ``sum kn`` along ``b_n``.
+    ``q0`` (m, ``(ndof,)``): ``sum kt`` along ``b_t`` (and along the second
+    tangential direction of a contact on its plane), ``sum kn`` along ``b_n``.
     ``phi`` is mass-normalised (``phi^H M phi = 1``, unit ``kg^-1/2``), its
     largest entry real and positive; ``lambda`` is its squared natural frequency
     (rad^2/s^2); ``M`` and ``C`` the mass and damping matrices it goes with. For a
@@ -149,10 +150,14 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
         T = structure.constraint(phase)
         shift = np.exp(-1j * phase) if phase else 1.0
         Bt_next, Bn_next = structure.contact_directions_next()
+    Bt2 = structure.second_tangential_directions()  # zero for a contact along one direction
     for c, contact in enumerate(structure.contacts):
         closed = (Bn[:, c] + Bn_next[:, c]) @ q0 + n0[c] > contact.model.gaps
-        for b, k in ((Bt[:, c] + shift * Bt_next[:, c], contact.model.kt[closed].sum()),
-                     (Bn[:, c] + shift * Bn_next[:, c], contact.model.kn[closed].sum())):
+        pairs = [(Bt[:, c] + shift * Bt_next[:, c], contact.model.kt[closed].sum()),
+                 (Bn[:, c] + shift * Bn_next[:, c], contact.model.kn[closed].sum())]
+        if contact.tangential2 is not None:  # a contact on its plane sticks along both directions
+            pairs.append((Bt2[:, c], contact.model.kt[closed].sum()))
+        for b, k in pairs:
             h = b if T is None else np.asarray(T.T @ b)  # t = h . z on the DOFs the matrices act on
             if k and sp.issparse(K):
                 col = sp.csr_matrix(h[:, None])
