@@ -185,16 +185,16 @@ def reduced_fe_stability():
         print(f"FE blade, {s.ndof} DOFs, 4 contacts, H = 5, reduction = {reduction!r}"
               + (f" ({modes} modes)" if modes else "") + f": curve alone {t:.2f} s for {r.points} points "
               f"({slipping} with a contact slipping)")
-        stability_cost(f"FE blade {reduction}", run, t, repeat=2)
+        with_stability = stability_cost(f"FE blade {reduction}", run, t, repeat=2)
         if reduction == "exact":
-            whole_structure_hill(run)
+            whole_structure_hill(run, with_stability)
 
 
-def whole_structure_hill(run):
-    """An exact reduction's stability from the modal model (the default here) against the whole structure's."""
+def whole_structure_hill(run, modal):
+    """An exact reduction's stability from the modal model (``modal``: the curve with the default, on that
+    model here) against the whole structure's."""
     from microslip.frequency import stability
 
-    modal = run(stability=True)
     saved = stability.WHOLE_LIMIT
     stability.WHOLE_LIMIT = 10 ** 9
     try:

@@ -315,8 +315,6 @@ class _Builder:
         if self.kind == "exact" and nb * s.ndof > WHOLE_LIMIT:  # the whole problem is too costly per point
             linear = ModalCondensation(s.M, s.C, s.K, hb.retained, min(DEFAULT_MODES, s.ndof - 1))
             self.kind = "modal"
-        self.model = (f"a modal model of the structure ({linear.modes} modes and the residual flexibility)"
-                      if self.kind == "modal" else "the whole structure")
         if self.kind == "modal":
             M, C, m = np.eye(linear.modes), linear.modal_damping, linear.modes
         else:
