@@ -125,7 +125,7 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
      "'exact', 'modal', got 'fast'"),
     ('h1 = ["0.6N", "0N"]', 'h1 = ["0.6m", "0N"]', "unknown force unit 'm'"),
     ('h1 = ["0.6N", "0N"]', 'first = [0.6, 0.0]', "\\[excitation\\] has an unknown key 'first' \\(it accepts static, "
-     "h<harmonic> such as h1, and phase_h<harmonic> such as phase_h1\\)"),
+     "h<harmonic> such as h1, phase_h<harmonic> such as phase_h1, and scale\\)"),
     # the [excitation] table, its did-you-mean, and harmonics beyond the sweep's named with the file and table
     ('h1 = ["0.6N", "0N"]', 'statc = [0.0, 0.0]\nh1 = [0.6, 0.0]', "\\[excitation\\] has an unknown key 'statc'; "
      "did you mean 'static'\\?"),

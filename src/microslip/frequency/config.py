@@ -32,7 +32,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # sectors = 24
     # left = [0]                        # boundary DOFs: right[j] of a sector is left[j] of the next
     # right = [1]
-    # engine_order = 3                  # the travelling wave's engine order
+    # engine_order = 3                  # the travelling wave's engine order (or in [sweep])
                                         # contacts may then name the next sector's DOFs: {"next:4" = -1}
 
     # [[damper]]                        # an under-platform damper (UnderPlatformDamper), one table each
@@ -52,6 +52,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     [excitation]                        # amplitudes per DOF (N); "static" for the static force
     h1 = [0.6, 0.0]
     # phase_h1 = [0.0, 90.0]            # degrees: F = amplitude * exp(i phase)
+    # scale = 2.0                       # multiplies every harmonic's amplitude (not the static force)
 
     [sweep]
     omega = [12000, 16500]              # rad/s; or frequency = [1900, 2600] (Hz), or strings with units:
@@ -60,6 +61,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # samples = 128                     # AFT samples per period (default 16 H rounded up to 2^k)
     # reduction = "exact"               # "auto" (default), "exact", "modal" or "none": harmonic balance on the
     # modes = 60                        # contact DOFs (see frequency_response); modes for "modal"
+    # engine_order = 3                  # with [cyclic]: the excitation's engine order (or in [cyclic])
 
     [continuation]                      # optional step control (see StepControl)
     # ds_max = 0.05
@@ -121,7 +123,7 @@ KEYS = {
     "[design]": ("loads", "dof"),
     "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names"),
     "[[contact]]": ("model", "tangential", "normal", "preload", "approach", "name"),
-    "[sweep]": ("omega", "frequency", "harmonics", "samples", "reduction", "modes"),
+    "[sweep]": ("omega", "frequency", "harmonics", "samples", "reduction", "modes", "engine_order"),
     "[continuation]": tuple(sorted(_CONTROL_KEYS)),
     "[output]": ("plot", "harmonic", "frequency_unit"),
 }
@@ -318,6 +320,65 @@ def _direction(value, what: str, path):
     return value
 
 
+class ConfigFiles:
+    """The files a configuration names, each read once: contact models, ``.npz`` matrices, FE matrix files.
+
+    :func:`config_from_data` reads through it, so building many configurations
+    that differ in a few values (a design study) reads each file once, and the
+    object, pickled with what it has read, carries them to other processes.
+    """
+
+    def __init__(self):
+        self._read: dict = {}
+
+    def _once(self, key, read):
+        if key not in self._read:
+            self._read[key] = read()
+        return self._read[key]
+
+    def model(self, path: Path) -> MicroslipModel:
+        """The contact model saved in ``path`` (:meth:`MicroslipModel.load`)."""
+        return self._once(("model", str(path)), lambda: MicroslipModel.load(path))
+
+    def arrays(self, path: Path) -> dict:
+        """The arrays ``M``, ``C``, ``K`` found in the ``.npz`` file ``path``."""
+        def read():
+            with np.load(path) as arrays:
+                return {k: np.array(arrays[k]) for k in ("M", "C", "K") if k in arrays}
+
+        return self._once(("npz", str(path)), read)
+
+    def matrices(self, file, **kwargs):
+        """:func:`microslip.fe.read_matrices` of ``file`` and ``kwargs``."""
+        from ..fe import read_matrices
+
+        key = ("fe", str(file), tuple(sorted((k, str(v)) for k, v in kwargs.items())))
+        return self._once(key, lambda: read_matrices(file, **kwargs))
+
+
+def read_toml(path) -> dict:
+    """The contents of the TOML file ``path``.
+
+    Raises
+    ------
+    FileNotFoundError
+        No such file.
+    ConfigError
+        Not valid TOML.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"configuration file {str(path)!r} does not exist")
+    if _toml is None:  # pragma: no cover - Python 3.10 without tomli
+        raise ConfigError("reading TOML needs Python >= 3.11 or the 'tomli' package (pip install tomli)")
+    try:
+        return _toml.loads(path.read_text(encoding="utf-8"))
+    except _toml.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise ConfigError(f"{path}: not a text file (UTF-8): {exc}") from None
+
+
 def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
     """Read and check a ``microslip frf`` configuration file.
 
@@ -331,29 +392,41 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
     ConfigError
         Invalid TOML or contents; the message names the table and key.
     """
+    return config_from_data(read_toml(path), path, nonlinear=nonlinear)
+
+
+def config_from_data(data: dict, path, *, nonlinear: bool = False, files: ConfigFiles | None = None) -> FrfConfig:
+    """Check and build a configuration from the contents of a TOML file (:func:`read_toml`).
+
+    Parameters
+    ----------
+    data : dict
+        The file's tables and keys.
+    path : str or Path
+        The file they come from: other files are relative to its folder, and
+        messages name it.
+    nonlinear : bool, default False
+        As in :func:`load_config`.
+    files : ConfigFiles, optional
+        Where to read the files the configuration names (default: read them now).
+    """
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"configuration file {str(path)!r} does not exist")
-    if _toml is None:  # pragma: no cover - Python 3.10 without tomli
-        raise ConfigError("reading TOML needs Python >= 3.11 or the 'tomli' package (pip install tomli)")
-    try:
-        data = _toml.loads(path.read_text(encoding="utf-8"))
-    except _toml.TOMLDecodeError as exc:
-        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+    files = ConfigFiles() if files is None else files
+    if not isinstance(data, dict):
+        raise ConfigError(f"{path}: the configuration must be a table of tables, got {type(data).__name__}")
     base = path.parent
     _known(data, "the file", path)
 
     # -- structure -------------------------------------------------------------------
     st = _table(_get(data, "structure", "the file", path), "[structure]", path)
-    files = _structure_files(st, base, path)
-    if files is not None:
-        mats = {"M": files.M, "K": files.K, **({"C": files.C} if files.C is not None else {})}
+    fe_files = _structure_files(st, base, path, files)
+    if fe_files is not None:
+        mats = {"M": fe_files.M, "K": fe_files.K, **({"C": fe_files.C} if fe_files.C is not None else {})}
     elif "matrices" in st:
         npz = base / st["matrices"]
         if not npz.is_file():
             raise FileNotFoundError(f"{path}: [structure] matrices file {str(npz)!r} does not exist")
-        with np.load(npz) as arrays:
-            mats = {k: np.array(arrays[k]) for k in ("M", "C", "K") if k in arrays}
+        mats = dict(files.arrays(npz))
         for key in ("M", "K"):
             if key not in mats:
                 raise ConfigError(f"{path}: [structure] matrices file {str(npz)!r} holds no array {key!r}")
@@ -373,7 +446,7 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
         mats["C"] = alpha * mats["M"] + beta * mats["K"]
     try:
         structure = Structure(mats["M"], mats.get("C"), mats["K"],
-                              dof_map=files.dof_map if files is not None else None)
+                              dof_map=fe_files.dof_map if fe_files is not None else None)
     except (ValueError, TypeError) as exc:
         raise ConfigError(f"{path}: [structure] {exc}") from None
     engine_order = None
@@ -389,7 +462,7 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
         _table(c, "[[contact]]", path, where)
         model_path = base / _get(c, "model", where, path)
         try:
-            model = MicroslipModel.load(model_path)
+            model = files.model(model_path)
         except (ValueError, TypeError) as exc:
             raise ConfigError(f"{path}: {where}: {exc}") from None
         kwargs = {"tangential": _next_keys(_direction(_get(c, "tangential", where, path), f"{where} tangential",
@@ -407,7 +480,7 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
 
     # -- dampers ------------------------------------------------------------------------
     bare = structure  # without the dampers: what the design curve attaches its damper to
-    dampers = [_damper(d, k, structure, base_dir=base, path=path) for k, d in enumerate(_tables(data, "damper", path))]
+    dampers = [_damper(d, k, structure, base_dir=base, path=path, files=files) for k, d in enumerate(_tables(data, "damper", path))]
     for d in dampers:
         structure = d.attach(structure)
     names = names + [f"damper{k} {axis}" for k in range(len(dampers)) for axis in ("X", "Y", "R")]
@@ -417,7 +490,13 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
     if not isinstance(ex, dict):
         raise ConfigError(f"{path}: [excitation] must be a table, got {ex!r}")
     force = {}
+    scale = 1.0
+    if "scale" in ex:
+        scale = _checked(path, "", _checks.positive_scalar, "[excitation] scale",
+                         _quantity(ex["scale"], "dimensionless", "[excitation] scale", path), allow_zero=True)
     for key, value in ex.items():
+        if key == "scale":
+            continue
         if key == "phase_static":
             raise ConfigError(f"{path}: [excitation] phase_static: a static force has no phase (give a signed "
                               f"static force instead)")
@@ -425,9 +504,9 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
             continue
         h = _harmonic_key(key)
         if h is None:
-            example = ["static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phase_h3"]
+            example = ["static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phase_h3", "scale"]
             raise ConfigError(f"{path}: [excitation] has an unknown key {key!r}{_close(key, example)} (it accepts "
-                              f"static, h<harmonic> such as h1, and phase_h<harmonic> such as phase_h1)")
+                              f"static, h<harmonic> such as h1, phase_h<harmonic> such as phase_h1, and scale)")
         amp = _array(value, f"[excitation] {key}", path).astype(complex)
         if amp.size != ndof:
             raise ConfigError(f"{path}: [excitation] {key} has {amp.size} value(s); the structure has {ndof} DOFs "
@@ -436,7 +515,7 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
         if f"phase_{key}" in ex:
             amp = amp * np.exp(1j * np.radians(_array(ex[f"phase_{key}"], f"[excitation] phase_{key}", path,
                                                       "dimensionless")))
-        force[h] = amp
+        force[h] = amp if h == 0 else scale * amp
     for key in ex:
         if key.startswith("phase_") and key[6:] not in ex:
             raise ConfigError(f"{path}: [excitation] {key} has no amplitude {key[6:]!r}")
@@ -456,6 +535,15 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
         if h > harmonics:
             raise ConfigError(f"{path}: [excitation] h{h} is a harmonic above [sweep] harmonics = {harmonics}; "
                               f"raise harmonics to {h} or more, or remove h{h}")
+    if "engine_order" in sw:
+        if not isinstance(structure, _cyclic_type()):
+            raise ConfigError(f"{path}: [sweep] engine_order needs a [cyclic] table (one sector of a bladed disk)")
+        if engine_order is not None:
+            raise ConfigError(f"{path}: the engine order is given twice, in [cyclic] and in [sweep]: keep one")
+        engine_order = _checked(path, "", _checks.positive_int, "[sweep] engine_order", sw["engine_order"],
+                                minimum=0)
+    elif isinstance(structure, _cyclic_type()) and engine_order is None:
+        raise ConfigError(f"{path}: a [cyclic] sector needs its engine order: engine_order in [cyclic] or [sweep]")
     samples = sw.get("samples")
     if samples is not None:
         samples = _checked(path, "[sweep] ", check_samples, samples, harmonics)
@@ -509,6 +597,12 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
                      design_loads, design_dof, mode_table)
 
 
+def _cyclic_type():
+    from .cyclic import CyclicStructure
+
+    return CyclicStructure
+
+
 def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> ModesTable:
     """``[modes]`` checked: the mode, its amplitude range, the DOF shown, whether to compare."""
     out = ModesTable(dof=plot_dofs[0] if plot_dofs else 0)
@@ -549,8 +643,10 @@ def _cyclic(table: dict, structure: Structure, path):
 
     sectors = _checked(path, "", _checks.positive_int, "[cyclic] sectors", _get(table, "sectors", "[cyclic]", path),
                        minimum=3)
-    engine_order = _checked(path, "", _checks.positive_int, "[cyclic] engine_order",
-                            _get(table, "engine_order", "[cyclic]", path), minimum=0)
+    engine_order = None
+    if "engine_order" in table:
+        engine_order = _checked(path, "", _checks.positive_int, "[cyclic] engine_order", table["engine_order"],
+                                minimum=0)
     disk = _checked(path, "[cyclic] ", CyclicStructure, structure.M, structure.C, structure.K, sectors=sectors,
                     left=dofs("left"), right=dofs("right"), dof_map=structure.dof_map)
     return disk, engine_order
@@ -572,7 +668,7 @@ def _next_keys(spec, structure: Structure, what: str, path):
     return out
 
 
-def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path):
+def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path, files: ConfigFiles):
     """An :class:`UnderPlatformDamper` from a ``[[damper]]`` table and its ``[[damper.interface]]`` tables."""
     from .damper import UnderPlatformDamper
 
@@ -596,10 +692,10 @@ def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path):
     for i, face in enumerate(_get(table, "interface", where, path)):
         here = f"{where} interface {i + 1}"
         _table(face, "[[damper.interface]]", path, here)
-        files = _get(face, "model", here, path)
-        files = files if isinstance(files, list) else [files]
+        names = _get(face, "model", here, path)
+        names = names if isinstance(names, list) else [names]
         try:
-            models = [MicroslipModel.load(base_dir / f) for f in files]
+            models = [files.model(base_dir / f) for f in names]
         except (ValueError, TypeError) as exc:
             raise ConfigError(f"{path}: {here}: {exc}") from None
         points = np.array([[_quantity(v, "length", f"{here} points", path) for v in row]
@@ -631,10 +727,8 @@ def _table(value, where: str, path, label: str | None = None) -> dict:
     return value
 
 
-def _structure_files(st: dict, base: Path, path):
+def _structure_files(st: dict, base: Path, path, files: ConfigFiles):
     """The matrices read from ``file = ...`` or ``M = "M.mtx"``-style file names (FEMatrices), or None."""
-    from ..fe import read_matrices
-
     by_file = "file" in st
     by_name = any(isinstance(st.get(k), str) for k in ("M", "K", "C"))
     if not (by_file or by_name):
@@ -653,7 +747,7 @@ def _structure_files(st: dict, base: Path, path):
     kwargs = {k: base / st[k] for k in ("M", "K", "C") if isinstance(st.get(k), str)}
     dof_map = base / st["dof_map"] if "dof_map" in st else None
     try:
-        return read_matrices(base / st["file"] if by_file else None, dof_map=dof_map, names=st.get("names"),
-                             **kwargs)
+        return files.matrices(base / st["file"] if by_file else None, dof_map=dof_map, names=st.get("names"),
+                              **kwargs)
     except (ValueError, TypeError) as exc:
         raise ConfigError(f"{path}: [structure] {exc}") from None
