@@ -12,7 +12,7 @@ import re
 import sys
 import warnings
 
-COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "modes", "accuracy", "target"]
+COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "modes", "sweep", "accuracy", "target"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -58,7 +58,7 @@ def main(argv=None) -> int:
             warnings.simplefilter("default")  # each distinct warning once, wherever the filters were set
             warnings.showwarning = _show_warning(args.command)
             return int(args.func(args) or 0)
-    except (ValueError, TypeError, OSError) as exc:
+    except (ValueError, TypeError, OSError, ImportError) as exc:
         print(f"microslip {args.command}: error: {exc}", file=sys.stderr)
         return 2
 

@@ -2,17 +2,9 @@
 
 from __future__ import annotations
 
-import importlib
-
-#: module -> the package that provides it on PyPI
-_PROVIDERS = {"h5py": "h5py", "pyNastran.op4.op4": "pyNastran", "skfem": "scikit-fem"}
+from ..common import _optional
 
 
 def require(module: str, purpose: str):
     """Import ``module`` or raise an ImportError naming the package and ``pip install microslip[fe]``."""
-    try:
-        return importlib.import_module(module)
-    except ImportError:
-        package = _PROVIDERS.get(module, module.split(".")[0])
-        raise ImportError(f"{purpose} needs the package {package}, which is not installed: "
-                          f"pip install microslip[fe]") from None
+    return _optional.require(module, purpose, "fe")

@@ -330,6 +330,8 @@ class ConfigFiles:
 
     def __init__(self):
         self._read: dict = {}
+        #: the files read so far
+        self.paths: set[Path] = set()
 
     def _once(self, key, read):
         if key not in self._read:
@@ -338,6 +340,7 @@ class ConfigFiles:
 
     def model(self, path: Path) -> MicroslipModel:
         """The contact model saved in ``path`` (:meth:`MicroslipModel.load`)."""
+        self.paths.add(Path(path))
         return self._once(("model", str(path)), lambda: MicroslipModel.load(path))
 
     def arrays(self, path: Path) -> dict:
@@ -346,6 +349,7 @@ class ConfigFiles:
             with np.load(path) as arrays:
                 return {k: np.array(arrays[k]) for k in ("M", "C", "K") if k in arrays}
 
+        self.paths.add(Path(path))
         return self._once(("npz", str(path)), read)
 
     def matrices(self, file, **kwargs):
@@ -353,6 +357,7 @@ class ConfigFiles:
         from ..fe import read_matrices
 
         key = ("fe", str(file), tuple(sorted((k, str(v)) for k, v in kwargs.items())))
+        self.paths.update(Path(v) for v in (file, *kwargs.values()) if isinstance(v, Path))
         return self._once(key, lambda: read_matrices(file, **kwargs))
 
 

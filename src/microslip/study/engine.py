@@ -1,0 +1,185 @@
+"""Running a study's cases on Dask: a local cluster of worker processes, or an existing scheduler.
+
+The study (base configuration, the files it reads: matrices, contact models)
+is scattered to every worker once; each case then travels as its few values.
+Finished cases are written as they arrive (:mod:`~microslip.study.store`), so
+an interrupted run loses only the cases in flight.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import sys
+import time
+from pathlib import Path
+
+from ..common import _checks
+from ..common._optional import require
+from .result import SweepResult
+from .solve import solve_case
+from .spec import Case, Study, load_study
+from .store import load_case, save_case
+
+#: environment of each local worker process: one thread for BLAS and numba (one process per core)
+WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+              "NUMBA_NUM_THREADS": "1", "MPLBACKEND": "Agg"}
+#: seconds to wait for an existing scheduler to answer
+CONNECT_TIMEOUT = 10.0
+
+
+def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = None, scheduler: str | None = None,
+          progress: bool = False, retry_failed: bool = False, report: bool = True) -> SweepResult:
+    """Solve every case of a design study on Dask and write its results.
+
+    Parameters
+    ----------
+    study : Study or str or Path
+        The study, or its file (:func:`~microslip.study.load_study`).
+    client : dask.distributed.Client, optional
+        Where to run; default: a local cluster of ``workers`` processes, or
+        ``scheduler``'s cluster.
+    out : str or Path, default "microslip-sweep"
+        Results folder: ``cases/`` (one file per finished case),
+        ``summary.csv``, ``summary.parquet``, ``curves.zarr`` and, with
+        ``report``, ``report.html`` and its figures.
+    workers : int, optional
+        Worker processes of the local cluster (default: one per core), each
+        with one thread for BLAS and numba.
+    scheduler : str, optional
+        Address of a running Dask scheduler, ``"tcp://HOST:PORT"``.
+    progress : bool, default False
+        Report cases done, running and failed, and the time left, on standard error.
+    retry_failed : bool, default False
+        Solve again the cases recorded as failed by an earlier run (finished
+        cases are never solved again).
+    report : bool, default True
+        Write the plots and the HTML report.
+
+    Returns
+    -------
+    SweepResult
+        Every case's summary row and curves; ``computed`` cases were solved by
+        this run, the others read back from ``out``.
+
+    Raises
+    ------
+    ConfigError
+        An invalid study (before any case is solved).
+    ConnectionError
+        ``scheduler`` does not answer within :data:`CONNECT_TIMEOUT` seconds.
+    """
+    from .report import write_report
+    from .store import summary_rows, write_curves, write_summary
+
+    study = study if isinstance(study, Study) else load_study(study)
+    if client is not None and (workers is not None or scheduler is not None):
+        raise ValueError("give either client or workers/scheduler, not both (the client already names its cluster)")
+    if workers is not None:
+        workers = _checks.positive_int("workers", workers)
+    if scheduler is not None:
+        scheduler = _checks.text("scheduler", scheduler)
+    progress = _checks.flag("progress", progress)
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"out: {str(out)!r} is a file; give a folder for the results")
+    cases = study.cases()
+    found = {c.key: load_case(out, c) for c in cases}
+    todo = [c for c in cases if found[c.key] is None or (retry_failed and found[c.key]["error"])]
+    require("dask.distributed", "a design study", "sweep")
+    start = time.perf_counter()
+    with _client(client, workers, scheduler) as running:
+        if progress:
+            print(f"{len(cases)} cases: {len(cases) - len(todo)} finished by an earlier run, {len(todo)} to solve on "
+                  f"{_threads(running)} worker{'s' if _threads(running) != 1 else ''}", file=sys.stderr, flush=True)
+        out.mkdir(parents=True, exist_ok=True)
+        if todo:
+            for case, outcome in _solve(running, study, todo, progress):
+                save_case(out, case, outcome)
+                found[case.key] = load_case(out, case)
+    outcomes = [found[c.key] for c in cases]
+    rows = summary_rows(study, cases, outcomes)
+    cfg = study.configuration(cases[0])
+    names = [cfg.dof_names[d] for d in cfg.plot_dofs]
+    write_summary(out, rows)
+    write_curves(out, study, cases, outcomes, names)
+    result = SweepResult(study, cases, outcomes, rows, names, out, computed=len(todo),
+                         elapsed=time.perf_counter() - start)
+    if report:
+        write_report(result)
+    return result
+
+
+def _solve(client, study: Study, todo: list[Case], progress: bool):
+    """``(case, outcome)`` as each case finishes; a worker lost while solving one is that case's error."""
+    from dask.distributed import as_completed
+
+    shared = client.scatter(study, broadcast=True, hash=False)  # sent once to every worker
+    futures = {client.submit(solve_case, shared, case, key=f"microslip-case-{case.key}-{time.time_ns()}",
+                             pure=False): case for case in todo}
+    threads = _threads(client)
+    start, done, failed = time.perf_counter(), 0, 0
+    try:
+        for future in as_completed(futures):
+            case = futures[future]
+            try:
+                outcome = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker: the case failed, the others go on
+                outcome = {"row": {}, "curves": {}, "error": f"{type(exc).__name__}: {exc}", "warnings": "",
+                           "time": 0.0}
+            done += 1
+            failed += bool(outcome["error"])
+            if progress:
+                _report_progress(case, outcome, done, failed, len(todo), threads, time.perf_counter() - start)
+            yield case, outcome
+    finally:
+        for future in futures:
+            future.cancel()
+
+
+def _report_progress(case, outcome, done, failed, total, threads, elapsed) -> None:
+    left = total - done
+    running = min(left, threads)
+    eta = elapsed / done * left
+    state = "failed: " + outcome["error"] if outcome["error"] else f"{outcome['time']:.1f} s"
+    print(f"[{done}/{total}] done, {running} running, {failed} failed, about {_duration(eta)} left "
+          f"({case.label}: {state})", file=sys.stderr, flush=True)
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 90:
+        return f"{seconds:.0f} s"
+    if seconds < 5400:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
+
+
+def _threads(client) -> int:
+    try:
+        return max(1, sum(client.nthreads().values()))
+    except Exception:  # noqa: BLE001 - only for the progress line
+        return 1
+
+
+@contextlib.contextmanager
+def _client(client, workers, scheduler):
+    """The client to run on: the one given, one on ``scheduler``, or a new local cluster's (closed after)."""
+    if client is not None:
+        yield client
+        return
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        try:
+            connected = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise ConnectionError(f"scheduler: no Dask scheduler answers at {scheduler!r} within "
+                                  f"{CONNECT_TIMEOUT:g} s ({type(exc).__name__}: {exc})") from None
+        with connected:
+            yield connected
+        return
+    n = workers or os.cpu_count() or 1
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                      silence_logs=logging.ERROR, env=WORKER_ENV) as cluster, Client(cluster) as local:
+        yield local
