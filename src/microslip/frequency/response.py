@@ -242,18 +242,7 @@ class FrequencyResponse:
         The discrete maximum is refined by a parabola through it and its two
         neighbours, in the arclength of the curve (so it works at folds too).
         """
-        amp = self.amplitude(dof, harmonic)
-        i = int(np.argmax(amp))
-        if i == 0 or i == amp.size - 1:
-            return float(self.omega[i]), float(amp[i])
-        w, a = self.omega[i - 1:i + 2], amp[i - 1:i + 2]
-        ws = np.ptp(self.omega) or 1.0
-        s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(w) / ws, np.diff(a) / amp[i]))])
-        pa = np.polyfit(s, a, 2)
-        if pa[0] >= 0:
-            return float(w[1]), float(a[1])
-        s_star = -pa[1] / (2 * pa[0])
-        return float(np.polyval(np.polyfit(s, w, 2), s_star)), float(np.polyval(pa, s_star))
+        return curve_peak(self.omega, self.amplitude(dof, harmonic))
 
     def time_history(self, point: int, dof=0, samples: int = _CURVE_SAMPLES) -> tuple[np.ndarray, np.ndarray]:
         """One period of a DOF's displacement at a point of the curve.
@@ -368,6 +357,28 @@ def _static_force(force) -> dict:
     if isinstance(force, Mapping) and 0 in force:
         return {0: force[0]}
     return {}
+
+
+def curve_peak(omega, amplitude) -> tuple[float, float]:
+    """Frequency (rad/s) and amplitude (m) of the highest point of a curve, refined as :meth:`FrequencyResponse.peak`.
+
+    Parameters
+    ----------
+    omega, amplitude : ndarray, shape (points,)
+        The curve's frequencies (rad/s) and amplitudes (m), in the order of the curve.
+    """
+    omega, amp = np.asarray(omega, float), np.asarray(amplitude, float)
+    i = int(np.argmax(amp))
+    if i == 0 or i == amp.size - 1:
+        return float(omega[i]), float(amp[i])
+    w, a = omega[i - 1:i + 2], amp[i - 1:i + 2]
+    ws = np.ptp(omega) or 1.0
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(w) / ws, np.diff(a) / amp[i]))])
+    pa = np.polyfit(s, a, 2)
+    if pa[0] >= 0:
+        return float(w[1]), float(a[1])
+    s_star = -pa[1] / (2 * pa[0])
+    return float(np.polyval(np.polyfit(s, w, 2), s_star)), float(np.polyval(pa, s_star))
 
 
 def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-10, reduction: str = "auto",

@@ -100,7 +100,7 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
                 found[case.key] = load_case(out, case)
     outcomes = [found[c.key] for c in cases]
     rows = summary_rows(study, cases, outcomes)
-    cfg = study.configuration(cases[0])
+    cfg = study.configuration(Case({}, ""))  # the base configuration's output DOFs
     names = [cfg.dof_names[d] for d in cfg.plot_dofs]
     write_summary(out, rows)
     write_curves(out, study, cases, outcomes, names)

@@ -92,12 +92,14 @@ def _mistuned(study: Study, cfg, sample: int):
 
 
 def _frf_row(cfg, result, amplitude) -> dict:
+    from ..frequency.response import curve_peak
+
     row = {}
     for j, d in enumerate(cfg.plot_dofs):
-        k = int(np.argmax(amplitude[:, j]))
+        w, a = curve_peak(result.omega, amplitude[:, j])
         name = cfg.dof_names[d]
-        row[f"peak {name} (m)"] = float(amplitude[k, j])
-        row[f"peak frequency {name} (Hz)"] = float(result.omega[k] / (2 * np.pi))
+        row[f"peak {name} (m)"] = a
+        row[f"peak frequency {name} (Hz)"] = w / (2 * np.pi)
     k = int(np.argmax(amplitude[:, 0]))
     row["dissipation at peak (J)"] = float(result.contact_dissipation[k].sum()) if result.structure.contacts else 0.0
     contacts = result.structure.contacts
