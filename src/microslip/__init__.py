@@ -10,8 +10,8 @@ One package per job: :mod:`microslip.reference` (exact continuous contacts),
 :mod:`microslip.measured` (from measured loops to a validated model),
 :mod:`microslip.accuracy` (load paths, accuracy against a reference),
 :mod:`microslip.frequency` (harmonic balance, time integration),
-:mod:`microslip.figures` (the paper's figures), :mod:`microslip.cli` (the
-command line); the model itself is :mod:`microslip.model`.
+:mod:`microslip.figures` (the paper's figures), :mod:`microslip.study` (design
+studies on Dask), :mod:`microslip.cli` (the command line); the model itself is :mod:`microslip.model`.
 """
 
 import sys as _sys
@@ -24,6 +24,7 @@ from .accuracy import AccuracyReport, accuracy, paths
 from .measured import (FittedBackbone, LoopTuning, MeasuredContact, Validation, fit_backbone, loops, tune_on_loops,
                        validate)
 from .frequency import FrequencyResponse, NonlinearModes, Structure, frequency_response, nonlinear_modes
+from .study import SweepResult, sweep
 
 from .common._version import __version__
 
@@ -52,6 +53,7 @@ __all__ = [
     "State",
     "Step",
     "Structure",
+    "SweepResult",
     "TargetNotMet",
     "TargetProblem",
     "TargetTuning",
@@ -66,6 +68,7 @@ __all__ = [
     "nonlinear_modes",
     "paths",
     "smallest_elements",
+    "sweep",
     "tune",
     "tune_on_loops",
     "tune_to_target",

@@ -26,7 +26,7 @@ title = "Damper load and excitation level"
 @pytest.fixture(scope="module")
 def client():
     """An in-process cluster of two single-threaded workers."""
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as c, \
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0") as c, \
             distributed.Client(c) as cl:
         yield cl
 
@@ -155,7 +155,7 @@ def test_sweep_refuses_a_client_with_workers(block, tmp_path, client):
         sweep(block, client, workers=2, out=tmp_path / "out")
 
 
-def test_a_killed_run_loses_only_the_cases_in_flight(block, tmp_path):
+def test_a_killed_run_loses_only_the_cases_in_flight(block, tmp_path, capsys):
     """``microslip sweep`` killed (SIGKILL, its workers too) after its first finished case; the rerun completes."""
     out = tmp_path / "out"
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
@@ -170,5 +170,31 @@ def test_a_killed_run_loses_only_the_cases_in_flight(block, tmp_path):
     finished = len(list((out / "cases").glob("*.npz")))
     assert finished >= 1, proc.stderr.read().decode()
     assert not list((out / "cases").glob(".*"))  # no half-written case file left behind
-    again = sweep(block, out=out, workers=1, report=False)
-    assert again.computed == 6 - finished and not again.failed
+    from microslip.cli import main
+
+    assert main(["sweep", str(block), "-o", str(out), "--workers", "1"]) == 0
+    err = capsys.readouterr().err
+    assert f"6 cases: {finished} finished by an earlier run, {6 - finished} to solve on 1 worker" in err
+    assert f"[{6 - finished}/{6 - finished}] done, 0 running, 0 failed" in err
+    assert len(list((out / "cases").glob("*.npz"))) == 6
+
+
+def test_the_cli_refuses_a_bad_study_with_status_2(block, tmp_path, capsys):
+    from microslip.cli import main
+
+    block.write_text('base = "inclined_block.toml"\n[vary]\n"contact.sphere.preload" = ["25m"]\n')
+    assert main(["sweep", str(block), "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("microslip sweep: error: ") and "'contact.sphere.preload' = \"25m\"" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_cli_help_explains_every_option(capsys):
+    from microslip.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["sweep", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for option in ("--workers", "--scheduler", "--retry-failed", "-o", "--quiet", "summary.csv", "curves.zarr",
+                   "dask-jobqueue", "pip install microslip[sweep]"):
+        assert option in text

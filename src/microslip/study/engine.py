@@ -180,6 +180,6 @@ def _client(client, workers, scheduler):
             yield connected
         return
     n = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
                       silence_logs=logging.ERROR, env=WORKER_ENV) as cluster, Client(cluster) as local:
         yield local

@@ -1,0 +1,132 @@
+"""Cost of running a design study on Dask: the overhead per case against a plain loop, and 2 workers against 1.
+
+Run:  python benchmarks/bench_sweep.py [--cases N]
+
+The study: the blade pair with an under-platform damper of the tests (``tests/study/conftest.py``),
+tips excited in antiphase, 3000 to 5000 rad/s, H = 3, the damper's centrifugal load from 40 N to
+300 N and two excitation levels (``--cases`` of them, default 20, about 1-2 s each).
+
+Timed in the same process, each on warm code (numba's compiled kernels loaded, every worker has
+solved one case first; the cluster's start-up and that first case are timed apart):
+
+1. the baseline: the cases one after the other, each configuration built by ``Study.configuration``
+   and solved by ``frequency_response`` in a plain loop, BLAS on one thread;
+2. ``microslip.sweep`` on a local cluster of 1 worker process: everything a study does (the study sent
+   to the worker, one task per case, every finished case written to its file, the summary table
+   and the Zarr store; the HTML report, a fixed cost, is left out);
+3. the same on 2 worker processes.
+
+Printed: the overhead per case, (2 - 1) / 1 (target under 5 %), and the throughput of 2 workers over
+1 worker (target at least 1.7 on this 2-core machine). Both solutions are checked equal bit for bit.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "frequency"), str(ROOT / "tests" / "cli"),
+                str(ROOT / "tests" / "study")]
+
+
+def _files(folder: Path, cases: int) -> Path:
+    """The damper pair's configuration and a study of ``cases`` cases in ``folder``."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("study_conftest", ROOT / "tests" / "study" / "conftest.py")
+    conftest = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(conftest)
+    conftest.write_damper_pair(folder, omega=(3000, 5000))
+    loads = np.geomspace(40, 300, cases // 2)
+    study = folder / "study.toml"
+    study.write_text('base = "pair.toml"\n[vary]\n"damper.centrifugal_load" = ['
+                     + ", ".join(f'"{x:.4g}N"' for x in loads) + ']\n"excitation.scale" = [1.0, 1.5]\n')
+    return study
+
+
+def _loop(study, cases):
+    from threadpoolctl import threadpool_limits
+
+    from microslip.frequency import frequency_response
+    from microslip.study.solve import frf_arguments
+
+    out = []
+    with threadpool_limits(1):
+        for case in cases:
+            cfg = study.configuration(case)
+            out.append(frequency_response(cfg.structure, cfg.force, cfg.omega, **frf_arguments(cfg)))
+    return out
+
+
+def _cluster(n: int):
+    from dask.distributed import Client, LocalCluster
+
+    from microslip.study.engine import WORKER_ENV
+
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                           silence_logs=logging.ERROR, env=WORKER_ENV)
+    return cluster, Client(cluster)
+
+
+def _warm(client, study) -> None:
+    """Every worker solves the study's first case once (imports, compiled kernels loaded)."""
+    from microslip.study.solve import solve_case
+
+    case = study.cases()[0]
+    workers = list(client.scheduler_info()["workers"])
+    client.gather([client.submit(solve_case, study, case, workers=[w], pure=False, allow_other_workers=False)
+                   for w in workers])
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--cases", type=int, default=20, help="number of cases (even, default 20)")
+    args = parser.parse_args(argv)
+    from microslip.study import load_study, sweep
+
+    print(f"load average {os.getloadavg()[0]:.2f}; {os.cpu_count()} cores")
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        study = load_study(_files(tmp, args.cases))
+        cases = study.cases()
+        _loop(study, cases[:1])  # warm-up: compiled kernels loaded
+        t0 = time.perf_counter()
+        loop = _loop(study, cases)
+        t_loop = time.perf_counter() - t0
+        print(f"plain loop of frequency_response: {len(cases)} cases in {t_loop:.2f} s "
+              f"({t_loop / len(cases):.3f} s per case)")
+        times = {}
+        for n in (1, 2):
+            t0 = time.perf_counter()
+            cluster, client = _cluster(n)
+            _warm(client, study)
+            start = time.perf_counter() - t0
+            t0 = time.perf_counter()
+            result = sweep(study, client, out=tmp / f"out{n}", report=False)
+            times[n] = time.perf_counter() - t0
+            client.close()
+            cluster.close()
+            assert result.computed == len(cases) and not result.failed
+            same = all(np.array_equal(result.curve(k)["omega"], r.omega) for k, r in enumerate(loop))
+            print(f"sweep on {n} worker{'s' if n > 1 else ''}: {times[n]:.2f} s ({times[n] / len(cases):.3f} s per "
+                  f"case; start-up and one case per worker before: {start:.2f} s); every curve equal to the "
+                  f"loop's bit for bit: {same}")
+        overhead = (times[1] - t_loop) / t_loop
+        print(f"overhead per case, 1 worker against the loop: {100 * overhead:+.1f} % (target under 5 %)")
+        print(f"throughput, 2 workers over 1: {times[1] / times[2]:.2f}x (target at least 1.7x)")
+        print(f"load average {os.getloadavg()[0]:.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
