@@ -198,3 +198,25 @@ def test_the_cli_help_explains_every_option(capsys):
     for option in ("--workers", "--scheduler", "--retry-failed", "-o", "--quiet", "summary.csv", "curves.zarr",
                    "dask-jobqueue", "pip install microslip[sweep]"):
         assert option in text
+
+
+def test_a_study_of_nonlinear_modes_gives_each_modes_frequency_and_damping(block, tmp_path, client):
+    from microslip.frequency import nonlinear_modes
+
+    block.write_text('base = "inclined_block.toml"\nsolve = "modes"\n[vary]\n"contact.sphere.preload" = ["25N", "50N"]\n'
+                     '"sweep.harmonics" = [3]\n')
+    study = load_study(block)
+    result = sweep(study, client, out=tmp_path / "out")
+    assert not result.failed
+    for k, case in enumerate(result.cases):
+        cfg = study.configuration(case)
+        t = cfg.nonlinear_mode
+        mode = nonlinear_modes(cfg.structure, t.mode, t.amplitude, harmonics=cfg.harmonics, samples=cfg.samples,
+                               control=cfg.control)
+        row = result.rows[k]
+        assert row["linear frequency (Hz)"] == mode.linear_frequency / (2 * np.pi)
+        assert row["largest damping ratio"] == mode.damping_ratio.max()
+        assert np.array_equal(result.curve(k)["damping_ratio"], mode.damping_ratio)
+    # a stiffer contact (higher preload) raises the stuck mode's frequency
+    assert result.rows[1]["linear frequency (Hz)"] > result.rows[0]["linear frequency (Hz)"]
+    assert "The largest modal damping ratio against `contact.sphere.preload`" in (tmp_path / "out" / "report.md").read_text()
