@@ -56,17 +56,22 @@ dof = 2
 
 @pytest.fixture
 def config(tmp_path):
+    return write_config(tmp_path)
+
+
+def write_config(folder, replace=lambda text: text):
+    """The blade pair's matrices, its two contact models and :data:`CONFIG` (edited by ``replace``) in ``folder``."""
     s = blade_pair()
-    np.savez(tmp_path / "pair.npz", M=s.M, C=s.C, K=s.K)
+    np.savez(folder / "pair.npz", M=s.M, C=s.C, K=s.K)
     model = tune(Sphere.paper(), 37.5, elements=4)
-    model.save(tmp_path / "flat.json")
-    model.save(tmp_path / "curved.json")
+    model.save(folder / "flat.json")
+    model.save(folder / "curved.json")
     a = np.radians(135.0)
     tau = np.array([-np.sin(a), np.cos(a)])
     c = np.array([-3e-3, 2e-3])
     p0, p1 = c - 1.5e-3 * tau, c + 1.5e-3 * tau
-    path = tmp_path / "pair.toml"
-    path.write_text(CONFIG.format(p0x=p0[0], p0y=p0[1], p1x=p1[0], p1y=p1[1]))
+    path = folder / "pair.toml"
+    path.write_text(replace(CONFIG.format(p0x=p0[0], p0y=p0[1], p1x=p1[0], p1y=p1[1])))
     return path
 
 

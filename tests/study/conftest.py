@@ -30,25 +30,10 @@ def damper_pair(tmp_path):
 
 def write_damper_pair(folder, omega=(4320, 4440)):
     """The files of :func:`damper_pair` written in ``folder``, the sweep over ``omega`` (rad/s); the configuration."""
-    from test_damper import blade_pair
-    from test_design_cli import CONFIG
+    from test_design_cli import write_config
 
-    from microslip import Sphere, tune
-
-    s = blade_pair()
-    np.savez(folder / "pair.npz", M=s.M, C=s.C, K=s.K)
-    model = tune(Sphere.paper(), 37.5, elements=4)
-    model.save(folder / "flat.json")
-    model.save(folder / "curved.json")
-    a = np.radians(135.0)
-    tau = np.array([-np.sin(a), np.cos(a)])
-    c = np.array([-3e-3, 2e-3])
-    p0, p1 = c - 1.5e-3 * tau, c + 1.5e-3 * tau
-    text = (CONFIG.format(p0x=p0[0], p0y=p0[1], p1x=p1[0], p1y=p1[1])
-            .replace("h1 = [0, 0, 0.5, 0, 0, 0]", "h1 = [0, 0, 0.5, 0, 0, -0.5]")
-            .replace("omega = [3000, 5000]", f"omega = [{omega[0]}, {omega[1]}]")
-            .replace('[design]\nloads = ["3N", "20N", "300N"]           # from a damper sliding through the cycle '
-                     'to a stuck one\ndof = 2\n', "[output]\nplot = [\"tip0\"]\n"))
-    path = folder / "pair.toml"
-    path.write_text(text)
-    return path
+    return write_config(folder, lambda text: (
+        text.replace("h1 = [0, 0, 0.5, 0, 0, 0]", "h1 = [0, 0, 0.5, 0, 0, -0.5]")
+        .replace("omega = [3000, 5000]", f"omega = [{omega[0]}, {omega[1]}]")
+        .replace('[design]\nloads = ["3N", "20N", "300N"]           # from a damper sliding through the cycle '
+                 'to a stuck one\ndof = 2\n', "[output]\nplot = [\"tip0\"]\n")))

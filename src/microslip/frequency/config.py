@@ -170,9 +170,9 @@ class ModesTable:
     nodal_diameter: int | None = None
 
 
-def _known(table: dict, where: str, path) -> None:
+def _known(table: dict, where: str, path, keys: dict = KEYS) -> None:
     """Refuse a key ``where`` does not accept, naming it, the table and the accepted keys (the closest first)."""
-    accepted = KEYS[where]
+    accepted = keys[where]
     for key in table:
         if key not in accepted:
             raise ConfigError(f"{path}: {where} has an unknown key {key!r}{_close(key, accepted)} (it accepts "

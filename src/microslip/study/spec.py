@@ -48,6 +48,7 @@ from pathlib import Path
 import numpy as np
 
 from ..common import _checks
+from ..frequency import config
 from ..frequency.config import ConfigError, ConfigFiles, _close, config_from_data, read_toml
 from .key_paths import set_key, set_key_in_place
 
@@ -224,11 +225,7 @@ def load_study(path) -> Study:
 
 
 def _known(table: dict, where: str, path) -> None:
-    accepted = STUDY_KEYS[where]
-    for key in table:
-        if key not in accepted:
-            raise ConfigError(f"{path}: {where} has an unknown key {key!r}{_close(key, accepted)} (it accepts "
-                              f"{', '.join(accepted)})")
+    config._known(table, where, path, STUDY_KEYS)
 
 
 def _checked_text(value, name: str, path) -> str:
