@@ -7,6 +7,7 @@ from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import CyclicStructure, frequency_point, frequency_response
 from microslip.frequency.mistuning import (MAX_STD, amplification_factor, blade_peaks, blade_scatter,
                                            mistuned_disk)
+from test_cyclic import springs_matrix  # the same spring assembly
 
 SPHERE = Sphere.paper()
 MODEL = tune(SPHERE, 37.5, elements=4)
@@ -14,18 +15,6 @@ SECTORS = 5
 # samples per period, a multiple of the sectors: sector k's signals are sector 0's shifted by a whole number of
 # samples, so the disk's AFT samples every blade at the same phases as the sector's (see test_cyclic.py)
 SAMPLES = 16 * SECTORS
-
-
-def springs_matrix(n, springs):
-    """Stiffness (N/m) of springs ``(i, j, k)`` between DOFs ``i`` and ``j`` (``j`` None: to ground)."""
-    K = np.zeros((n, n))
-    for i, j, k in springs:
-        K[i, i] += k
-        if j is not None:
-            K[j, j] += k
-            K[i, j] -= k
-            K[j, i] -= k
-    return K
 
 
 def rubbing_sector():
@@ -192,6 +181,10 @@ def test_inputs_are_checked_by_name():
         blade_scatter(5, 0.5, seed=1, sample=0)
     with pytest.raises(ValueError, match="sectors must be an integer >= 3, got 2"):
         blade_scatter(2, 0.01, seed=1, sample=0)
+    # 1e6 blades at the largest std: a draw below -4 std (3.2e-5 per blade) about 32 times
+    with pytest.raises(ValueError, match="std: blade [0-9]+ of 1000000 would have 1 \\+ delta = -[0-9.e-]+ <= 0 with "
+                                         "std = 0.25 \\(a blade stiffness scatter is a few percent\\)"):
+        blade_scatter(1_000_000, MAX_STD, seed=1, sample=0)
     with pytest.raises(TypeError, match="sample must be an integer, got 1.5"):
         blade_scatter(5, 0.01, seed=1, sample=1.5)
     with pytest.raises(ValueError, match="scatter must have shape \\(5,\\), one value per sector, got shape \\(4,\\)"):
@@ -222,5 +215,8 @@ def test_inputs_are_checked_by_name():
     with pytest.raises(ValueError, match="result must be a response of the whole disk assembled from sector "
                                          "\\(5 sectors, 15 DOFs\\), got one of 4 DOFs solved as a sector"):
         blade_peaks(sector_point, d, 3)
-    with pytest.raises(TypeError, match="tuned must be the FrequencyResponse of the cyclic sector"):
+    with pytest.raises(ValueError, match="tuned must be the response of the cyclic sector \\(solved with "
+                                         "engine_order\\), got one of a structure of 15 DOFs"):
         amplification_factor(r, r, d, 3)
+    with pytest.raises(TypeError, match="tuned must be the FrequencyResponse of the cyclic sector, got float"):
+        amplification_factor(r, 1.0, d, 3)

@@ -204,10 +204,11 @@ def amplification_factor(result: FrequencyResponse, tuned: FrequencyResponse, se
     float
         ``max_s blade_peaks[s] / tuned.peak(dof)`` amplitude: 1 for a tuned disk.
     """
-    if not isinstance(tuned, FrequencyResponse) or tuned.engine_order is None:
-        raise TypeError(f"tuned must be the FrequencyResponse of the cyclic sector (engine_order given), got "
-                        f"{type(tuned).__name__}" + (" without an engine order" if isinstance(tuned, FrequencyResponse)
-                                                      else ""))
+    if not isinstance(tuned, FrequencyResponse):
+        raise TypeError(f"tuned must be the FrequencyResponse of the cyclic sector, got {type(tuned).__name__}")
+    if tuned.engine_order is None:
+        raise ValueError(f"tuned must be the response of the cyclic sector (solved with engine_order), got one of a "
+                         f"structure of {tuned.structure.ndof} DOFs without an engine order")
     peaks = blade_peaks(result, sector, dof, harmonic=harmonic)
     reference = tuned.peak(dof, harmonic)[1]
     if not reference > 0:
