@@ -92,6 +92,9 @@ def test_one_scaled_blade_equals_the_disk_assembled_by_hand_and_its_linear_solut
     r = frequency_point(disk, force, omega, harmonics=1, reduction="exact")
     # Newton on a linear problem: one step from the start, the rest is the condensation's rounding
     np.testing.assert_allclose(blade_peaks(r, d, 2, harmonic=1), np.abs(z[N:]), rtol=1e-10)
+    # the ring nodes are not retained (only blade 1's force is): recovered from the condensation, as exact
+    assert not np.isin([0, 2, 4], r.dofs).any()
+    np.testing.assert_allclose(blade_peaks(r, d, 0, harmonic=1), np.abs(z[:N]), rtol=1e-10)
     # one harmonic: max |q - q0| = |z| cos(theta), theta the phase of the nearest of 256 samples, |theta| <= pi/256
     sampled = blade_peaks(r, d, 2)
     assert np.all(sampled <= np.abs(z[N:]) * (1 + 1e-10)) and np.all(sampled >= np.abs(z[N:]) * np.cos(np.pi / 256))
