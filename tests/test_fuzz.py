@@ -324,6 +324,13 @@ def disk_point():
     return frequency_point(disk(), [0.0, 1.0, 0.0], 3000.0, harmonics=1, engine_order=1)
 
 
+@cache
+def whole_disk_point():
+    d = disk()
+    return frequency_point(d.assembled(), d.travelling_wave([0.0, 1.0, 0.0], 1), 3000.0, harmonics=1,
+                           reduction="exact")
+
+
 def damper():
     from microslip.frequency import UnderPlatformDamper
 
@@ -710,6 +717,15 @@ CASES += [
     case("frequency.contact_cycle", lambda: microslip.frequency.contact_cycle, result=L(a_point), contact=0, point=0,
          samples=16),
     case("CyclicStructure.travelling_wave", lambda: disk().travelling_wave, force=[0.0, 1.0, 0.0], engine_order=3),
+    case("CyclicStructure.assembled", lambda: disk().assembled, stiffness_scale=np.linspace(0.98, 1.02, 8),
+         scaled_dofs=[0, 1]),
+    case("frequency.blade_scatter", lambda: microslip.frequency.blade_scatter, sectors=8, std=0.02, seed=1, sample=0),
+    case("frequency.mistuned_disk", lambda: microslip.frequency.mistuned_disk, sector=L(disk),
+         scatter=np.linspace(-0.02, 0.02, 8), blade_dofs=[0, 1]),
+    case("frequency.blade_peaks", lambda: microslip.frequency.blade_peaks, result=L(whole_disk_point), sector=L(disk),
+         dof=1, harmonic=1),
+    case("frequency.amplification_factor", lambda: microslip.frequency.amplification_factor,
+         result=L(whole_disk_point), tuned=L(disk_point), sector=L(disk), dof=1, harmonic=1),
     case("UnderPlatformDamper", lambda: microslip.frequency.UnderPlatformDamper, mass=0.02, inertia=1e-6,
          centrifugal_load=300.0, retention=1e3),
     case("UnderPlatformDamper.add_interface", lambda: damper().add_interface,

@@ -22,6 +22,9 @@
   its interfaces given by geometry, attached to a structure or a sector;
 * :func:`damper_design_curve` -- peak response against the damper's
   centrifugal load, the curve used to choose a damper;
+* :func:`blade_scatter`, :func:`mistuned_disk`, :func:`blade_peaks`,
+  :func:`amplification_factor` -- a mistuned disk (random blade stiffness
+  scatter) assembled whole, each blade's peak against the tuned sector's;
 * :func:`contact_cycle` -- a contact's forces over one steady period at a
   point of a response, with its slip state (stuck, microslip, gross slip,
   lift-off) at every sample;
@@ -41,6 +44,7 @@ from .design import DesignCurve, damper_design_curve
 from .condensation import SingularInteriorError
 from .contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
 from .hbm import HarmonicBalance
+from .mistuning import amplification_factor, blade_peaks, blade_scatter, mistuned_disk
 from .nonlinear_modes import NonlinearModes, nonlinear_modes
 from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
 from .structure import Contact, Structure
@@ -72,6 +76,9 @@ __all__ = [
     "aft",
     "aft_batch",
     "aft_plane",
+    "amplification_factor",
+    "blade_peaks",
+    "blade_scatter",
     "contact_cycle",
     "craig_bampton",
     "cycle_work",
@@ -79,6 +86,7 @@ __all__ = [
     "default_samples",
     "frequency_point",
     "frequency_response",
+    "mistuned_disk",
     "nonlinear_modes",
     "plot_contact_cycles",
     "static_solution",

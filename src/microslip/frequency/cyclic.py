@@ -222,7 +222,7 @@ class CyclicStructure(Structure):
         dofs = np.asarray(dofs, dtype=np.int64)
         return ((sector + owner[dofs]) % self.sectors) * ni + local[dofs]
 
-    def assembled(self) -> Structure:
+    def assembled(self, stiffness_scale=None, *, scaled_dofs=None) -> Structure:
         """The whole disk as one :class:`Structure`: every sector's matrices, contacts and static forces.
 
         Sector ``s``'s independent DOFs (:attr:`independent`, in order) are
@@ -232,14 +232,32 @@ class CyclicStructure(Structure):
         Solved with the force of :meth:`travelling_wave`, it gives the response
         a sector solution with ``engine_order`` stands for, at ``N`` times the
         cost (a check, or a baseline).
+
+        Parameters
+        ----------
+        stiffness_scale : array_like, shape (sectors,), optional
+            A factor ``> 0`` on sector ``s``'s stiffness entries ``K[i, j]``
+            with ``i`` and ``j`` both in ``scaled_dofs`` (a mistuned disk,
+            :func:`~microslip.frequency.mistuning.mistuned_disk`); None: every
+            sector as given (the tuned disk).
+        scaled_dofs : array_like of int, optional
+            The sector's DOFs (indices into its ``ndof``) whose stiffness
+            ``stiffness_scale`` scales; default every DOF.
         """
         N, ni = self.sectors, self.independent.size
+        scale = self._stiffness_scale(stiffness_scale, scaled_dofs)
         mats = []
-        for A in (self.M, self.C, self.K):
+        for which, A in enumerate((self.M, self.C, self.K)):
             A = sp.coo_matrix(A)
             rows = np.concatenate([self._whole_index(s, A.row) for s in range(N)])
             cols = np.concatenate([self._whole_index(s, A.col) for s in range(N)])
-            whole = sp.csr_matrix((np.tile(A.data, N), (rows, cols)), shape=(N * ni, N * ni))
+            if which == 2 and scale is not None:
+                factors, inside = scale
+                scaled = inside[A.row] & inside[A.col]
+                data = np.concatenate([np.where(scaled, A.data * f, A.data) for f in factors])
+            else:
+                data = np.tile(A.data, N)
+            whole = sp.csr_matrix((data, (rows, cols)), shape=(N * ni, N * ni))
             mats.append(whole if self.sparse else whole.toarray())
         out = Structure(*mats)
         everything = np.arange(self.ndof)
@@ -251,6 +269,21 @@ class CyclicStructure(Structure):
                                 normal=self._whole_terms(s, normal) or None, preload=c.preload or None,
                                 approach=c.approach, name=f"{c.name}@{s}")
         return out
+
+    def _stiffness_scale(self, stiffness_scale, scaled_dofs):
+        """``(factors (sectors,), mask (ndof,))`` of :meth:`assembled`'s arguments, checked; None when not scaled."""
+        if stiffness_scale is None:
+            if scaled_dofs is not None:
+                raise ValueError("scaled_dofs is only used with stiffness_scale, which is None")
+            return None
+        factors = _checks.positive_array("stiffness_scale", stiffness_scale, ndim=1)
+        if factors.size != self.sectors:
+            raise ValueError(f"stiffness_scale must have one factor per sector ({self.sectors}), got {factors.size}")
+        inside = np.ones(self.ndof, dtype=bool)
+        if scaled_dofs is not None:
+            inside[:] = False
+            inside[_dof_list("scaled_dofs", scaled_dofs, self.ndof)] = True
+        return factors, inside
 
     def _whole_terms(self, sector: int, terms) -> dict:
         """``{whole-disk DOF: coefficient}`` of :func:`contact_terms` ``terms`` of a contact of sector ``sector``."""
