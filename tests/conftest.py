@@ -12,10 +12,13 @@ and eigen-solves 10 times slower (a 711-point reduced curve: 135 s against
 
 import os
 
+import numpy  # noqa: F401  (loaded first: a limit set before a BLAS library is loaded does not reach it)
+import scipy.linalg  # noqa: F401
 from hypothesis import settings
-from threadpoolctl import threadpool_limits
+from threadpoolctl import threadpool_info, threadpool_limits
 
 _ONE_BLAS_THREAD = threadpool_limits(limits=1, user_api="blas")
+assert all(p["num_threads"] == 1 for p in threadpool_info() if p["user_api"] == "blas"), threadpool_info()
 
 settings.register_profile("ci", derandomize=True, print_blob=True)
 if os.environ.get("CI"):

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..common import _checks
 from .cyclic import CyclicStructure, _dof_list
-from .response import FrequencyResponse
+from .response import FrequencyResponse, curve_peak
 from .structure import Structure, direction
 
 #: the largest standard deviation :func:`blade_scatter` accepts: a blade stiffness scatter is a few percent;
@@ -119,6 +119,45 @@ def mistuned_disk(sector: CyclicStructure, scatter, *, blade_dofs=None) -> Struc
     return sector.assembled(1.0 + delta, scaled_dofs=dofs)
 
 
+def blade_amplitudes(result: FrequencyResponse, sector: CyclicStructure, dof, *,
+                     harmonic: int | None = None) -> np.ndarray:
+    """The amplitude of one sector DOF in every blade of an assembled disk, along the curve (m).
+
+    Parameters
+    ----------
+    result, sector, dof, harmonic
+        As :func:`blade_peaks`.
+
+    Returns
+    -------
+    ndarray, shape (points, sectors)
+        Column ``s``: :meth:`FrequencyResponse.amplitude` of that DOF in sector ``s``.
+    """
+    if not isinstance(result, FrequencyResponse):
+        raise TypeError(f"result must be a FrequencyResponse, got {type(result).__name__}")
+    if not isinstance(sector, CyclicStructure):
+        raise TypeError(f"sector must be a microslip CyclicStructure, got {type(sector).__name__}")
+    whole = sector.sectors * sector.independent.size
+    if result.engine_order is not None or result.structure.ndof != whole:
+        raise ValueError(f"result must be a response of the whole disk assembled from sector ({sector.sectors} "
+                         f"sectors, {whole} DOFs), got one of {result.structure.ndof} DOFs"
+                         + (f" solved as a sector (engine_order = {result.engine_order})"
+                            if result.engine_order is not None else ""))
+    b = direction("dof", dof, sector.ndof, dof_map=sector.dof_map)
+    used = np.flatnonzero(b)
+    if harmonic is not None:
+        h = _checks.positive_int("harmonic", harmonic, minimum=1)
+        if h > result.harmonics:
+            raise ValueError(f"harmonic must be at most harmonics = {result.harmonics}, got {h}")
+    full = _holding(result, np.concatenate([sector._whole_index(s, used) for s in range(sector.sectors)]))
+    out = np.empty((result.points, sector.sectors))
+    for s in range(sector.sectors):
+        w = np.zeros(whole)
+        np.add.at(w, sector._whole_index(s, used), b[used])
+        out[:, s] = full.amplitude(w, harmonic)
+    return out
+
+
 def blade_peaks(result: FrequencyResponse, sector: CyclicStructure, dof, *, harmonic: int | None = None) -> np.ndarray:
     """The peak amplitude of one sector DOF in every blade of an assembled disk (m).
 
@@ -140,37 +179,16 @@ def blade_peaks(result: FrequencyResponse, sector: CyclicStructure, dof, *, harm
     Returns
     -------
     ndarray, shape (sectors,)
-        Blade ``s``'s peak (m): :meth:`FrequencyResponse.peak` of that DOF in
-        sector ``s`` (the curve's highest point, refined by a parabola), so a
-        tuned disk gives the sector solution's ``peak(dof)`` in every blade.
-        With ``harmonic=None`` the maximum over a period is taken on 256
-        samples, each blade at its own phase of the travelling wave: a tuned
-        disk's blades then differ by up to ``1 - cos(pi / 256)`` (7.5e-5) of
-        the amplitude (exactly equal with ``harmonic``).
+        Blade ``s``'s peak (m): the highest point of that DOF's curve in
+        sector ``s``, refined by a parabola as :meth:`FrequencyResponse.peak`,
+        so a tuned disk gives the sector solution's ``peak(dof)`` in every
+        blade. With ``harmonic=None`` the maximum over a period is taken on
+        256 samples, each blade at its own phase of the travelling wave: a
+        tuned disk's blades then differ by up to ``1 - cos(pi / 256)``
+        (7.5e-5) of the amplitude (exactly equal with ``harmonic``).
     """
-    if not isinstance(result, FrequencyResponse):
-        raise TypeError(f"result must be a FrequencyResponse, got {type(result).__name__}")
-    if not isinstance(sector, CyclicStructure):
-        raise TypeError(f"sector must be a microslip CyclicStructure, got {type(sector).__name__}")
-    whole = sector.sectors * sector.independent.size
-    if result.engine_order is not None or result.structure.ndof != whole:
-        raise ValueError(f"result must be a response of the whole disk assembled from sector ({sector.sectors} "
-                         f"sectors, {whole} DOFs), got one of {result.structure.ndof} DOFs"
-                         + (f" solved as a sector (engine_order = {result.engine_order})"
-                            if result.engine_order is not None else ""))
-    b = direction("dof", dof, sector.ndof, dof_map=sector.dof_map)
-    used = np.flatnonzero(b)
-    if harmonic is not None:
-        h = _checks.positive_int("harmonic", harmonic, minimum=1)
-        if h > result.harmonics:
-            raise ValueError(f"harmonic must be at most harmonics = {result.harmonics}, got {h}")
-    full = _holding(result, np.concatenate([sector._whole_index(s, used) for s in range(sector.sectors)]))
-    peaks = np.empty(sector.sectors)
-    for s in range(sector.sectors):
-        w = np.zeros(whole)
-        np.add.at(w, sector._whole_index(s, used), b[used])
-        peaks[s] = full.peak(w, harmonic)[1]
-    return peaks
+    curves = blade_amplitudes(result, sector, dof, harmonic=harmonic)
+    return np.array([curve_peak(result.omega, curves[:, s])[1] for s in range(sector.sectors)])
 
 
 def _holding(result: FrequencyResponse, needed: np.ndarray) -> FrequencyResponse:

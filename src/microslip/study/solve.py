@@ -34,6 +34,7 @@ def solve_case(study: Study, case: Case) -> dict:
 
     BLAS runs on one thread (each worker is one process on one core).
     """
+    import scipy.linalg  # noqa: F401  (loaded before the limit: a limit reaches only the BLAS already loaded)
     from threadpoolctl import threadpool_limits
 
     start = time.perf_counter()
@@ -75,6 +76,7 @@ def _mistuned(study: Study, cfg, sample: int):
     """The assembled disk with the sample's blade stiffness scatter, excited by the travelling wave."""
     from ..frequency import frequency_response
     from ..frequency.mistuning import blade_amplitudes, blade_scatter, mistuned_disk
+    from ..frequency.response import curve_peak
 
     m = study.mistuning
     sector = cfg.structure
@@ -84,11 +86,15 @@ def _mistuned(study: Study, cfg, sample: int):
     result = frequency_response(disk, force, cfg.omega, harmonics=cfg.harmonics, samples=cfg.samples,
                                 control=cfg.control, reduction=m.reduction, modes=m.modes, stability=False)
     blades = [blade_amplitudes(result, sector, d, harmonic=cfg.harmonic) for d in cfg.plot_dofs]  # (points, N)
-    amplitude = np.column_stack([b.max(axis=1) for b in blades])
-    row = _frf_row(cfg, result, amplitude)
-    row["largest blade"] = int(np.argmax(blades[0].max(axis=0)))
-    row["stiffness scatter (std)"] = float(np.std(scatter))
-    return row, _frf_curves(result, amplitude)
+    row = _frf_row(cfg, result, np.column_stack([b.max(axis=1) for b in blades]))
+    for d, b in zip(cfg.plot_dofs, blades):  # the largest blade's own peak, as blade_peaks gives it
+        peaks = [curve_peak(result.omega, b[:, s]) for s in range(sector.sectors)]
+        k = int(np.argmax([a for _, a in peaks]))
+        row[f"peak {cfg.dof_names[d]} (m)"] = peaks[k][1]
+        row[f"peak frequency {cfg.dof_names[d]} (Hz)"] = peaks[k][0] / (2 * np.pi)
+        row[f"largest blade {cfg.dof_names[d]}"] = k
+    row["blade stiffness scatter (std)"] = float(np.std(scatter))
+    return row, _frf_curves(result, np.column_stack([b.max(axis=1) for b in blades]))
 
 
 def _frf_row(cfg, result, amplitude) -> dict:

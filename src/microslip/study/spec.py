@@ -333,9 +333,11 @@ def _mistuning(table, study: Study, path) -> Mistuning:
         if key not in table:
             raise ConfigError(f"{path}: [mistuning] needs {key}")
     std = _checked(path, _checks.positive_scalar, "[mistuning] std", table["std"], allow_zero=True)
-    if std >= 0.3:
-        raise ConfigError(f"{path}: [mistuning] std is a relative stiffness deviation and must be below 0.3 "
-                          f"(a blade's stiffness must stay positive), got {std!r}")
+    from ..frequency.mistuning import MAX_STD
+
+    if std > MAX_STD:
+        raise ConfigError(f"{path}: [mistuning] std is a relative stiffness deviation and must be at most {MAX_STD} "
+                          f"(a blade's stiffness scatters by a few percent), got {std!r}")
     samples = _checked(path, _checks.positive_int, "[mistuning] samples", table["samples"])
     seed = _checked(path, _checks.positive_int, "[mistuning] seed", table.get("seed", 0), minimum=0)
     reduction = table.get("reduction", "exact")
