@@ -44,7 +44,11 @@ def plot_against(result, parameter: str, dof=None, ax=None):
     for key, idx in groups.items():
         idx = np.array(idx)[np.argsort(x[idx], kind="stable")]
         name = ", ".join(f"{p} = {v}" for p, v in json.loads(key).items() if v is not None)
+        if result.study.mistuning is not None:
+            name = ("tuned disk, " + name) if name else "tuned disk"
         ax.plot(x[idx], y[idx] * scale, "o-", ms=4, label=name or None)
+    if result.study.mistuning is not None:
+        ax.plot(x[~tuned], y[~tuned] * scale, ".", color="0.45", ms=4, label="mistuned disks: largest blade")
     if labels is not None:
         ax.set_xticks(range(len(labels)), labels, rotation=20, ha="right", fontsize=8)
     elif np.nanmin(x) > 0 and np.nanmax(x) / np.nanmin(x) > 20:
@@ -52,7 +56,7 @@ def plot_against(result, parameter: str, dof=None, ax=None):
     ax.set_xlabel(parameter + ("" if labels is not None else " (SI units)"))
     ax.set_ylabel(label)
     ax.grid(True, alpha=0.3)
-    if 1 < len(groups) <= 10:
+    if 1 < len(groups) <= 10 or result.study.mistuning is not None:
         ax.legend(fontsize=7)
     return ax
 

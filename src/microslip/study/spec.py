@@ -161,8 +161,10 @@ class Study:
 
     def _key(self, values: dict, sample) -> str:
         mistuning = None if sample is None else {**self.mistuning.__dict__, "sample": sample}
-        text = json.dumps({"base": self.fingerprint, "solve": self.solve, "values": values, "mistuning": mistuning},
-                          sort_keys=True, default=str)
+        from ..common._version import __version__
+
+        text = json.dumps({"base": self.fingerprint, "solve": self.solve, "values": values, "mistuning": mistuning,
+                           "version": __version__}, sort_keys=True, default=str)
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
     def configuration(self, case: Case):

@@ -156,7 +156,7 @@ def write_curves(out: Path, study: Study, cases: list[Case], outcomes: list[dict
         numeric = all(isinstance(v, float) for v in values)
         coords[p] = ("case", np.array(values, dtype=float if numeric else str))
     if study.mistuning is not None:
-        coords["mistuned disk"] = ("case", np.array([-1 if c.mistuning_sample is None else c.mistuning_sample
+        coords["mistuned_disk"] = ("case", np.array([-1 if c.mistuning_sample is None else c.mistuning_sample
                                                      for c in cases]))
     ds = xr.Dataset(data, coords=coords, attrs={"title": study.title, "solve": study.solve,
                                                 "base": str(study.base.name)})
