@@ -42,6 +42,7 @@ import scipy.sparse
 
 import microslip
 import microslip.fe
+import microslip.study
 from microslip import (Cylinder, MeasuredContact, MicroslipModel, Sphere, State, Structure, accuracy, fit_backbone,
                        loops, mdr, paths, tune, tune_on_loops)
 from microslip.accuracy import PathBatch, reference_run, restriction_mask
@@ -774,6 +775,57 @@ CASES += [
          kinds={"M": "path", "K": "path", "C": "path"}, M=L(lambda: mtx_file("M")), K=L(lambda: mtx_file("K")),
          C=L(lambda: mtx_file("C"))),
 ]
+
+
+# -- design studies --------------------------------------------------------------------------------------
+@cache
+def study_file() -> str:
+    """The smallest study (examples/inclined_block_study.toml) beside its base configuration, in a new folder."""
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    from _paths import REPO
+
+    folder = Path(tempfile.mkdtemp(prefix="fuzz-study-"))
+    for name in ("inclined_block.toml", "sphere_4_elements.json", "inclined_block_study.toml"):
+        shutil.copy(REPO / "examples" / name, folder / name)
+    study = folder / "inclined_block_study.toml"
+    study.write_text(study.read_text().replace('["25N", "37.5N", "50N"]', '["25N"]')
+                     .replace('[["0.3N", "0N"], ["0.6N", "0N"]]', '[["0.3N", "0N"]]'))
+    return str(study)
+
+
+@cache
+def a_study():
+    return microslip.study.load_study(study_file())
+
+
+@cache
+def a_sweep():
+    """The one-case study solved on an in-process cluster of one worker."""
+    import tempfile
+
+    from dask.distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as cluster, \
+            Client(cluster) as client:
+        return microslip.sweep(a_study(), client, out=tempfile.mkdtemp(prefix="fuzz-sweep-"), report=False)
+
+
+CASES += [
+    # a study's cases are solved on Dask: only the values it must refuse before any work
+    case("microslip.sweep", lambda: microslip.sweep, refused_only=True, kinds={"study": "path", "out": "path"},
+         study=L(study_file), out="sweep-out", workers=1, progress=False, retry_failed=False, report=False),
+    case("study.load_study", lambda: microslip.study.load_study, kinds=PATH, path=L(study_file)),
+    case("Study.configuration", lambda: a_study().configuration, case=L(lambda: a_study().cases()[0])),
+    case("SweepResult.column", lambda: a_sweep().column, name="peak x (m)"),
+    case("SweepResult.curve", lambda: a_sweep().curve, index=0),
+    case("SweepResult.measure", lambda: a_sweep().measure, dof="x"),
+    # a study without mistuning has no amplification: only the values it must refuse
+    case("SweepResult.amplification", lambda: a_sweep().amplification, refused_only=True, dof="x"),
+    case("SweepResult.to_csv", lambda: a_sweep().to_csv, kinds=PATH, path="summary.csv"),
+]
 CASE = {c.name: c for c in CASES}
 assert len(CASE) == len(CASES), "two entries of CASES share a name"
 
@@ -795,6 +847,7 @@ NOT_FUZZED = {
     "frequency.plot_contact_cycles": "draws",
     "NonlinearModes.plot": "draws",
     "SynthesizedResponse.plot": "draws",
+    "SweepResult.plot": "draws",
     "ContactReference": "a protocol: what a reference provides, nothing to call",
 }
 
@@ -802,10 +855,11 @@ NOT_FUZZED = {
 RESULTS = {"AccuracyReport", "AFTResult", "PlaneAFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
-           "DesignCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes", "SynthesizedResponse"}
+           "DesignCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes", "SynthesizedResponse",
+           "SweepResult", "Study", "Case", "Mistuning"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",
-                  "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe")
+                  "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe", "microslip.study")
 
 
 def public_callables() -> dict:

@@ -74,3 +74,12 @@ def test_each_mistuned_disk_is_the_assembled_disk_and_its_amplification_the_tune
     assert np.all(factors > 1.0) and np.all(factors < (1 + np.sqrt(5)) / 2)
     report = (tmp_path / "out" / "report.md").read_text()
     assert "Distribution of the amplification factor" in report and "3 mistuned disks" in report
+
+
+def test_the_engine_order_can_be_varied_from_the_sweep_table(mistuning_study):
+    mistuning_study.write_text('base = "sector.toml"\n[vary]\n"sweep.engine_order" = [0, 2]\n')
+    study = load_study(mistuning_study)
+    assert [study.configuration(c).engine_order for c in study.cases()] == [0, 2]
+    mistuning_study.write_text('base = "sector.toml"\n[vary]\n"sweep.engine_order" = [-1]\n')
+    with pytest.raises(ValueError, match=r"\[sweep\] engine_order must be an integer >= 0, got -1"):
+        load_study(mistuning_study)

@@ -128,7 +128,9 @@ def test_a_case_that_fails_is_recorded_and_the_others_finish(block, tmp_path, cl
     assert "Failed cases" in (tmp_path / "out" / "report.md").read_text()
     # a rerun does not solve the failed case again unless asked to
     assert sweep(block, client, out=tmp_path / "out", report=False).computed == 0
-    assert sweep(block, client, out=tmp_path / "out", report=False, retry_failed=True).computed == 1
+    # the case solved again on the same cluster, reached by its scheduler's address
+    again = sweep(block, scheduler=client.scheduler.address, out=tmp_path / "out", report=False, retry_failed=True)
+    assert again.computed == 1 and len(again.failed) == 1
 
 
 def test_an_unreachable_scheduler_is_refused_before_any_work(block, tmp_path, monkeypatch):
@@ -144,10 +146,13 @@ def test_an_unreachable_scheduler_is_refused_before_any_work(block, tmp_path, mo
     ({"workers": 0}, "workers must be"),
     ({"progress": "yes"}, "progress must be"),
     ({"scheduler": ""}, "scheduler must not be empty"),
+    ({"retry_failed": 1}, "retry_failed must be"),
+    ({"report": None}, "report must be"),
+    ({"out": 3}, "out must be a folder name"),
 ])
 def test_sweep_checks_its_arguments(block, tmp_path, kwargs, message):
     with pytest.raises((ValueError, TypeError), match=message):
-        sweep(block, out=tmp_path / "out", **kwargs)
+        sweep(block, **{"out": tmp_path / "out", **kwargs})
 
 
 def test_sweep_refuses_a_client_with_workers(block, tmp_path, client):

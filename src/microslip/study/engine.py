@@ -73,7 +73,11 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     from .report import write_report
     from .store import summary_rows, write_curves, write_summary
 
+    if not isinstance(study, (Study, str, os.PathLike)):
+        raise TypeError(f"study must be a Study or the study file's name (str or path), got {type(study).__name__}")
     study = study if isinstance(study, Study) else load_study(study)
+    if client is not None and not (hasattr(client, "submit") and hasattr(client, "scatter")):
+        raise TypeError(f"client must be a dask.distributed.Client, got {type(client).__name__}")
     if client is not None and (workers is not None or scheduler is not None):
         raise ValueError("give either client or workers/scheduler, not both (the client already names its cluster)")
     if workers is not None:
@@ -81,6 +85,10 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     if scheduler is not None:
         scheduler = _checks.text("scheduler", scheduler)
     progress = _checks.flag("progress", progress)
+    retry_failed = _checks.flag("retry_failed", retry_failed)
+    report = _checks.flag("report", report)
+    if not isinstance(out, (str, os.PathLike)) or not str(out).strip():
+        raise TypeError(f"out must be a folder name (str or path), got {out!r}")
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise ValueError(f"out: {str(out)!r} is a file; give a folder for the results")

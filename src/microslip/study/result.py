@@ -73,6 +73,7 @@ class SweepResult:
 
     def column(self, name: str) -> np.ndarray:
         """A summary column as floats (NaN where a case has no value), shape ``(cases,)``."""
+        name = _checks.text("name", name)
         if not any(name in r for r in self.rows):
             known = sorted({k for r in self.rows for k in r})
             raise ValueError(f"name: the summary has no column {name!r} (it has {', '.join(known)})")
@@ -96,9 +97,9 @@ class SweepResult:
 
     def amplification(self, dof: str | None = None) -> np.ndarray:
         """The mistuned disks' amplification factors for ``dof`` (largest blade's peak over the tuned sector's)."""
+        dof = self.dof_names[0] if dof is None else _checks.one_of("dof", dof, self.dof_names)
         if self.study.mistuning is None:
             raise ValueError("amplification: the study has no [mistuning] block")
-        dof = self.dof_names[0] if dof is None else _checks.one_of("dof", dof, self.dof_names)
         values = self.column(f"amplification {dof}")
         return values[self.column("mistuned disk") >= 0]
 
@@ -116,7 +117,7 @@ class SweepResult:
         """Write the summary table as CSV (atomically); returns the path."""
         from ..common._io import atomic_write
 
-        return atomic_write(path, self.summary.to_csv(index=False))
+        return atomic_write(_checks.file_path("path", path), self.summary.to_csv(index=False))
 
 
 def _number(value) -> float:

@@ -169,6 +169,8 @@ class Study:
 
     def configuration(self, case: Case):
         """The case's configuration (:class:`~microslip.frequency.config.FrfConfig`)."""
+        if not isinstance(case, Case):
+            raise TypeError(f"case must be a Case of this study (from Study.cases()), got {type(case).__name__}")
         data = copy.deepcopy(self.data)
         for path, value in case.values.items():
             set_key_in_place(data, path, value, where=str(self.path))
@@ -196,7 +198,7 @@ def load_study(path) -> Study:
         has not, a value it refuses (wrong type or unit), a bad distribution;
         the message names the study file, the block, the path and the value.
     """
-    path = Path(path)
+    path = _checks.file_path("path", path)
     raw = read_toml(path)
     _known(raw, "the study file", path)
     if "base" not in raw:
