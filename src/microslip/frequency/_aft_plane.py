@@ -65,7 +65,7 @@ from functools import lru_cache
 import numba as nb
 import numpy as np
 
-from .._kernels import OPEN, SLIP, STICK
+from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
@@ -80,34 +80,28 @@ FIXED_POINT_MARGIN = 1e-3
 NEWTON_MARGIN = 1e-8
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
 def _step(rk, nk, t1, t2, s1, s2):  # pragma: no cover - compiled
     """One element, one sample: ``(code, s1, s2, alpha, q)``, the arithmetic of :func:`_period`.
 
     ``rk = mu kn / kt``, ``nk = n - gap``; the slider ``(s1, s2)`` before the
     sample. In slip ``alpha = r / |d|`` and ``q = 1 / |d|`` (``d = t - s``
-    before the sample; the force is ``mu kn nk q d``); 0 otherwise.
+    before the sample; the force is ``mu kn nk q d``); 0 otherwise. The
+    element update is :func:`microslip._kernels.plane_step` (its force unused).
     """
-    if nk <= 0.0:
-        return OPEN, t1, t2, 0.0, 0.0
-    r = rk * nk
-    d1 = t1 - s1
-    d2 = t2 - s2
-    dd2 = d1 * d1 + d2 * d2
-    if dd2 <= r * r:
-        return STICK, s1, s2, 0.0, 0.0
-    q = 1.0 / math.sqrt(dd2)
-    al = r * q
-    return SLIP, t1 - al * d1, t2 - al * d2, al, q
+    _, _, _, code, a1, a2, al, q = plane_step(1.0, rk, 0.0, 0.0, nk, t1, t2, s1, s2)
+    if code != SLIP:
+        return code, a1, a2, 0.0, 0.0
+    return code, a1, a2, al, q
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def _static(rk, nk, t1, t2):  # pragma: no cover - compiled
     """The static step from the virgin slider ``(0, 0)``: ``(code, s1, s2, alpha, u1, u2)``."""
     return _step(rk, nk, t1, t2, 0.0, 0.0)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # pragma: no cover - compiled
     """Derivative ``D`` (2, 3, nb) of the slider after the static step and ``periods`` plain periods.
 
@@ -198,39 +192,25 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, T
         tk2 = t2[k]
         nk0 = n[k]
         for i in range(J):
-            nk = nk0 - gaps[i]
-            if nk <= 0.0:  # open: no force, the slider follows t, the period map forgets
-                s1[i] = tk1
-                s2[i] = tk2
-                Te1[k, i] = 0.0
-                Te2[k, i] = 0.0
-                code[k, i] = OPEN
+            s1i = s1[i]
+            s2i = s2[i]
+            f1, f2, _, c, s1[i], s2[i], al, q = plane_step(kt[i], rk[i], mu * kn[i], kn[i], nk0 - gaps[i], tk1, tk2,
+                                                           s1i, s2i)
+            Te1[k, i] = f1
+            Te2[k, i] = f2
+            code[k, i] = c
+            if c == STICK:
+                continue
+            moved[i] = 1.0
+            if c == OPEN:  # the period map forgets
                 C[0, i] = 0.0
                 C[1, i] = 0.0
                 C[2, i] = 0.0
                 C[3, i] = 0.0
-                moved[i] = 1.0
                 continue
-            r = rk[i] * nk
-            d1 = tk1 - s1[i]
-            d2 = tk2 - s2[i]
-            dd2 = d1 * d1 + d2 * d2
-            if dd2 <= r * r:  # stick
-                Te1[k, i] = kt[i] * d1
-                Te2[k, i] = kt[i] * d2
-                code[k, i] = STICK
-                continue
-            q = 1.0 / math.sqrt(dd2)
-            al = r * q
-            g = mu * kn[i] * nk * q
-            s1[i] = tk1 - al * d1
-            s2[i] = tk2 - al * d2
-            Te1[k, i] = g * d1
-            Te2[k, i] = g * d2
-            code[k, i] = SLIP
             alpha[k, i] = al
-            v1 = -d2 * q
-            v2 = d1 * q
+            v1 = -(tk2 - s2i) * q
+            v2 = (tk1 - s1i) * q
             V1[k, i] = v1
             V2[k, i] = v2
             # C <- A C = alpha v v^T C
@@ -240,7 +220,6 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, T
             C[1, i] = v1 * w2
             C[2, i] = v2 * w1
             C[3, i] = v2 * w2
-            moved[i] = 1.0
 
 
 @nb.njit(cache=True, nogil=True)
