@@ -508,7 +508,7 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
 def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used):  # pragma: no cover
-    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (6, nb) for its slip and open samples.
+    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (nb, 6) for its slip and open samples.
 
     ``Y = beta (x) I + y (x) w^T`` (``beta`` (nb), ``y`` (2, nb), both
     overwritten) is the coefficient of the slider at the end of the period;
@@ -536,10 +536,10 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
             Um[:] = 0.0
         if c == OPEN:
             for p in range(nbasis):
-                Um[0, p] += beta[p] + y1[p] * w1
-                Um[1, p] += y1[p] * w2
-                Um[3, p] += y2[p] * w1
-                Um[4, p] += beta[p] + y2[p] * w2
+                Um[p, 0] += beta[p] + y1[p] * w1
+                Um[p, 1] += y1[p] * w2
+                Um[p, 3] += y2[p] * w1
+                Um[p, 4] += beta[p] + y2[p] * w2
                 beta[p] = 0.0
                 y1[p] = 0.0
                 y2[p] = 0.0
@@ -565,12 +565,12 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
             for p in range(nbasis):
                 a1 = y1[p]
                 a2 = y2[p]
-                Um[0, p] += a1 * h1
-                Um[1, p] += a1 * h2
-                Um[2, p] += a1 * h3
-                Um[3, p] += a2 * h1
-                Um[4, p] += a2 * h2
-                Um[5, p] += a2 * h3
+                Um[p, 0] += a1 * h1
+                Um[p, 1] += a1 * h2
+                Um[p, 2] += a1 * h3
+                Um[p, 3] += a2 * h1
+                Um[p, 4] += a2 * h2
+                Um[p, 5] += a2 * h3
                 q = -al * kti * PT[m, p]
                 y1[p] = q * v1 + awv * a1
                 y2[p] = q * v2 + awv * a2
@@ -582,12 +582,12 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
             bp = beta[p]
             a1 = y1[p]
             a2 = y2[p]
-            Um[0, p] += bp * g11 + a1 * h1
-            Um[1, p] += bp * g12 + a1 * h2
-            Um[2, p] += bp * g13 + a1 * h3
-            Um[3, p] += bp * g12 + a2 * h1
-            Um[4, p] += bp * g22 + a2 * h2
-            Um[5, p] += bp * g23 + a2 * h3
+            Um[p, 0] += bp * g11 + a1 * h1
+            Um[p, 1] += bp * g12 + a1 * h2
+            Um[p, 2] += bp * g13 + a1 * h3
+            Um[p, 3] += bp * g12 + a2 * h1
+            Um[p, 4] += bp * g22 + a2 * h2
+            Um[p, 5] += bp * g23 + a2 * h3
             q = al * (bp - kti * PT[m, p])
             y1[p] = q * v1 + al * wv * a1
             y2[p] = q * v2 + al * wv * a2
@@ -684,7 +684,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     for b in range(2):
         Jac[2, b] = 0.0
     # -- the history parts, element by element -------------------------------------------
-    U = np.empty((Ns, 6, nbasis))  # column m's coefficients (rows zeroed when first used), times E[m] at the end
+    # column m's coefficients (zeroed when first used), times E[m] at the end; U[m, p, 3 a + b] for output a, input b
+    # (the six of one p together: the sweep's update of all six is one short contiguous store)
+    U = np.empty((Ns, nbasis, 6))
     used = np.zeros(Ns, dtype=np.bool_)
     beta = np.empty(nbasis)
     y = np.empty((2, nbasis))
@@ -735,12 +737,12 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
         acc = np.dot(Uc.T, Ec)
     else:
         acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
-    for r in range(6):
-        a = r // 3
-        b = r % 3
-        for p in range(nbasis):
+    for p in range(nbasis):
+        for r in range(6):
+            a = r // 3
+            b = r % 3
             for q in range(nbasis):
-                Jac[a, b, p, q] += acc[r * nbasis + p, q]
+                Jac[a, b, p, q] += acc[p * 6 + r, q]
     return periods
 
 
