@@ -6,6 +6,12 @@ The element update is :func:`microslip._kernels.plane_step`, the AFT's and
 contact's cycle at a point (:mod:`~microslip.frequency.contact_cycle`), its
 friction work per cycle and the time integration of structures with contacts
 on their planes (:mod:`~microslip.frequency.transient`).
+
+Its loop is kept apart from :func:`microslip._kernels.march_plane` (the same
+step, the same order of the sums, so the same numbers bit for bit): the time
+integration calls it once per time step with one sample, where that march's
+scratch rows (allocated per call, so that its element loop vectorises) would
+cost more than the step, and it takes the sliders as ``(2, J)`` rows.
 """
 
 from __future__ import annotations
