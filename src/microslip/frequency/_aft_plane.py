@@ -246,8 +246,9 @@ def _binding_pair(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
     gb = -np.inf
     for k in range(t1.shape[0]):
         d = math.hypot(t1[k] - s1, t2[k] - s2)
-        if abs((t1[a] - s1) * (t2[k] - s2) - (t2[a] - s2) * (t1[k] - s1)) < 1e-3 * d * da:
-            continue
+        same_side = (t1[a] - s1) * (t1[k] - s1) + (t2[a] - s2) * (t2[k] - s2) > 0.0
+        if same_side and abs((t1[a] - s1) * (t2[k] - s2) - (t2[a] - s2) * (t1[k] - s1)) < 1e-3 * d * da:
+            continue  # a's own neighbour: its circle touches a's from inside, no corner
         g = d - rk * (n[k] - gi)
         if g > gb:
             gb = g
@@ -307,6 +308,30 @@ def _corner_point(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
         if math.hypot(c1 - t1[k], c2 - t2[k]) > rk * (n[k] - gi):
             return False, s1, s2
     return True, c1, c2
+
+
+@nb.njit(cache=True, nogil=True)
+def _facing_point(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
+    """The slider at the start of a period in which the element slips only at two samples whose discs are apart.
+
+    ``(found, c1, c2)``: the two samples the slider ``(s1, s2)`` violates
+    most (:func:`_binding_pair`), if their discs do not meet; the slider then
+    goes back and forth between their nearest points, and at the start of
+    the period it sits on the later sample's disc, at its point nearest the
+    earlier one's. The next period checks it (its residual).
+    """
+    a, _, b, _ = _binding_pair(t1, t2, n, gi, rk, s1, s2)
+    if a < 0 or b < 0:
+        return False, s1, s2
+    early = min(a, b)
+    late = max(a, b)
+    e1 = t1[early] - t1[late]
+    e2 = t2[early] - t2[late]
+    L = math.hypot(e1, e2)
+    r_late = rk * (n[late] - gi)
+    if L <= r_late + rk * (n[early] - gi):
+        return False, s1, s2
+    return True, t1[late] + r_late * e1 / L, t2[late] + r_late * e2 / L
 
 
 @nb.njit(cache=True, nogil=True)
@@ -389,7 +414,18 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                     corner[0, i] = a
                     corner[1, i] = b
                     continue
-                restart = True
+                found = False
+                if newton_step:
+                    # the Newton step took it into its stick region, off a corner: onto the corner the plain march
+                    # it replaced was creeping to (the next period checks it), else from the static step plainly
+                    found, c1, c2 = _corner_point(t1, t2, n, gaps[i], rk[i], p1[i], p2[i])
+                if found:
+                    s1[i] = c1
+                    s2[i] = c2
+                    newton[i] = 0
+                    res = np.inf
+                else:
+                    restart = True
             elif res <= tol:
                 continue
             elif newton_step and res >= prev[i]:
@@ -402,6 +438,11 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                     # corner of its stick region: there if the two discs it violates most meet inside the others
                     # (the next period checks it, see _corner), else plain periods
                     found, c1, c2 = _corner_point(t1, t2, n, gaps[i], rk[i], s1[i], s2[i])
+                    if not found:
+                        # or the two discs are apart, nearly touching: the element slips at those two samples
+                        # only, its slider crossing between their nearest points (a fixed point the plain march
+                        # nears at 1 - rho ~ the gap between the discs over their radius, ~1e-5 per period)
+                        found, c1, c2 = _facing_point(t1, t2, n, gaps[i], rk[i], s1[i], s2[i])
                     if found:
                         s1[i] = c1
                         s2[i] = c2
