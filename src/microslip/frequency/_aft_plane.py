@@ -335,6 +335,26 @@ def _facing_point(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
+def _land(t1, t2, n, gi, rk, p1, p2, s1, s2, i):  # pragma: no cover - compiled
+    """Put slider ``i`` (``s1[i], s2[i]``) where the plain march from ``(p1, p2)`` creeps to; False if not found.
+
+    The slider creeps onto a corner of its stick region (:func:`_corner_point`:
+    the two discs it violates most meet inside the others), or, when those
+    two discs are apart and nearly touching, the element slips at those two
+    samples only, its slider crossing between their nearest points
+    (:func:`_facing_point`; the plain march nears it at ``1 - rho`` about
+    the gap between the discs over their radius, 1e-5 per period and less).
+    """
+    found, c1, c2 = _corner_point(t1, t2, n, gi, rk, p1, p2)
+    if not found:
+        found, c1, c2 = _facing_point(t1, t2, n, gi, rk, p1, p2)
+    if found:
+        s1[i] = c1
+        s2[i] = c2
+    return found
+
+
+@nb.njit(cache=True, nogil=True)
 def _corner_derivative(t1, t2, rk, s1, s2, a, b, E, D):  # pragma: no cover - compiled
     """``D`` (2, 3, nb): the derivative of the corner where the circles of samples ``a`` and ``b`` meet.
 
@@ -414,14 +434,9 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                     corner[0, i] = a
                     corner[1, i] = b
                     continue
-                found = False
-                if newton_step:
-                    # the Newton step took it into its stick region, off a corner: onto the corner the plain march
-                    # it replaced was creeping to (the next period checks it), else from the static step plainly
-                    found, c1, c2 = _corner_point(t1, t2, n, gaps[i], rk[i], p1[i], p2[i])
-                if found:
-                    s1[i] = c1
-                    s2[i] = c2
+                # the Newton step took it into its stick region, off a corner: onto the corner the plain march it
+                # replaced was creeping to (the next period checks it), else from the static step plainly
+                if newton_step and _land(t1, t2, n, gaps[i], rk[i], p1[i], p2[i], s1, s2, i):
                     newton[i] = 0
                     res = np.inf
                 else:
@@ -434,18 +449,9 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                 s2[i] = p2[i]
                 lam[i] *= 0.5
                 if lam[i] < 1.0 / 8:
-                    # the fixed point lies across a change of the slip pattern, where the slider creeps onto a
-                    # corner of its stick region: there if the two discs it violates most meet inside the others
-                    # (the next period checks it, see _corner), else plain periods
-                    found, c1, c2 = _corner_point(t1, t2, n, gaps[i], rk[i], s1[i], s2[i])
-                    if not found:
-                        # or the two discs are apart, nearly touching: the element slips at those two samples
-                        # only, its slider crossing between their nearest points (a fixed point the plain march
-                        # nears at 1 - rho ~ the gap between the discs over their radius, ~1e-5 per period)
-                        found, c1, c2 = _facing_point(t1, t2, n, gaps[i], rk[i], s1[i], s2[i])
-                    if found:
-                        s1[i] = c1
-                        s2[i] = c2
+                    # the fixed point lies across a change of the slip pattern: see _land (the next period checks
+                    # where it puts the slider, see _corner), else plain periods
+                    _land(t1, t2, n, gaps[i], rk[i], s1[i], s2[i], s1, s2, i)
                     newton[i] = 0
                 res = np.inf
             elif newton[i] and count[i] >= 2 and res < prev[i] and 1.0 - (C[0, i] + C[3, i]) > NEWTON_MARGIN:
