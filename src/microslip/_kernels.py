@@ -22,8 +22,8 @@ force ``kt_i (t - s_i)`` is returned radially onto the disc of radius
     if kt_i |d| > mu N_i:  T_i = mu N_i d / |d|,  s_i = t - T_i / kt_i     (slip)
     else:                  T_i = kt_i d                                    (stick)
 
-On a line through the origin of the plane this is the one-direction rule; on
-the first axis it is the same arithmetic, bit for bit.
+On a line of the plane this is the one-direction rule, to rounding (the step
+computes ``|d|`` and ``d / |d|`` where the line clips).
 """
 
 from __future__ import annotations
@@ -102,42 +102,46 @@ def march(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cover - c
 
 
 @nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
-def plane_step(kt, kn, gap, mu, tx, ty, n, sx, sy):  # pragma: no cover - compiled
-    """One element on the contact plane, one step: ``(Tx, Ty, N_i, slipped, new sx, new sy)``.
+def plane_step(kt, rk, mkn, kn, nk, tx, ty, sx, sy):  # pragma: no cover - compiled
+    """One element on the contact plane, one step: ``(Tx, Ty, N_i, code, new sx, new sy, alpha, q)``.
 
-    Parameters (float): ``kt``, ``kn`` (N/m), ``gap`` (m), ``mu`` (-), the
-    sample ``tx``, ``ty``, ``n`` (m) and the slider ``sx``, ``sy`` (m) before
-    the step. Returns the element's force (N), its normal force (N), whether
-    it slipped (bool; an open element with a stretch counts as slipped, as in
-    one direction), and the slider after the step (m).
+    Parameters (float): ``kt``, ``kn`` (N/m), ``rk = mu kn / kt`` and
+    ``mkn = mu kn`` (computed once per element by the caller, as
+    ``(mu * kn) / kt`` and ``mu * kn``), ``nk = n - gap`` (m), the sample
+    ``tx``, ``ty`` (m) and the slider ``sx``, ``sy`` (m) before the step.
+    Returns the element's force (N), its normal force (N), its condition
+    (``OPEN``, ``STICK``, ``SLIP``), the slider after the step (m) and, in
+    slip, ``alpha = r / |d|`` and ``q = 1 / |d|`` (meaningless otherwise).
 
-    Radial return: the trial force ``kt d``, ``d = t - s``, is brought back
-    along itself onto the disc of radius ``mu N_i`` when it lies outside:
-    ``T = g d`` and ``s = t - h d`` with ``g = mu N_i / |d|``,
-    ``h = g / kt`` (one square root and two divisions: the cost of the
-    step). An open element carries nothing and its slider sits at ``t``.
-    ``|d|`` is ``sqrt(dx^2 + dy^2)``: the callers keep displacements below
-    1e100 m, so the squares never overflow; a stretch below 1e-154 m, whose
-    square underflows, sticks (force ``kt d``, below the limit of any
-    element carrying more than ``kt * 1e-154`` N).
+    Radial return with the stick radius ``r = rk nk``: with ``d = t - s``,
+    the element is open for ``nk <= 0`` (no force, the slider at ``t``),
+    sticks for ``|d|^2 <= r^2`` (``T = kt d``) and slips otherwise:
+    ``q = 1 / sqrt(|d|^2)``, ``s = t - (r q) d``, ``T = (mkn nk q) d`` (one
+    square root and one division: the cost of the step). ``|d|^2`` is
+    ``dx^2 + dy^2``: the callers keep displacements below 1e100 m, so it
+    never overflows; a stretch whose square underflows sticks.
 
-    Written with selects and no branch, so that a loop over elements
-    calling it vectorises (see :func:`march_plane`).
+    The one element update of the package on the plane: ``march_plane``
+    (:func:`MicroslipModel.simulate <microslip.model.MicroslipModel.simulate>`),
+    the AFT's periods and the frequency package's marches call it, so they
+    agree bit for bit. Written with selects and no branch, so that a loop
+    over elements calling it vectorises (see :func:`march_plane`).
     """
-    Ni = kn * max(n - gap, 0.0)
-    lim = mu * Ni
+    closed = nk > 0.0
+    r = rk * nk
     dx = tx - sx
     dy = ty - sy
-    d = math.sqrt(dx * dx + dy * dy)
-    closed = Ni > 0.0
-    slipped = kt * d > lim
-    g = lim / d
-    h = g / kt
+    dd2 = dx * dx + dy * dy
+    slipped = dd2 > r * r
+    q = 1.0 / math.sqrt(dd2)
+    al = r * q
+    g = mkn * nk * q
     Tx = (g * dx if slipped else kt * dx) if closed else 0.0
     Ty = (g * dy if slipped else kt * dy) if closed else 0.0
-    new_sx = (tx - h * dx if slipped else sx) if closed else tx
-    new_sy = (ty - h * dy if slipped else sy) if closed else ty
-    return Tx, Ty, Ni, slipped, new_sx, new_sy
+    new_sx = (tx - al * dx if slipped else sx) if closed else tx
+    new_sy = (ty - al * dy if slipped else sy) if closed else ty
+    code = (SLIP if slipped else STICK) if closed else OPEN
+    return Tx, Ty, kn * max(nk, 0.0), code, new_sx, new_sy, al, q
 
 
 @nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
@@ -149,20 +153,21 @@ def plane_tangent(kt, kn, gap, mu, tx, ty, n, sx, sy):  # pragma: no cover - com
     ``mu kn u`` in slip (``u = d / |d|``); zero for an open element. The
     derivatives with respect to the slider before the step are ``-K``; the
     slider after the step, ``s' = t - T / kt``, has ``ds'/dt = I - K / kt``,
-    ``ds'/ds = K / kt``, ``ds'/dn = -D / kt``.
+    ``ds'/ds = K / kt``, ``ds'/dn = -D / kt``. The condition is the
+    step's own (:func:`plane_step`, the same arithmetic).
     """
-    Ni = kn * max(n - gap, 0.0)
-    if Ni == 0.0:
-        return 0.0, 0.0, 0.0, 0.0, 0.0
-    lim = mu * Ni
+    mkn = mu * kn
+    nk = n - gap
     dx = tx - sx
     dy = ty - sy
-    d = math.sqrt(dx * dx + dy * dy)
-    if kt * d > lim:
-        ux = dx / d
-        uy = dy / d
-        g = lim / d
-        return g * (1.0 - ux * ux), -g * ux * uy, g * (1.0 - uy * uy), mu * kn * ux, mu * kn * uy
+    _, _, _, code, _, _, _, q = plane_step(kt, mkn / kt, mkn, kn, nk, tx, ty, sx, sy)
+    if code == OPEN:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    if code == SLIP:
+        ux = dx * q
+        uy = dy * q
+        g = mkn * nk * q
+        return g * (1.0 - ux * ux), -g * ux * uy, g * (1.0 - uy * uy), mkn * ux, mkn * uy
     return kt, 0.0, kt, 0.0, 0.0
 
 
@@ -200,20 +205,28 @@ def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cov
     As :func:`march`, with ``T`` of shape ``(steps, 2)`` and, unless empty,
     ``Ti`` of shape ``(steps, J, 2)``; ``N``, ``W`` ``(steps,)`` and ``cond``
     ``(steps, J)`` as there. Each step updates the elements in one loop
-    without a loop-carried dependence (it vectorises), into a scratch row,
+    without a loop-carried dependence (it vectorises), into scratch rows,
     then adds the rows in element order, as the twin does.
+
+    ``mu kn / kt`` and ``mu kn`` are computed in the element loop rather
+    than read from rows computed once: two more rows read in the loop raise
+    the compiler's minimum trip count for its vectorised form above 16
+    elements (the runtime checks that the rows do not overlap), measured
+    1.5 to 1.9x slower at J = 16; the division is cheaper than that. Skipping
+    the open elements (the last ones when the gaps increase) is slower for
+    the same reason: the loop then runs fewer than 16 times.
     """
     work = W.shape[0] > 0
     elements = Ti.shape[0] > 0
     J = kt.shape[0]
-    scratch = np.empty((6, J))
+    scratch = np.empty((7, J))
     sx = scratch[0]  # the sliders, one component per row (contiguous: the element loop vectorises)
     sy = scratch[1]
     fx = scratch[2]
     fy = scratch[3]
     fn = scratch[4]
     fw = scratch[5]
-    slips = np.empty(J)  # 1.0 where the element slipped (a float row: an int8 one stops the vectorisation)
+    slips = scratch[6]  # 1.0 where the element slipped (a float row: an int8 one stops the vectorisation)
     sx[:] = s[:, 0]
     sy[:] = s[:, 1]
     for k in range(t.shape[0]):
@@ -223,11 +236,12 @@ def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cov
         for i in range(J):  # no store into the strided records here: that would stop the vectorisation
             sx_old = sx[i]
             sy_old = sy[i]
-            Tx, Ty, Ni, slipped, sx[i], sy[i] = plane_step(kt[i], kn[i], gaps[i], mu, tx, ty, nk, sx_old, sy_old)
+            Tx, Ty, Ni, code, sx[i], sy[i], _, _ = plane_step(kt[i], mu * kn[i] / kt[i], mu * kn[i], kn[i],
+                                                              nk - gaps[i], tx, ty, sx_old, sy_old)
             fx[i] = Tx
             fy[i] = Ty
             fn[i] = Ni
-            slips[i] = 1.0 if slipped else 0.0
+            slips[i] = 1.0 if code == SLIP else 0.0
             fw[i] = plane_work(Tx, Ty, sx_old, sy_old, sx[i], sy[i])  # always: a branch here slows the loop
         if elements:
             for i in range(J):
@@ -308,15 +322,17 @@ def march_plane_reference(kt, kn, gaps, mu, t, n, s):
     for (tx, ty), nk in zip(t, n):
         row_T, row_c, row_W, row_N = [], [], [], []
         for i in range(len(kt)):
-            Ni = kn[i] * max(nk - gaps[i], 0.0)
-            limit = mu * Ni
+            depth = nk - gaps[i]  # n - gap: open at or below zero
+            Ni = kn[i] * max(depth, 0.0)
+            r = mu * kn[i] / kt[i] * depth  # the stick radius mu N_i / kt
             dx, dy = tx - s[i][0], ty - s[i][1]  # the stretch d = t - s
-            d = math.sqrt(dx * dx + dy * dy)
-            if Ni == 0.0:  # open: no force, the slider at t
+            d2 = dx * dx + dy * dy
+            if depth <= 0.0:  # open: no force, the slider at t
                 Tx, Ty, new, c = 0.0, 0.0, [tx, ty], OPEN
-            elif kt[i] * d > limit:  # the trial force kt d leaves the disc: back onto its edge along d
-                g = limit / d
-                Tx, Ty, new, c = g * dx, g * dy, [tx - g / kt[i] * dx, ty - g / kt[i] * dy], SLIP
+            elif d2 > r * r:  # the trial force kt d leaves the disc: back onto its edge along d
+                q = 1.0 / math.sqrt(d2)
+                g = mu * kn[i] * depth * q  # mu N_i / |d|
+                Tx, Ty, new, c = g * dx, g * dy, [tx - r * q * dx, ty - r * q * dy], SLIP
             else:
                 Tx, Ty, new, c = kt[i] * dx, kt[i] * dy, s[i], STICK
             row_W.append(max(Tx * (new[0] - s[i][0]) + Ty * (new[1] - s[i][1]), 0.0))

@@ -253,6 +253,65 @@ def test_an_element_on_a_corner_of_its_stick_region_takes_its_derivative_from_th
         np.testing.assert_allclose(exact, approx, atol=1e-6 * k)
 
 
+def _plain_periods(model, t, n, Ns, periods):
+    """The tangential force coefficients (N, (2, 2H+1)) after ``periods`` plain periods from the static step."""
+    from microslip.frequency import _aft, _aft_plane
+
+    H = (n.size - 1) // 2
+    E, P = _aft.tables(H, Ns)[:2]
+    t1, t2, nn = E @ t[0], E @ t[1], E @ n
+    rk = model.mu * model.kn / model.kt
+    _, a1, a2, _, _ = _aft_plane._static(rk[0], n[0] - model.gaps[0], t[0, 0], t[1, 0])
+    s1, s2 = np.array([a1]), np.array([a2])
+    code, per, C, moved = np.empty((Ns, 1), dtype=np.int8), np.empty((5, Ns, 1)), np.empty((4, 1)), np.empty(1)
+    for _ in range(periods):
+        _aft_plane._period(model.kt, model.kn, model.gaps, model.mu, rk, t1, t2, nn, s1, s2, code, *per, C, moved)
+    return np.array([P @ per[3][:, 0], P @ per[4][:, 0]])
+
+
+def test_an_element_slipping_between_two_nearly_touching_discs_is_periodic():
+    """A nearly straight orbit a little longer than the stick diameter: the element slips at its two ends only,
+    where the stick discs of the two end samples miss each other by 4e-12 m (their radii 5.2e-7 m). Its slider
+    goes back and forth between their nearest points, which the plain march nears sublinearly and Newton
+    steps miss (each crosses a change of the slip pattern): it was
+    not periodic after 20000 periods. The fixed point is taken from the two samples, checked by one more
+    period; the Jacobian equals finite differences and the plain march closes in on the forces."""
+    model = MicroslipModel(kt=[7980811.235245448], kn=[17411407.649864003], gaps=[0.0], mu=0.2355663597857711)
+    t = np.array([[-1.3195062315792844e-07, -2.6521411937108767e-07, 5.4606989256273365e-08],
+                  [2.2724949121736333e-07, 4.4745955604701455e-07, 4.5794487877842572e-08]])
+    n = np.array([1.0121856628128561e-06, -1.3147021233017030e-08, -5.4396686213659632e-09])
+    r = aft_plane(model, t, n, samples=128)
+    assert r.periods < 100
+    # finite differences of 1e-13 m: rounding of the forces (1e-16 of 1 N) over h, 1e-3 N/m, far below 1e-7 kt
+    fd = _finite_difference(model, t, n, 128)
+    for exact, approx in zip((r.dT_dt, r.dT_dn, r.dN_dn), fd):
+        np.testing.assert_allclose(exact, approx, atol=1e-7 * model.kt[0])
+    # the plain march closes in on it, sublinearly: 0.6 %, 0.35 %, 0.055 % of the force after 1e3, 1e4, 1e5 periods
+    errors = [np.abs(_plain_periods(model, t, n, 128, p) - r.T).max() for p in (1000, 10000, 100000)]
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[2] < 1e-3 * np.abs(r.T).max()
+
+
+def test_an_element_a_newton_step_leaves_inside_its_stick_region_goes_onto_the_corner_it_creeps_to():
+    """A Newton step that takes an element from outside its stick region to inside it, off the corner the
+    plain march creeps to (the circles of samples 0 and 95): the element used to start again from the static
+    step and march plainly, 2170 periods (beyond the default 1000). It goes onto that corner, the state the
+    plain march reaches (forces to 1e-12), with the corner's derivative (finite differences)."""
+    model = MicroslipModel(kt=[59985381.71883892], kn=[1.0770052201192036e+09], gaps=[0.0], mu=0.10537073041704365)
+    t = np.array([[-8.1397424947921962e-07, 1.2035286380259509e-06, 6.3034614969894981e-07, 4.7730448698584528e-07,
+                   0.0],
+                  [6.9596887123879056e-08, 2.8903362777212640e-07, -7.7998176712417744e-08, 1.7543830490653678e-08,
+                   0.0]])
+    n = np.array([8.7074413334147666e-07, -2.0632646206460357e-07, 4.8459163127284144e-08, 1.5619222489861807e-07,
+                  1.4491275298470830e-07])
+    r = aft_plane(model, t, n, samples=128)
+    assert r.periods < 100
+    np.testing.assert_allclose(r.T, _plain_periods(model, t, n, 128, 3000), rtol=0, atol=1e-12 * np.abs(r.T).max())
+    fd = _finite_difference(model, t, n, 128)
+    for exact, approx in zip((r.dT_dt, r.dT_dn, r.dN_dn), fd):
+        np.testing.assert_allclose(exact, approx, atol=1e-7 * model.kn[0])
+
+
 def test_not_periodic_within_max_periods_is_reported():
     with pytest.raises(NotPeriodicError, match="max_periods = 1"):
         aft_plane(JENKINS, _circle(1, 3e-4), [1e-6, 0, 0], samples=32, max_periods=1)

@@ -74,3 +74,19 @@ def test_time_integration_from_rest_starts_from_the_static_part_of_the_excitatio
     q_prev, q, _ = PeriodMap(s, {0: [1.0, 0.0], 1: [3.0, 0.0]}, 100.0, 64).start()
     np.testing.assert_array_equal(q, static_solution(s, {0: [1.0, 0.0], 1: [3.0, 0.0]}))
     assert q[0] != preloaded[0]  # the static part does load it
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_march_is_simulate_s_own_bit_for_bit(seed):
+    """The frequency package's march and ``simulate`` call the one element step
+    (``_kernels.plane_step``), in the same order: every recorded quantity is equal, not just close
+    (they used to compute the slip with different roundings)."""
+    model, t1, t2, n = _path(seed)
+    s = np.zeros((2, model.elements))
+    T, N, Ti, cond = np.empty((t1.size, 2)), np.empty(t1.size), np.empty((t1.size, model.elements, 2)), \
+        np.empty((t1.size, model.elements), dtype=np.int8)
+    march_plane(model.kt, model.kn, model.gaps, model.mu, t1, t2, n, s, T, N, Ti, cond)
+    r = model.simulate(np.column_stack([t1, t2]), n)
+    assert set(np.unique(cond)) == {0, 1, 2}
+    for got, want in ((T, r.T), (N, r.N), (Ti, r.Ti), (cond, r.condition), (s.T, r.state.sliders)):
+        np.testing.assert_array_equal(got, want)

@@ -65,7 +65,7 @@ from functools import lru_cache
 import numba as nb
 import numpy as np
 
-from .._kernels import OPEN, SLIP, STICK
+from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
@@ -80,34 +80,28 @@ FIXED_POINT_MARGIN = 1e-3
 NEWTON_MARGIN = 1e-8
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
 def _step(rk, nk, t1, t2, s1, s2):  # pragma: no cover - compiled
     """One element, one sample: ``(code, s1, s2, alpha, q)``, the arithmetic of :func:`_period`.
 
     ``rk = mu kn / kt``, ``nk = n - gap``; the slider ``(s1, s2)`` before the
     sample. In slip ``alpha = r / |d|`` and ``q = 1 / |d|`` (``d = t - s``
-    before the sample; the force is ``mu kn nk q d``); 0 otherwise.
+    before the sample; the force is ``mu kn nk q d``); 0 otherwise. The
+    element update is :func:`microslip._kernels.plane_step` (its force unused).
     """
-    if nk <= 0.0:
-        return OPEN, t1, t2, 0.0, 0.0
-    r = rk * nk
-    d1 = t1 - s1
-    d2 = t2 - s2
-    dd2 = d1 * d1 + d2 * d2
-    if dd2 <= r * r:
-        return STICK, s1, s2, 0.0, 0.0
-    q = 1.0 / math.sqrt(dd2)
-    al = r * q
-    return SLIP, t1 - al * d1, t2 - al * d2, al, q
+    _, _, _, code, a1, a2, al, q = plane_step(1.0, rk, 0.0, 0.0, nk, t1, t2, s1, s2)
+    if code != SLIP:
+        return code, a1, a2, 0.0, 0.0
+    return code, a1, a2, al, q
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def _static(rk, nk, t1, t2):  # pragma: no cover - compiled
     """The static step from the virgin slider ``(0, 0)``: ``(code, s1, s2, alpha, u1, u2)``."""
     return _step(rk, nk, t1, t2, 0.0, 0.0)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # pragma: no cover - compiled
     """Derivative ``D`` (2, 3, nb) of the slider after the static step and ``periods`` plain periods.
 
@@ -198,39 +192,25 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, T
         tk2 = t2[k]
         nk0 = n[k]
         for i in range(J):
-            nk = nk0 - gaps[i]
-            if nk <= 0.0:  # open: no force, the slider follows t, the period map forgets
-                s1[i] = tk1
-                s2[i] = tk2
-                Te1[k, i] = 0.0
-                Te2[k, i] = 0.0
-                code[k, i] = OPEN
+            s1i = s1[i]
+            s2i = s2[i]
+            f1, f2, _, c, s1[i], s2[i], al, q = plane_step(kt[i], rk[i], mu * kn[i], kn[i], nk0 - gaps[i], tk1, tk2,
+                                                           s1i, s2i)
+            Te1[k, i] = f1
+            Te2[k, i] = f2
+            code[k, i] = c
+            if c == STICK:
+                continue
+            moved[i] = 1.0
+            if c == OPEN:  # the period map forgets
                 C[0, i] = 0.0
                 C[1, i] = 0.0
                 C[2, i] = 0.0
                 C[3, i] = 0.0
-                moved[i] = 1.0
                 continue
-            r = rk[i] * nk
-            d1 = tk1 - s1[i]
-            d2 = tk2 - s2[i]
-            dd2 = d1 * d1 + d2 * d2
-            if dd2 <= r * r:  # stick
-                Te1[k, i] = kt[i] * d1
-                Te2[k, i] = kt[i] * d2
-                code[k, i] = STICK
-                continue
-            q = 1.0 / math.sqrt(dd2)
-            al = r * q
-            g = mu * kn[i] * nk * q
-            s1[i] = tk1 - al * d1
-            s2[i] = tk2 - al * d2
-            Te1[k, i] = g * d1
-            Te2[k, i] = g * d2
-            code[k, i] = SLIP
             alpha[k, i] = al
-            v1 = -d2 * q
-            v2 = d1 * q
+            v1 = -(tk2 - s2i) * q
+            v2 = (tk1 - s1i) * q
             V1[k, i] = v1
             V2[k, i] = v2
             # C <- A C = alpha v v^T C
@@ -240,7 +220,6 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, T
             C[1, i] = v1 * w2
             C[2, i] = v2 * w1
             C[3, i] = v2 * w2
-            moved[i] = 1.0
 
 
 @nb.njit(cache=True, nogil=True)
@@ -267,8 +246,9 @@ def _binding_pair(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
     gb = -np.inf
     for k in range(t1.shape[0]):
         d = math.hypot(t1[k] - s1, t2[k] - s2)
-        if abs((t1[a] - s1) * (t2[k] - s2) - (t2[a] - s2) * (t1[k] - s1)) < 1e-3 * d * da:
-            continue
+        same_side = (t1[a] - s1) * (t1[k] - s1) + (t2[a] - s2) * (t2[k] - s2) > 0.0
+        if same_side and abs((t1[a] - s1) * (t2[k] - s2) - (t2[a] - s2) * (t1[k] - s1)) < 1e-3 * d * da:
+            continue  # a's own neighbour: its circle touches a's from inside, no corner
         g = d - rk * (n[k] - gi)
         if g > gb:
             gb = g
@@ -328,6 +308,50 @@ def _corner_point(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
         if math.hypot(c1 - t1[k], c2 - t2[k]) > rk * (n[k] - gi):
             return False, s1, s2
     return True, c1, c2
+
+
+@nb.njit(cache=True, nogil=True)
+def _facing_point(t1, t2, n, gi, rk, s1, s2):  # pragma: no cover - compiled
+    """The slider at the start of a period in which the element slips only at two samples whose discs are apart.
+
+    ``(found, c1, c2)``: the two samples the slider ``(s1, s2)`` violates
+    most (:func:`_binding_pair`), if their discs do not meet; the slider then
+    goes back and forth between their nearest points, and at the start of
+    the period it sits on the later sample's disc, at its point nearest the
+    earlier one's. The next period checks it (its residual).
+    """
+    a, _, b, _ = _binding_pair(t1, t2, n, gi, rk, s1, s2)
+    if a < 0 or b < 0:
+        return False, s1, s2
+    early = min(a, b)
+    late = max(a, b)
+    e1 = t1[early] - t1[late]
+    e2 = t2[early] - t2[late]
+    L = math.hypot(e1, e2)
+    r_late = rk * (n[late] - gi)
+    if L <= r_late + rk * (n[early] - gi):
+        return False, s1, s2
+    return True, t1[late] + r_late * e1 / L, t2[late] + r_late * e2 / L
+
+
+@nb.njit(cache=True, nogil=True)
+def _land(t1, t2, n, gi, rk, p1, p2, s1, s2, i):  # pragma: no cover - compiled
+    """Put slider ``i`` (``s1[i], s2[i]``) where the plain march from ``(p1, p2)`` creeps to; False if not found.
+
+    The slider creeps onto a corner of its stick region (:func:`_corner_point`:
+    the two discs it violates most meet inside the others), or, when those
+    two discs are apart and nearly touching, the element slips at those two
+    samples only, its slider crossing between their nearest points
+    (:func:`_facing_point`; the plain march nears it at ``1 - rho`` about
+    the gap between the discs over their radius, 1e-5 per period and less).
+    """
+    found, c1, c2 = _corner_point(t1, t2, n, gi, rk, p1, p2)
+    if not found:
+        found, c1, c2 = _facing_point(t1, t2, n, gi, rk, p1, p2)
+    if found:
+        s1[i] = c1
+        s2[i] = c2
+    return found
 
 
 @nb.njit(cache=True, nogil=True)
@@ -410,7 +434,13 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                     corner[0, i] = a
                     corner[1, i] = b
                     continue
-                restart = True
+                # the Newton step took it into its stick region, off a corner: onto the corner the plain march it
+                # replaced was creeping to (the next period checks it), else from the static step plainly
+                if newton_step and _land(t1, t2, n, gaps[i], rk[i], p1[i], p2[i], s1, s2, i):
+                    newton[i] = 0
+                    res = np.inf
+                else:
+                    restart = True
             elif res <= tol:
                 continue
             elif newton_step and res >= prev[i]:
@@ -419,13 +449,9 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                 s2[i] = p2[i]
                 lam[i] *= 0.5
                 if lam[i] < 1.0 / 8:
-                    # the fixed point lies across a change of the slip pattern, where the slider creeps onto a
-                    # corner of its stick region: there if the two discs it violates most meet inside the others
-                    # (the next period checks it, see _corner), else plain periods
-                    found, c1, c2 = _corner_point(t1, t2, n, gaps[i], rk[i], s1[i], s2[i])
-                    if found:
-                        s1[i] = c1
-                        s2[i] = c2
+                    # the fixed point lies across a change of the slip pattern: see _land (the next period checks
+                    # where it puts the slider, see _corner), else plain periods
+                    _land(t1, t2, n, gaps[i], rk[i], s1[i], s2[i], s1, s2, i)
                     newton[i] = 0
                 res = np.inf
             elif newton[i] and count[i] >= 2 and res < prev[i] and 1.0 - (C[0, i] + C[3, i]) > NEWTON_MARGIN:
@@ -529,7 +555,7 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
 def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used):  # pragma: no cover
-    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (6, nb) for its slip and open samples.
+    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (nb, 6) for its slip and open samples.
 
     ``Y = beta (x) I + y (x) w^T`` (``beta`` (nb), ``y`` (2, nb), both
     overwritten) is the coefficient of the slider at the end of the period;
@@ -557,10 +583,10 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
             Um[:] = 0.0
         if c == OPEN:
             for p in range(nbasis):
-                Um[0, p] += beta[p] + y1[p] * w1
-                Um[1, p] += y1[p] * w2
-                Um[3, p] += y2[p] * w1
-                Um[4, p] += beta[p] + y2[p] * w2
+                Um[p, 0] += beta[p] + y1[p] * w1
+                Um[p, 1] += y1[p] * w2
+                Um[p, 3] += y2[p] * w1
+                Um[p, 4] += beta[p] + y2[p] * w2
                 beta[p] = 0.0
                 y1[p] = 0.0
                 y2[p] = 0.0
@@ -586,12 +612,12 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
             for p in range(nbasis):
                 a1 = y1[p]
                 a2 = y2[p]
-                Um[0, p] += a1 * h1
-                Um[1, p] += a1 * h2
-                Um[2, p] += a1 * h3
-                Um[3, p] += a2 * h1
-                Um[4, p] += a2 * h2
-                Um[5, p] += a2 * h3
+                Um[p, 0] += a1 * h1
+                Um[p, 1] += a1 * h2
+                Um[p, 2] += a1 * h3
+                Um[p, 3] += a2 * h1
+                Um[p, 4] += a2 * h2
+                Um[p, 5] += a2 * h3
                 q = -al * kti * PT[m, p]
                 y1[p] = q * v1 + awv * a1
                 y2[p] = q * v2 + awv * a2
@@ -603,12 +629,12 @@ def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2,
             bp = beta[p]
             a1 = y1[p]
             a2 = y2[p]
-            Um[0, p] += bp * g11 + a1 * h1
-            Um[1, p] += bp * g12 + a1 * h2
-            Um[2, p] += bp * g13 + a1 * h3
-            Um[3, p] += bp * g12 + a2 * h1
-            Um[4, p] += bp * g22 + a2 * h2
-            Um[5, p] += bp * g23 + a2 * h3
+            Um[p, 0] += bp * g11 + a1 * h1
+            Um[p, 1] += bp * g12 + a1 * h2
+            Um[p, 2] += bp * g13 + a1 * h3
+            Um[p, 3] += bp * g12 + a2 * h1
+            Um[p, 4] += bp * g22 + a2 * h2
+            Um[p, 5] += bp * g23 + a2 * h3
             q = al * (bp - kti * PT[m, p])
             y1[p] = q * v1 + al * wv * a1
             y2[p] = q * v2 + al * wv * a2
@@ -705,7 +731,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     for b in range(2):
         Jac[2, b] = 0.0
     # -- the history parts, element by element -------------------------------------------
-    U = np.empty((Ns, 6, nbasis))  # column m's coefficients (rows zeroed when first used), times E[m] at the end
+    # column m's coefficients (zeroed when first used), times E[m] at the end; U[m, p, 3 a + b] for output a, input b
+    # (the six of one p together: the sweep's update of all six is one short contiguous store)
+    U = np.empty((Ns, nbasis, 6))
     used = np.zeros(Ns, dtype=np.bool_)
     beta = np.empty(nbasis)
     y = np.empty((2, nbasis))
@@ -756,12 +784,12 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
         acc = np.dot(Uc.T, Ec)
     else:
         acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
-    for r in range(6):
-        a = r // 3
-        b = r % 3
-        for p in range(nbasis):
+    for p in range(nbasis):
+        for r in range(6):
+            a = r // 3
+            b = r % 3
             for q in range(nbasis):
-                Jac[a, b, p, q] += acc[r * nbasis + p, q]
+                Jac[a, b, p, q] += acc[p * 6 + r, q]
     return periods
 
 

@@ -1,11 +1,17 @@
 """Compiled march of a contact on its plane, sample by sample, from given sliders (private).
 
-The element update is :func:`microslip.frequency._aft_plane._step`, the AFT's
-own, so that a period marched here from the AFT's periodic state
+The element update is :func:`microslip._kernels.plane_step`, the AFT's and
+``MicroslipModel.simulate``'s own, so that a period marched here from the AFT's periodic state
 (:func:`periodic_state`) repeats the forces harmonic balance used. Used for a
 contact's cycle at a point (:mod:`~microslip.frequency.contact_cycle`), its
 friction work per cycle and the time integration of structures with contacts
 on their planes (:mod:`~microslip.frequency.transient`).
+
+Its loop is kept apart from :func:`microslip._kernels.march_plane` (the same
+step, the same order of the sums, so the same numbers bit for bit): the time
+integration calls it once per time step with one sample, where that march's
+scratch rows (allocated per call, so that its element loop vectorises) would
+cost more than the step, and it takes the sliders as ``(2, J)`` rows.
 """
 
 from __future__ import annotations
@@ -13,16 +19,16 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .._kernels import OPEN, STICK
+from .._kernels import plane_step
 from ._aft import _synthesise
-from ._aft_plane import PERIODIC_ULPS, _march, _step
+from ._aft_plane import PERIODIC_ULPS, _march
 
 #: an empty array for the per-element records a caller does not want
 NO_ELEMENTS = np.empty((0, 0, 2))
 NO_CONDITIONS = np.empty((0, 0), dtype=np.int8)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def march_plane(kt, kn, gaps, mu, t1, t2, n, s, T, N, Ti, cond):  # pragma: no cover - compiled
     """March samples ``(t1, t2, n)`` (m) from sliders ``s`` ``(2, J)`` (m, updated in place).
 
@@ -34,20 +40,12 @@ def march_plane(kt, kn, gaps, mu, t1, t2, n, s, T, N, Ti, cond):  # pragma: no c
     for k in range(t1.shape[0]):
         T[k, 0] = T[k, 1] = N[k] = 0.0
         for i in range(kt.shape[0]):
-            nk = n[k] - gaps[i]
-            s1 = s[0, i]
-            s2 = s[1, i]
-            c, a1, a2, _, q = _step(mu * kn[i] / kt[i], nk, t1[k], t2[k], s1, s2)
-            # the force: none when open, kt d in stick, mu N d / |d| in slip (as the AFT's period)
-            g = 0.0 if c == OPEN else (kt[i] if c == STICK else mu * kn[i] * nk * q)
-            g1 = g * (t1[k] - s1)
-            g2 = g * (t2[k] - s2)
-            if c != OPEN:
-                N[k] += kn[i] * nk
+            mkn = mu * kn[i]
+            g1, g2, Ni, c, s[0, i], s[1, i], _, _ = plane_step(kt[i], mkn / kt[i], mkn, kn[i], n[k] - gaps[i], t1[k],
+                                                               t2[k], s[0, i], s[1, i])
+            N[k] += Ni
             T[k, 0] += g1
             T[k, 1] += g2
-            s[0, i] = a1
-            s[1, i] = a2
             if record[0]:
                 Ti[k, i, 0] = g1
                 Ti[k, i, 1] = g2
