@@ -13,8 +13,8 @@ response of the same structure by harmonic balance over 1200-1800 Hz with the sa
 (bench_fe_scale.py's excitation, 40 N at the tip); their ratio, and how far the forced response's peak lies
 from the mode's backbone at the peak's modal amplitude (phase resonance).
 
-The side-by-side with tmdsimpy's EPMC (MIT, not on PyPI), on this blade reduced by Craig-Bampton with Jenkins contacts, is
-bench_tmdsimpy.py (run with ``TMDSIMPY_PATH`` naming a local copy of tmdsimpy).
+The side-by-side with tmdsimpy's EPMC (MIT, not on PyPI), on this blade reduced by Craig-Bampton with
+Jenkins contacts, is bench_tmdsimpy.py (run with ``TMDSIMPY_PATH`` naming a local copy of tmdsimpy).
 """
 
 from __future__ import annotations

@@ -16,33 +16,21 @@ Its phase condition is ``Fl . (harmonics >= 1) = 0``; with ``Fl`` the sine part 
 
 from __future__ import annotations
 
-import importlib
-import os
-import sys
-
 import numpy as np
 import pytest
 
 from microslip import MicroslipModel, Structure, nonlinear_modes
 
-ROOT = os.environ.get("TMDSIMPY_PATH")
+from _tmdsimpy import import_tmdsimpy
+
 H, SAMPLES = 3, 64
 KT, SLIP, KN, MU = 4e5, 5.0, 1e9, 0.5  # N/m, N, N/m, -: each contact a Jenkins element (slip force MU N)
 
 
 @pytest.fixture(scope="module")
 def peer():
-    if not ROOT:
-        pytest.skip("TMDSIMPY_PATH is not set: the comparison with tmdsimpy's EPMC is skipped "
-                    "(set it to a local copy of tmdsimpy, with jax installed, to run it)")
-    sys.path.insert(0, ROOT)
-    try:
-        return {name.rsplit(".", 1)[1]: importlib.import_module(name)
-                for name in ("tmdsimpy.vibration_system", "tmdsimpy.nlforces.vector_jenkins", "tmdsimpy.solvers")}
-    except ImportError as exc:
-        pytest.skip(f"tmdsimpy from TMDSIMPY_PATH={ROOT!r} cannot be imported ({exc}): the comparison is skipped")
-    finally:
-        sys.path.remove(ROOT)
+    return import_tmdsimpy(["tmdsimpy.vibration_system", "tmdsimpy.nlforces.vector_jenkins", "tmdsimpy.solvers"],
+                           "tmdsimpy's EPMC")
 
 
 def chain():
