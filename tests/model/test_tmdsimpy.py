@@ -19,31 +19,18 @@ numbers up to rounding over the 256 samples).
 
 from __future__ import annotations
 
-import importlib
-import os
-import sys
-
 import numpy as np
 import pytest
 
 from microslip import MicroslipModel, State
 
-ROOT = os.environ.get("TMDSIMPY_PATH")
+from _tmdsimpy import import_tmdsimpy
 
 
 @pytest.fixture(scope="module")
 def dry_friction():
-    if not ROOT:
-        pytest.skip("TMDSIMPY_PATH is not set: the comparison with tmdsimpy's ElasticDryFriction2D is skipped "
-                    "(set it to a local copy of tmdsimpy, with jax installed, to run it)")
-    sys.path.insert(0, ROOT)
-    try:
-        module = importlib.import_module("tmdsimpy.jax.nlforces.elastic_dry_fric_2d")
-    except ImportError as exc:
-        pytest.skip(f"tmdsimpy from TMDSIMPY_PATH={ROOT!r} cannot be imported ({exc}): the comparison is skipped")
-    finally:
-        sys.path.remove(ROOT)
-    return module.ElasticDryFriction2D
+    module = import_tmdsimpy(["tmdsimpy.jax.nlforces.elastic_dry_fric_2d"], "tmdsimpy's ElasticDryFriction2D")
+    return module["elastic_dry_fric_2d"].ElasticDryFriction2D
 
 
 def tmdsimpy_forces(element_class, kt, kn, mu, u_t, u_n, u0):
