@@ -229,20 +229,25 @@ class PeerMode:
         return cont.continuation(self.residual, Uwxa0, a0, a1)
 
 
-def compare_mode(peer, dofs: int, contacts: int, modes: int, repeat: int) -> dict:
+def compare_mode(peer, dofs: int, contacts: int, modes: int, repeat: int, ds_max: float | None = None) -> dict:
     structure, full_dofs, kt, slip = jenkins_blade(dofs, contacts, modes)
     print(f"(b) nonlinear mode 1 of the blade ({full_dofs} DOFs) reduced by Craig-Bampton to {structure.ndof} "
           f"({contacts} contact DOFs + {modes} modes), {contacts} Jenkins contacts (kt = {kt:.3g} N/m, slip force "
           f"{slip:.3g} N), harmonics 0-{MODE_H}, {MODE_SAMPLES} samples, modal amplitude {AMPLITUDE[0]:.0e} to "
           f"{AMPLITUDE[1]:.0e} kg^1/2 m")
 
+    from microslip.frequency import StepControl
+
+    control = None if ds_max is None else StepControl(ds_max=ds_max)
+
     def ours():
-        return nonlinear_modes(structure, 1, AMPLITUDE, harmonics=MODE_H, samples=MODE_SAMPLES)
+        return nonlinear_modes(structure, 1, AMPLITUDE, harmonics=MODE_H, samples=MODE_SAMPLES, control=control)
 
     ours()  # Numba's kernels loaded
     t_ours, mode = best_of(ours, 3)
     hz = 1 / (2 * np.pi)
-    print(f"  microslip: {t_ours:.3f} s, {mode.points} points ({1e3 * t_ours / mode.points:.2f} ms each), "
+    steps = "default step control" if ds_max is None else f"StepControl(ds_max={ds_max:g})"
+    print(f"  microslip ({steps}): {t_ours:.3f} s, {mode.points} points ({1e3 * t_ours / mode.points:.2f} ms each), "
           f"{mode.omega[0] * hz:.1f} to {mode.omega[-1] * hz:.1f} Hz, damping ratio up to "
           f"{100 * mode.damping_ratio.max():.2f} %")
     if peer is None:
@@ -279,13 +284,15 @@ def main(argv=None) -> int:
     parser.add_argument("--contacts", type=int, default=8, help="Jenkins contacts, an even number (default 8)")
     parser.add_argument("--modes", type=int, default=10, help="fixed-interface modes kept (default 10)")
     parser.add_argument("--repeat", type=int, default=1, help="tmdsimpy's mode timed this many times (default 1)")
+    parser.add_argument("--ds-max", type=float, default=None,
+                        help="microslip's largest continuation step (StepControl.ds_max; default its default, 0.05)")
     args = parser.parse_args(argv)
     peer, why = load_tmdsimpy()
     print(f"load average {os.getloadavg()[0]:.2f} (2 cores shared)")
     if peer is None:
         print(f"tmdsimpy: not compared: {why}; microslip alone follows")
     compare_aft(peer)
-    compare_mode(peer, args.dofs, args.contacts, args.modes, args.repeat)
+    compare_mode(peer, args.dofs, args.contacts, args.modes, args.repeat, args.ds_max)
     return 0
 
 
