@@ -104,13 +104,13 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     start = time.perf_counter()
     with _client(client, workers, scheduler) as running:
         if progress:
+            threads = _threads(running)
             print(f"{len(cases)} cases: {len(cases) - len(todo)} finished by an earlier run, {len(todo)} to solve on "
-                  f"{_threads(running)} worker{'s' if _threads(running) != 1 else ''}", file=sys.stderr, flush=True)
+                  f"{threads} worker{'s' if threads != 1 else ''}", file=sys.stderr, flush=True)
         out.mkdir(parents=True, exist_ok=True)
         if todo:
             for case, outcome in _solve(running, study, todo, progress):
-                save_case(out, case, outcome)
-                found[case.key] = load_case(out, case)
+                found[case.key] = save_case(out, case, outcome)
     outcomes = [found[c.key] for c in cases]
     rows = summary_rows(study, cases, outcomes)
     cfg = study.configuration(Case({}, ""))  # the base configuration's output DOFs

@@ -86,7 +86,8 @@ def _mistuned(study: Study, cfg, sample: int):
     result = frequency_response(disk, force, cfg.omega, harmonics=cfg.harmonics, samples=cfg.samples,
                                 control=cfg.control, reduction=m.reduction, modes=m.modes, stability=False)
     blades = [blade_amplitudes(result, sector, d, harmonic=cfg.harmonic) for d in cfg.plot_dofs]  # (points, N)
-    row = _frf_row(cfg, result, np.column_stack([b.max(axis=1) for b in blades]))
+    largest = np.column_stack([b.max(axis=1) for b in blades])  # the largest blade at each point
+    row = _frf_row(cfg, result, largest)
     for d, b in zip(cfg.plot_dofs, blades):  # the largest blade's own peak, as blade_peaks gives it
         peaks = [curve_peak(result.omega, b[:, s]) for s in range(sector.sectors)]
         k = int(np.argmax([a for _, a in peaks]))
@@ -94,7 +95,7 @@ def _mistuned(study: Study, cfg, sample: int):
         row[f"peak frequency {cfg.dof_names[d]} (Hz)"] = peaks[k][0] / (2 * np.pi)
         row[f"largest blade {cfg.dof_names[d]}"] = k
     row["blade stiffness scatter (std)"] = float(np.std(scatter))
-    return row, _frf_curves(result, np.column_stack([b.max(axis=1) for b in blades]))
+    return row, _frf_curves(result, largest)
 
 
 def _frf_row(cfg, result, amplitude) -> dict:

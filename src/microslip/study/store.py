@@ -34,15 +34,19 @@ def case_file(out: Path, case: Case) -> Path:
     return Path(out) / CASES / f"{case.key}.npz"
 
 
-def save_case(out: Path, case: Case, outcome: dict) -> Path:
-    """Write a case's outcome (from :func:`~microslip.study.solve.solve_case`) atomically."""
+def save_case(out: Path, case: Case, outcome: dict) -> dict:
+    """Write a case's outcome (from :func:`~microslip.study.solve.solve_case`) atomically; returns it as stored.
+
+    The record returned is what :func:`load_case` reads back from the file.
+    """
     meta = {"key": case.key, "values": case.values, "mistuning_sample": case.mistuning_sample,
             "row": outcome["row"], "error": outcome["error"], "warnings": outcome["warnings"],
             "time": outcome["time"]}
+    curves = {k: np.asarray(v) for k, v in outcome["curves"].items()}
     buf = io.BytesIO()
-    np.savez(buf, meta=np.array(json.dumps(meta, default=str)),
-             **{f"curve_{k}": np.asarray(v) for k, v in outcome["curves"].items()})
-    return atomic_write(case_file(out, case), buf.getvalue())
+    np.savez(buf, meta=np.array(json.dumps(meta, default=str)), **{f"curve_{k}": v for k, v in curves.items()})
+    atomic_write(case_file(out, case), buf.getvalue())
+    return {**json.loads(json.dumps(meta, default=str)), "curves": curves}
 
 
 def load_case(out: Path, case: Case) -> dict | None:
