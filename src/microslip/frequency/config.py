@@ -128,6 +128,9 @@ KEYS = {
     "[output]": ("plot", "harmonic", "frequency_unit"),
 }
 FREQUENCY_UNITS = ("Hz", "rad/s")
+#: what ``[excitation]`` accepts (its keys name harmonics), and keys to suggest a misspelled one from
+EXCITATION_ACCEPTS = "static, h<harmonic> such as h1, phase_h<harmonic> such as phase_h1, and scale"
+EXCITATION_EXAMPLES = ("static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phase_h3", "scale")
 
 
 class ConfigError(ValueError):
@@ -509,9 +512,8 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
             continue
         h = _harmonic_key(key)
         if h is None:
-            example = ["static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phase_h3", "scale"]
-            raise ConfigError(f"{path}: [excitation] has an unknown key {key!r}{_close(key, example)} (it accepts "
-                              f"static, h<harmonic> such as h1, phase_h<harmonic> such as phase_h1, and scale)")
+            raise ConfigError(f"{path}: [excitation] has an unknown key {key!r}{_close(key, EXCITATION_EXAMPLES)} "
+                              f"(it accepts {EXCITATION_ACCEPTS})")
         amp = _array(value, f"[excitation] {key}", path).astype(complex)
         if amp.size != ndof:
             raise ConfigError(f"{path}: [excitation] {key} has {amp.size} value(s); the structure has {ndof} DOFs "
@@ -540,14 +542,18 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         if h > harmonics:
             raise ConfigError(f"{path}: [excitation] h{h} is a harmonic above [sweep] harmonics = {harmonics}; "
                               f"raise harmonics to {h} or more, or remove h{h}")
+    from .cyclic import CyclicStructure
+    from .cyclic_balance import cyclic_reduction
+    from .reduced import choose_reduction
+
     if "engine_order" in sw:
-        if not isinstance(structure, _cyclic_type()):
+        if not isinstance(structure, CyclicStructure):
             raise ConfigError(f"{path}: [sweep] engine_order needs a [cyclic] table (one sector of a bladed disk)")
         if engine_order is not None:
             raise ConfigError(f"{path}: the engine order is given twice, in [cyclic] and in [sweep]: keep one")
         engine_order = _checked(path, "", _checks.positive_int, "[sweep] engine_order", sw["engine_order"],
                                 minimum=0)
-    elif isinstance(structure, _cyclic_type()) and engine_order is None:
+    elif isinstance(structure, CyclicStructure) and engine_order is None:
         raise ConfigError(f"{path}: a [cyclic] sector needs its engine order: engine_order in [cyclic] or [sweep]")
     samples = sw.get("samples")
     if samples is not None:
@@ -555,9 +561,6 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
 
     reduction = sw.get("reduction", "auto")
     modes = sw.get("modes")
-    from .cyclic import CyclicStructure
-    from .cyclic_balance import cyclic_reduction
-    from .reduced import choose_reduction
 
     if isinstance(structure, CyclicStructure):  # a sector is always condensed, in each harmonic's diameter
         _checked(path, "[sweep] ", cyclic_reduction, structure, reduction, modes)
@@ -600,12 +603,6 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
                      design_loads, design_dof, mode_table)
-
-
-def _cyclic_type():
-    from .cyclic import CyclicStructure
-
-    return CyclicStructure
 
 
 def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> ModesTable:

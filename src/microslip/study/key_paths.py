@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import copy
 
-from ..frequency.config import KEYS, ConfigError, _close
+from ..frequency.config import EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, _close, _harmonic_key
 
 #: tables that are arrays of tables, and the name their items' paths start with
 _ARRAYS = {"contact": "[[contact]]", "damper": "[[damper]]", "interface": "[[damper.interface]]"}
@@ -144,11 +144,8 @@ def _accepted(key: str, label: str, path: str, where: str) -> None:
 
 
 def _excitation_key(key: str, path: str, where: str) -> None:
-    from ..frequency.config import _harmonic_key
-
     name = key[6:] if key.startswith("phase_") else key
     if key == "scale" or _harmonic_key(name) is not None and key != "phase_static":
         return
-    example = ["static", "h1", "h2", "phase_h1", "scale"]
-    raise ConfigError(f"{where}: {path!r}: [excitation] has no key {key!r}{_close(key, example)} (it accepts "
-                      f"static, h<harmonic> such as h1, phase_h<harmonic> such as phase_h1, and scale)")
+    raise ConfigError(f"{where}: {path!r}: [excitation] has no key {key!r}{_close(key, EXCITATION_EXAMPLES)} "
+                      f"(it accepts {EXCITATION_ACCEPTS})")

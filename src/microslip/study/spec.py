@@ -49,7 +49,7 @@ import numpy as np
 
 from ..common import _checks
 from ..frequency import config
-from ..frequency.config import ConfigError, ConfigFiles, _close, config_from_data, read_toml
+from ..frequency.config import ConfigError, ConfigFiles, _checked, _close, config_from_data, read_toml
 from .key_paths import set_key, set_key_in_place
 
 #: the study file's top-level keys and the keys of its tables
@@ -263,8 +263,8 @@ def _random(table, path):
         raise ConfigError(f"{path}: [random] must be a table, got {table!r}")
     if "samples" not in table:
         raise ConfigError(f"{path}: [random] needs samples (the number of random cases)")
-    samples = _checked(path, _checks.positive_int, "[random] samples", table["samples"])
-    seed = _checked(path, _checks.positive_int, "[random] seed", table.get("seed", 0), minimum=0)
+    samples = _checked(path, "", _checks.positive_int, "[random] samples", table["samples"])
+    seed = _checked(path, "", _checks.positive_int, "[random] seed", table.get("seed", 0), minimum=0)
     dists = {}
     for key, spec in table.items():
         if key in STUDY_KEYS["[random]"]:
@@ -336,29 +336,22 @@ def _mistuning(table, study: Study, path) -> Mistuning:
     for key in ("std", "samples"):
         if key not in table:
             raise ConfigError(f"{path}: [mistuning] needs {key}")
-    std = _checked(path, _checks.positive_scalar, "[mistuning] std", table["std"], allow_zero=True)
+    std = _checked(path, "", _checks.positive_scalar, "[mistuning] std", table["std"], allow_zero=True)
     from ..frequency.mistuning import MAX_STD
 
     if std > MAX_STD:
         raise ConfigError(f"{path}: [mistuning] std is a relative stiffness deviation and must be at most {MAX_STD} "
                           f"(a blade's stiffness scatters by a few percent), got {std!r}")
-    samples = _checked(path, _checks.positive_int, "[mistuning] samples", table["samples"])
-    seed = _checked(path, _checks.positive_int, "[mistuning] seed", table.get("seed", 0), minimum=0)
+    samples = _checked(path, "", _checks.positive_int, "[mistuning] samples", table["samples"])
+    seed = _checked(path, "", _checks.positive_int, "[mistuning] seed", table.get("seed", 0), minimum=0)
     reduction = table.get("reduction", "exact")
     if reduction not in ("exact", "modal"):
         raise ConfigError(f"{path}: [mistuning] reduction must be \"exact\" or \"modal\" (the assembled disk is "
                           f"condensed onto its contacts), got {reduction!r}")
     modes = table.get("modes")
     if modes is not None:
-        modes = _checked(path, _checks.positive_int, "[mistuning] modes", modes)
+        modes = _checked(path, "", _checks.positive_int, "[mistuning] modes", modes)
     return Mistuning(std, samples, seed, reduction, modes)
-
-
-def _checked(path, check, *args, **kwargs):
-    try:
-        return check(*args, **kwargs)
-    except (ValueError, TypeError) as exc:
-        raise ConfigError(f"{path}: {exc}") from None
 
 
 def _check_values(study: Study) -> None:
