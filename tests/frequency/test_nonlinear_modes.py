@@ -382,3 +382,23 @@ def test_a_contact_on_its_plane_sticks_along_both_directions_in_the_linear_mode(
     lam2, _, _, _ = stuck_mode(s, np.zeros(2), 2)
     assert lam1 == pytest.approx(3e4, rel=1e-12) and lam2 == pytest.approx(7e4, rel=1e-12)
     assert abs(phi1[0]) == pytest.approx(1.0, rel=1e-12)
+
+
+def test_the_compiled_damped_balance_equals_the_reference_with_its_damping_subtracted():
+    """The compiled evaluation adds ``-xi M`` to the damping inside the kernel; the reference evaluation
+    of the same equations and the subtraction of ``omega xi M D x`` agree to rounding (1e-12 of the
+    largest entry: a few operations per entry)."""
+    from microslip.frequency.epmc import DampedBalance
+
+    hb = DampedBalance(chain(), 3, samples=64)
+    assert hb.compiled
+    x = np.random.default_rng(3).normal(size=hb.n) * 2e-6
+    omega, hb.xi = 9000.0, 37.0
+    R, J, Rw = hb._evaluate(x, omega)
+    R0, J0, Rw0 = hb.evaluate_reference(x, omega)
+    MDx = hb.MD @ x
+    for got, want in ((R, R0 - omega * hb.xi * MDx), (J, J0 - omega * hb.xi * hb.MD), (Rw, Rw0 - hb.xi * MDx),
+                      (hb._evaluate(x, omega, jacobian=False), R0 - omega * hb.xi * MDx)):
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * np.abs(want).max())
+    hb.xi = 0.0
+    np.testing.assert_array_equal(hb._evaluate(x, omega)[1], J0)

@@ -15,12 +15,16 @@ from ._aft import _aft_contact
 
 
 @nb.njit(cache=True, nogil=True)
-def evaluate_dense(x, omega, Kx, Cx, Mx, f, Bt, Bn, n0, kt, kn, gaps, offsets, mu,
+def evaluate_dense(x, omega, Kx, Cx, Mx, MD, xi, lo, hi, f, Bt, Bn, n0, kt, kn, gaps, offsets, mu,
                    E, P, cos2, sin2, cum, max_periods, jacobian,
                    R, J, Rw, FT, FN, JTt, JTn, JNn, periods):  # pragma: no cover - compiled
     """Write ``R`` (n), and if ``jacobian`` ``J`` (n, n) and ``Rw`` (n).
 
     ``x`` is harmonic-major: ``x[p * ndof + i]`` is coefficient ``p`` of DOF ``i``.
+    The linear part is ``Kx + omega (Cx - xi MD) - omega^2 Mx`` (``MD`` is read
+    only when ``xi`` is not zero); row ``r`` of each of these matrices is zero
+    outside the columns ``lo[r] <= s < hi[r]`` (the harmonic it belongs to), so
+    only those are read and the rest of ``J``'s row is set to zero.
     Returns the smallest period count of the contacts (``-1``: one was not periodic).
     """
     n = x.shape[0]
@@ -28,15 +32,27 @@ def evaluate_dense(x, omega, Kx, Cx, Mx, f, Bt, Bn, n0, kt, kn, gaps, offsets, m
     nc = Bt.shape[1]
     nbasis = n // ndof
     w2 = omega * omega
+    wxi = omega * xi
+    damped = xi != 0.0
     for r in range(n):
         acc = -f[r]
         accw = 0.0
-        for s in range(n):
+        if jacobian:
+            for s in range(lo[r]):
+                J[r, s] = 0.0
+            for s in range(hi[r], n):
+                J[r, s] = 0.0
+        for s in range(lo[r], hi[r]):
             z = Kx[r, s] + omega * Cx[r, s] - w2 * Mx[r, s]
+            if damped:
+                z -= wxi * MD[r, s]
             acc += z * x[s]
             if jacobian:
                 J[r, s] = z
-                accw += (Cx[r, s] - 2.0 * omega * Mx[r, s]) * x[s]
+                zw = Cx[r, s] - 2.0 * omega * Mx[r, s]
+                if damped:
+                    zw -= xi * MD[r, s]
+                accw += zw * x[s]
         R[r] = acc
         Rw[r] = accw
     worst = max_periods

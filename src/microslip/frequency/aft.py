@@ -479,33 +479,18 @@ def friction_work(packed, xt, xn, synthesis, max_periods: int = MAX_PERIODS) -> 
     opens : ndarray of bool, shape (nc,)
         Whether some element opens and closes during the cycle.
     """
-    from .._kernels import NO_CONDITIONS, NO_ELEMENTS, STICK, march
+    from ._friction_work import friction_work_batch
 
     kt, kn, gaps, offsets, mu = packed
     nc = offsets.size - 1
     work, opens = np.zeros(nc), np.zeros(nc, dtype=bool)
-    T1, N1, W1 = np.empty(1), np.empty(1), np.empty(1)
-    for c in range(nc):
-        lo, hi = offsets[c], offsets[c + 1]
-        t = np.ascontiguousarray(synthesis @ xt[c])
-        n = np.ascontiguousarray(synthesis @ xn[c])
-        g, k = gaps[lo:hi], kt[lo:hi]
-        opens[c] = bool(np.any((n.min() <= g) & (n.max() > g)))
-        s = np.zeros(hi - lo)
-        march(k, kn[lo:hi], g, mu[c], np.array([xt[c, 0]]), np.array([xn[c, 0]]), s, T1, N1, W1,
-              NO_ELEMENTS, NO_CONDITIONS)
-        T, N, W = np.empty(t.size), np.empty(t.size), np.empty(0)
-        Ti, cond = np.empty((t.size, hi - lo)), np.empty((t.size, hi - lo), dtype=np.int8)
-        for _ in range(max_periods):
-            before = s.copy()
-            march(k, kn[lo:hi], g, mu[c], t, n, s, T, N, W, Ti, cond)
-            if np.array_equal(before, s):
-                break
-        # the slider at each sample (T = kt (t - s) in every condition), and each step's work on it; the
-        # period is periodic, so the step into sample 0 starts from the last sample
-        slider = t[:, None] - Ti / k
-        steps = 0.5 * (Ti + np.roll(Ti, 1, axis=0)) * (slider - np.roll(slider, 1, axis=0))
-        work[c] = np.maximum(steps, 0.0)[cond != STICK].sum()
+    if nc == 0:
+        return work, opens
+    xt, xn = np.asarray(xt, dtype=float).reshape(nc, -1), np.asarray(xn, dtype=float).reshape(nc, -1)
+    t = np.ascontiguousarray(xt @ synthesis.T)  # (nc, Ns)
+    n = np.ascontiguousarray(xn @ synthesis.T)
+    friction_work_batch(kt, kn, gaps, offsets, mu, t, n, np.ascontiguousarray(xt[:, 0]),
+                        np.ascontiguousarray(xn[:, 0]), int(max_periods), work, opens)
     return work, opens
 
 

@@ -108,9 +108,12 @@ class DampedBalance(HarmonicBalance):
         self.MD = np.kron(D, M.toarray() if sp.issparse(M) else M) if self.dense else \
             sp.kron(sp.csr_matrix(D), sp.csr_matrix(M), format="csc")
 
+    def _extra_damping(self) -> tuple[np.ndarray, float]:
+        return self.MD, self.xi
+
     def _evaluate(self, x, omega: float, *, jacobian: bool = True):
         out = super()._evaluate(x, omega, jacobian=jacobian)
-        if not self.xi:
+        if not self.xi or self.compiled:  # the compiled evaluation has the damping already
             return out
         MDx = self.MD @ x
         if not jacobian:
@@ -275,11 +278,14 @@ class EpmcEquations:
         rows[:, -1] = e_xi.real, e_xi.imag
         rows /= NORMALISATION
         columns = np.stack([R_omega, R_xi], axis=1) * (self.omega_scale / scale)
-        Jx = J * (a * c / scale)  # dx/dy = a c
-        if sp.issparse(Jx):
-            Jy = sp.vstack([sp.hstack([Jx, sp.csr_matrix(columns)]), sp.csr_matrix(rows)], format="csc")
-        else:
-            Jy = np.block([[Jx, columns], [rows]])
+        if sp.issparse(J):
+            Jy = sp.vstack([sp.hstack([J * (a * c / scale), sp.csr_matrix(columns)]), sp.csr_matrix(rows)],
+                           format="csc")
+        else:  # filled in place: one pass over the matrix
+            Jy = np.empty((self.n, self.n))
+            np.multiply(J, a * c / scale, out=Jy[:-2, :-2])  # dx/dy = a c
+            Jy[:-2, -2:] = columns
+            Jy[-2:] = rows
         r_s = np.zeros(self.n)
         r_s[:-2] = J @ (x - self.x_static) / scale - r[:-2]  # dx/ds = x - x_static
         return r, Jy, r_s

@@ -48,6 +48,20 @@ def harmonic_operators(H: int):
     return D, W
 
 
+def harmonic_columns(H: int, ndof: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(lo, hi)``, each ``(nb ndof,)``: row ``r`` of the harmonic form of a linear operator is zero outside ``lo[r]:hi[r]``.
+
+    ``I (x) K``, ``D (x) C`` and ``W (x) M`` couple the cosine and the sine of the
+    same harmonic only: the row of coefficient ``p`` (harmonic ``h = (p + 1) // 2``)
+    spans the columns of the coefficients ``0`` (for ``h = 0``) or ``2h - 1, 2h``.
+    """
+    p = np.arange(2 * H + 1)
+    h = (p + 1) // 2
+    first = np.where(h == 0, 0, 2 * h - 1)
+    last = np.where(h == 0, 1, 2 * h + 1)
+    return np.repeat(first * ndof, ndof).astype(np.int64), np.repeat(last * ndof, ndof).astype(np.int64)
+
+
 def excitation(structure: Structure, force, H: int) -> np.ndarray:
     """Excitation coefficients ``(2H+1, ndof)`` (N) from ``force``.
 
@@ -105,6 +119,7 @@ class HarmonicBalance:
             self.Kx = np.kron(np.eye(nb), dense[0])
             self.Cx = np.kron(D, dense[1])
             self.Mx = np.kron(W, dense[2])
+            self._columns = harmonic_columns(self.H, self.ndof)
         else:
             self.Kx = sp.kron(sp.identity(nb), sp.csr_matrix(structure.K), format="csc")
             self.Cx = sp.kron(sp.csr_matrix(D), sp.csr_matrix(structure.C), format="csc")
@@ -248,13 +263,18 @@ class HarmonicBalance:
         R = np.empty(n)
         J = np.empty((n, n)) if jacobian else self._J_dummy
         Rw = np.empty(n) if jacobian else self._Rw_dummy
+        MD, xi = self._extra_damping()
         worst = _hbm.evaluate_dense(np.ascontiguousarray(x, dtype=np.float64), float(omega), self.Kx, self.Cx,
-                                    self.Mx, self.f, self.Bt, self.Bn, self.n0, *self.packed, *self.tables,
-                                    self.max_periods, jacobian, R, J, Rw, self.FT, self.FN, self.JTt, self.JTn,
+                                    self.Mx, MD, float(xi), *self._columns, self.f, self.Bt, self.Bn, self.n0,
+                                    *self.packed, *self.tables, self.max_periods, jacobian, R, J, Rw, self.FT, self.FN, self.JTt, self.JTn,
                                     self.JNn, self.periods)
         if worst < 0:
             check_periodic(self.periods, self.max_periods)
         return (R, J, Rw) if jacobian else R
+
+    def _extra_damping(self) -> tuple[np.ndarray, float]:
+        """``(MD, xi)``: a damping ``-xi MD`` (dense, harmonic form) added to ``Cx``; none here (``xi = 0``)."""
+        return self.Kx, 0.0
 
     def evaluate_reference(self, x, omega: float, *, jacobian: bool = True):
         """As :meth:`evaluate`, with NumPy/SciPy array operations (any storage; ``Jx`` sparse CSC when sparse)."""

@@ -1,0 +1,68 @@
+"""Compiled energy dissipated per cycle by each contact along one direction (private).
+
+Plain float64 arrays in and out; the checked wrapper is
+:func:`microslip.frequency.aft.friction_work`, which states the definition.
+"""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+from .._kernels import STICK, march
+
+
+@nb.njit(cache=True, nogil=True)
+def friction_work_batch(kt, kn, gaps, offsets, mu, t, n, t0, n0, max_periods, work, opens):  # pragma: no cover
+    """Each contact's friction work per cycle into ``work`` (J) and whether it opens into ``opens``.
+
+    ``t``, ``n`` (shape ``(nc, Ns)``): each contact's samples over the period
+    (m); ``t0``, ``n0`` (``(nc,)``): their means, the static step from the
+    virgin state; the elements of contact ``c`` are ``offsets[c]:offsets[c+1]``
+    of ``kt``, ``kn``, ``gaps`` (N/m, N/m, m). Periods are marched from the
+    static state until the sliders repeat (at most ``max_periods``), then the
+    last period's steps give the work, as :func:`~microslip.frequency.aft.friction_work`
+    describes.
+    """
+    nc = offsets.shape[0] - 1
+    Ns = t.shape[1]
+    one_t, one_n = np.empty(1), np.empty(1)
+    T1, N1 = np.empty(1), np.empty(1)
+    T, N = np.empty(Ns), np.empty(Ns)
+    no_work = np.empty(0)
+    no_elements = np.empty((0, 0))
+    no_conditions = np.empty((0, 0), dtype=np.int8)
+    for c in range(nc):
+        lo, hi = offsets[c], offsets[c + 1]
+        J = hi - lo
+        k, kn_c, g = kt[lo:hi], kn[lo:hi], gaps[lo:hi]
+        tc, nc_ = t[c], n[c]
+        n_min, n_max = nc_.min(), nc_.max()
+        opens[c] = False
+        for i in range(J):
+            if n_min <= g[i] and n_max > g[i]:
+                opens[c] = True
+        s = np.zeros(J)
+        one_t[0], one_n[0] = t0[c], n0[c]
+        march(k, kn_c, g, mu[c], one_t, one_n, s, T1, N1, no_work, no_elements, no_conditions)
+        Ti = np.empty((Ns, J))
+        cond = np.empty((Ns, J), dtype=np.int8)
+        before = np.empty(J)
+        for _ in range(max_periods):
+            before[:] = s
+            march(k, kn_c, g, mu[c], tc, nc_, s, T, N, no_work, Ti, cond)
+            same = True
+            for i in range(J):
+                if before[i] != s[i]:
+                    same = False
+                    break
+            if same:
+                break
+        total = 0.0
+        for m in range(Ns):
+            p = m - 1 if m > 0 else Ns - 1  # the step into sample 0 starts from the last sample
+            for i in range(J):
+                if cond[m, i] != STICK:  # the slider at each sample: T = kt (t - s) in every condition
+                    step = 0.5 * (Ti[m, i] + Ti[p, i]) * ((tc[m] - Ti[m, i] / k[i]) - (tc[p] - Ti[p, i] / k[i]))
+                    total += max(step, 0.0)
+        work[c] = total
