@@ -31,14 +31,18 @@ so that ``det [[Jx, R_omega], [tangent]]`` keeps the sign it had at the start
 (the orientation of the whole curve, as on a piecewise-linear curve). A step
 whose new point has that sign reversed along the secant has jumped past a
 corner onto the branch that comes back from it, and is refused (one
-determinant per point, from the corrector's last Jacobian).
+determinant per point: for dense problems, from the LU factors of the
+corrector's last iteration, with its last row changed to the secant by the
+matrix determinant lemma, so no factorisation is added).
 """
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -152,26 +156,83 @@ def _tangent(problem, Jx, R_omega, row, scale) -> np.ndarray:
 def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None):
     """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``.
 
-    ``last``, a list, receives ``[Jx, R_omega]`` at the converged point.
+    ``last``, a list, receives ``[Jx, R_omega, factors]`` at the converged point:
+    its Jacobian and, for a dense problem, the :class:`_Factored` system of the
+    last iteration (see :func:`_sign`), else None.
     """
     yc = y_pred.copy()
     step = np.inf
+    factors = None
     for it in range(ctl.max_iterations + 1):
         R, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
         res = np.linalg.norm(R) / r_scale
         if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
             if last is not None:
-                last[:] = [Jx, Rw]
+                last[:] = [Jx, Rw, factors]
             return yc, it
         if it == ctl.max_iterations or not np.isfinite(res):
             break
         g = np.append(R, tau @ ((yc - y_pred) / scale))
-        dz = problem.solve(_scaled_system(problem, Jx, Rw, tau, scale), -g)
+        A = _scaled_system(problem, Jx, Rw, tau, scale)
+        if sp.issparse(A):
+            dz = problem.solve(A, -g)
+        else:
+            factors = _Factored(A, tau)
+            dz = factors.solve(-g)
         if not np.all(np.isfinite(dz)):
             break
         yc = yc + dz * scale
         step = float(np.max(np.abs(dz)))
     return None, it
+
+
+class _Factored:
+    """The LU factors of a dense bordered system ``A = [[Jx, R_omega], [row]]``: solves and determinant signs."""
+
+    def __init__(self, A: np.ndarray, row: np.ndarray):
+        self.row = row
+        self.singular = not np.all(np.isfinite(A))
+        if self.singular:
+            return
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", sla.LinAlgWarning)  # exactly singular: solves give NaN
+            self.lu, self.piv = sla.lu_factor(A, check_finite=False)
+        diagonal = np.diagonal(self.lu)
+        swaps = int(np.count_nonzero(self.piv != np.arange(self.piv.size)))
+        self.sign = float(np.prod(np.sign(diagonal))) * (-1.0 if swaps % 2 else 1.0)
+        self.singular = self.sign == 0
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """``A^-1 b``; all NaN when ``A`` is singular (the callers then shorten the step)."""
+        if self.singular:
+            return np.full(np.shape(b), np.nan)
+        return sla.lu_solve((self.lu, self.piv), b, check_finite=False)
+
+    def sign_with_row(self, row: np.ndarray) -> float:
+        """Sign of the determinant with the last row replaced by ``row``, from these factors.
+
+        ``det(A + e (row - self.row)^T) = det(A) (1 + (row - self.row) . A^-1 e)``
+        (the matrix determinant lemma, ``e`` the last unit vector).
+        """
+        if self.singular:
+            return 0.0
+        e = np.zeros(self.row.size)
+        e[-1] = 1.0
+        return self.sign * float(np.sign(1.0 + (row - self.row) @ self.solve(e)))
+
+
+def _sign(problem, last, row, scale) -> float:
+    """Sign of ``det [[Jx, R_omega], [row]]`` at the corrector's converged point (``last``, see :func:`_correct`).
+
+    Dense problems take it from the factors of the corrector's last iteration
+    (its Jacobian one Newton step before the point, within the convergence
+    tolerance of it, bordered by ``row`` instead of the predictor): no new
+    factorisation. Sparse ones factor the system at the point.
+    """
+    Jx, Rw, factors = last
+    if factors is not None:
+        return factors.sign_with_row(row)
+    return _orientation(problem, Jx, Rw, row, scale)
 
 
 def _orientation(problem, Jx, R_omega, row, scale) -> float:
@@ -320,7 +381,7 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 continue
             secant = (yc - y) / scale
             secant /= np.linalg.norm(secant)
-            if _orientation(problem, *last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
+            if _sign(problem, last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
                 failed = True  # past a corner, on the branch that comes back from it: shorter
                 ds *= 0.5
                 continue
