@@ -59,3 +59,26 @@ def test_the_continuation_turns_back_at_a_corner_and_forward_at_the_next(sparse)
     # both corners passed: omega falls from 1 to 0 between them
     assert omegas.max() > 1.0 - 1e-12 and np.any(np.diff(omegas) < 0)
     assert xs[-1, 0] == pytest.approx((2.0 + 1.5) / SLOPE, abs=1e-12)
+
+
+def test_the_factored_bordered_system_gives_the_determinants_sign_with_any_last_row():
+    """The orientation of a new point comes from the corrector's last factors with the last row replaced
+    (matrix determinant lemma): the sign equals the determinant's of the replaced matrix, the solve NumPy's."""
+    from microslip.frequency.continuation import _Factored
+
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        A = rng.normal(size=(80, 80))
+        row = rng.normal(size=80)
+        A[-1] = row
+        f = _Factored(A, row)
+        b = rng.normal(size=80)
+        np.testing.assert_allclose(f.solve(b), np.linalg.solve(A, b), rtol=1e-9, atol=1e-9 * np.abs(b).max())
+        assert f.sign == np.linalg.slogdet(A)[0]
+        other = rng.normal(size=80)
+        B = A.copy()
+        B[-1] = other
+        assert f.sign_with_row(other) == np.linalg.slogdet(B)[0]
+    A[:, 3] = 0.0  # singular: no sign, NaN solves (the continuation then shortens its step)
+    f = _Factored(A, A[-1])
+    assert f.sign_with_row(rng.normal(size=80)) == 0.0 and np.isnan(f.solve(np.ones(80))).all()
