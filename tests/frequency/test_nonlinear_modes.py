@@ -402,3 +402,30 @@ def test_the_compiled_damped_balance_equals_the_reference_with_its_damping_subtr
         np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * np.abs(want).max())
     hb.xi = 0.0
     np.testing.assert_array_equal(hb._evaluate(x, omega)[1], J0)
+
+
+def test_a_branch_point_is_passed_on_the_same_branch_and_reported():
+    """A 3-DOF chain whose mode meets a branch point at a modal amplitude near 3.0e-5 kg^1/2 m: the
+    orientation of the curve changes sign there on a smooth stretch. Refusing every step across it
+    (as past a corner) made the steps fall to the smallest and the curve creep to max_points (5000
+    points, stuck at 3.01e-5); the mode now passes it and warns. Along the same branch: the step
+    across it changes the frequency and the damping ratio by no more than the curve's steps
+    elsewhere (a jump to another branch would), and the frequency keeps falling."""
+    from microslip.frequency import BranchPointWarning
+
+    M = np.diag([0.3, 0.5, 0.4])
+    K = 1e6 * np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 2.0]])
+    s = Structure(M, 1e-6 * K, K)
+    for d in (0, 2):
+        s.add_contact(MicroslipModel([4e5], [1e9], [0.0], 0.5), tangential=d, approach=5 / 0.5 / 1e9)
+    with pytest.warns(BranchPointWarning, match=r"branch point at modal amplitude 3\.0") as caught:
+        mode = nonlinear_modes(s, 1, (1e-6, 1e-4), harmonics=3)
+    assert mode.complete and mode.points < 200
+    a = mode.modal_amplitude
+    assert np.all(np.diff(a) > 0)
+    where = float(str(caught[0].message).split("modal amplitude ")[1].split()[0])
+    k = int(np.searchsorted(a, where))  # the step from k - 1 to k crosses the branch point
+    dw, dz = np.abs(np.diff(mode.omega)), np.abs(np.diff(mode.damping_ratio))
+    assert dw[k - 1] <= dw.max() and dz[k - 1] <= dz.max()
+    assert dw[k - 1] <= 2 * max(dw[k - 2], dw[k]) and dz[k - 1] <= 2 * max(dz[k - 2], dz[k])
+    assert np.all(np.diff(mode.omega[k - 5:]) < 0)

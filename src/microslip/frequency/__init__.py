@@ -36,7 +36,7 @@
 
 from .aft import (AFTResult, NotPeriodicError, PlaneAFTResult, UnderResolvedWarning, aft, aft_batch, aft_plane, cycle_work,
                   default_samples, synthesise)
-from .continuation import ConvergenceError, StepControl
+from .continuation import BranchPointWarning, ConvergenceError, StepControl
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import CyclicStructure
 from .damper import DamperContact, UnderPlatformDamper
@@ -53,6 +53,7 @@ from .transient import SteadyState, steady_state
 
 __all__ = [
     "AFTResult",
+    "BranchPointWarning",
     "Contact",
     "ContactCycle",
     "ConvergenceError",

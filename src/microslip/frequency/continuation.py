@@ -104,6 +104,10 @@ class ConvergenceError(RuntimeError):
     """Newton's method or the continuation could not converge."""
 
 
+class BranchPointWarning(RuntimeWarning):
+    """The curve passed a branch point: another branch of solutions crosses it there (it goes on along its own)."""
+
+
 def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, tolerance: float = 1e-9,
            max_iterations: int = 50) -> tuple[np.ndarray, int]:
     """Solve ``R(x, omega) = 0`` at fixed ``omega`` with a backtracking Newton method.
@@ -186,6 +190,11 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None):
         step = float(np.max(np.abs(dz)))
     return None, it
 
+
+#: a change of orientation that persists over a straight step this much shorter than ``ds_max`` is a branch point
+#: of a smooth curve, passed on the same branch (a step past a corner onto the branch coming back from it loses
+#: the change when halved well before that)
+BRANCH_STEP = 1e-3
 
 #: smallest dense bordered system whose LU factors are kept for the point's orientation: below it, a solve
 #: and a determinant of their own cost less than the factors' calls (measured: 14 against 31 µs at 16
@@ -319,7 +328,7 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
 
 
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
-                 control: StepControl | None = None, callback=None):
+                 control: StepControl | None = None, callback=None, branch_points: list | None = None):
     """Follow the solution curve of ``R(x, omega) = 0`` from ``omega_start`` to ``omega_end``.
 
     Parameters
@@ -336,6 +345,12 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         Step-size settings.
     callback : callable, optional
         ``callback(omega, count)`` after each accepted point.
+    branch_points : list, optional
+        Receives the ``omega`` (rad/s) of each branch point the curve passed:
+        where the orientation ``det [[Jx, R_omega], [tangent]]`` changes sign on a
+        smooth stretch (the secant straight, the corrector converging), which
+        halving the step does not remove: another branch of solutions crosses the
+        curve there. The curve goes on along the same branch.
 
     Returns
     -------
@@ -389,11 +404,17 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 continue
             secant = (yc - y) / scale
             secant /= np.linalg.norm(secant)
-            if _sign(problem, last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
-                failed = True  # past a corner, on the branch that comes back from it: shorter
-                ds *= 0.5
-                continue
             angle = float(np.arccos(np.clip(secant @ tau, -1.0, 1.0)))
+            if _sign(problem, last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
+                if ds > BRANCH_STEP * ctl.ds_max or angle > 0.1 * ctl.max_angle:
+                    failed = True  # past a corner, on the branch that comes back from it: shorter
+                    ds *= 0.5
+                    continue
+                # the sign still changes across a tiny straight step: the determinant crosses zero on a
+                # smooth curve (a branch point), not at a corner; pass it on the same branch
+                orientation = -orientation
+                if branch_points is not None:
+                    branch_points.append(float(0.5 * (y[-1] + yc[-1])))
             # On a smooth curve the turn shrinks with the step; where it does not, the
             # step crosses a kink (an element starts to slip or to open: the contact
             # force is only piecewise smooth) and a smaller step would not help.

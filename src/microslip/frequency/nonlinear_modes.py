@@ -22,7 +22,7 @@ import scipy.sparse as sp
 from ..common import _checks
 from ..common._progress import Progress
 from .aft import MAX_PERIODS, check_harmonics
-from .continuation import StepControl, continuation, newton
+from .continuation import BranchPointWarning, StepControl, continuation, newton
 from .cyclic import CyclicStructure
 from .epmc import (DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedCyclicBalance, DampedReducedBalance, EpmcEquations,
                    stuck_mode)
@@ -332,6 +332,9 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     -----
     IncompleteCurveWarning
         When the continuation stops at ``control.max_points`` before ``amplitude[1]``.
+    BranchPointWarning
+        When the mode passes a branch point (another branch of periodic motions
+        crosses it; the curve goes on along its own).
     """
     start = time.perf_counter()
     if not isinstance(structure, Structure):
@@ -366,7 +369,9 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
     report = Progress(10, enabled=progress)
     tick = tenths(report, s0, s1, lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
-    ys, ss, iters, complete = continuation(eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, callback=tick)
+    branches = []
+    ys, ss, iters, complete = continuation(eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, callback=tick,
+                                           branch_points=branches)
     if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
         phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
     result = _collect(eq, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes, diameter)
@@ -382,6 +387,11 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
                       f"({result.omega[turn]:.6g} rad/s) and left the range at its start: a fold in amplitude, "
                       f"usually an internal resonance (a harmonic of the mode meets another mode); the curve ends "
                       f"there, below the range's end ({hi:.6g})", IncompleteCurveWarning, stacklevel=2)
+    for s in branches:
+        warnings.warn(f"the mode passes a branch point at modal amplitude {np.exp(s):.6g} kg^1/2 m: another branch "
+                      f"of periodic motions meets it there (usually an internal resonance, a harmonic of the mode "
+                      f"meeting another mode, or a symmetry of the structure); the curve goes on along the same "
+                      f"branch", BranchPointWarning, stacklevel=2)
     return replace(result, elapsed=time.perf_counter() - start)
 
 
