@@ -32,8 +32,12 @@ so that ``det [[Jx, R_omega], [tangent]]`` keeps the sign it had at the start
 whose new point has that sign reversed along the secant has jumped past a
 corner onto the branch that comes back from it, and is refused (one
 determinant per point: for dense problems of 64 unknowns or more, from the
-LU factors of the corrector's last iteration, with its last row changed to the secant by the
-matrix determinant lemma, so no factorisation is added).
+LU factors of the corrector's last iteration, its last row changed to the
+secant by the matrix determinant lemma, so no factorisation is added). A
+sign change that persists across a straight step :data:`BRANCH_STEP` times
+``ds_max`` is no corner but a branch point of a smooth curve (the
+determinant crosses zero there): the step is taken, the orientation flips,
+and the curve goes on along its own branch (``branch_points`` tells where).
 """
 
 from __future__ import annotations
