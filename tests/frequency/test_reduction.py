@@ -234,3 +234,29 @@ def test_a_finer_mesh_of_the_same_blade_needs_about_as_many_continuation_points(
     # the curve itself changes with the mesh (its peak by 8 %; the exact reduction's counts differ by 1.36
     # too), so the counts differ a little; growth with the DOFs would be several times
     assert max(points) <= 1.5 * min(points), points
+
+
+def _jenkins_chain(n: int, contacts: int) -> Structure:
+    """A fixed-free chain of ``n`` 0.1 kg masses and 1e6 N/m springs, Jenkins contacts spread along it."""
+    K = 1e6 * (2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1))
+    s = Structure(0.1 * np.eye(n), 1e-6 * K, K)
+    for d in np.linspace(0, n - 1, contacts).astype(int):
+        s.add_contact(MicroslipModel([4e5], [1e9], [0.0], 0.5), tangential=int(d), approach=1e-8)
+    return s
+
+
+def test_auto_condenses_a_small_structure_that_keeps_few_of_its_dofs():
+    """A 40-DOF chain with 4 contacts, forced at one of them: small enough for dense equations on every
+    DOF, but they keep only 4 DOFs, so "auto" condenses exactly (2.5x faster); the same point as on
+    every DOF to solver tolerance (1e-8 of the largest coefficient). A 10-DOF chain stays on every DOF."""
+    chain = _jenkins_chain(40, 4)
+    force = np.zeros(40)
+    force[13] = 2.0  # a contact DOF (np.linspace(0, 39, 4) -> 0, 13, 26, 39)
+    auto = frequency_point(chain, force, 2500.0, harmonics=3)
+    full = frequency_point(chain, force, 2500.0, harmonics=3, reduction="none")
+    assert auto.reduction == "exact"
+    for dof in (0, 13, 20, 39):
+        np.testing.assert_allclose(auto.dof_coefficients(dof), full.dof_coefficients(dof), rtol=0,
+                                   atol=1e-8 * np.abs(full.dof_coefficients(13)).max())
+    small = _jenkins_chain(10, 2)
+    assert frequency_point(small, np.eye(10)[0], 2500.0, harmonics=3).reduction == "none"

@@ -249,13 +249,14 @@ def _cyclic_equations(disk: CyclicStructure, H: int, diameter: int, samples, max
 
 def _equations(structure: Structure, H: int, samples, max_periods, reduction, modes):
     """``(static, dynamic, reduction, modes)``: the static problem and the damped harmonic balance equations."""
-    reduction, modes = choose_reduction(structure, H, reduction, modes)
+    loads = excitation(structure, {}, H)
+    loads[0] += structure.preload_force()
+    retained = retained_dofs(structure, loads)
+    reduction, modes = choose_reduction(structure, H, reduction, modes, retained.size)
     if reduction == "none":
         return (HarmonicBalance(structure, {}, 0), DampedBalance(structure, H, samples=samples,
                                                                  max_periods=max_periods), reduction, modes)
-    loads = excitation(structure, {}, H)
-    loads[0] += structure.preload_force()
-    linear = linear_part(structure, retained_dofs(structure, loads), reduction, modes)
+    linear = linear_part(structure, retained, reduction, modes)
     return (ReducedHarmonicBalance(structure, {}, 0, linear),
             DampedReducedBalance(structure, {}, H, linear, samples=samples, max_periods=max_periods), reduction, modes)
 

@@ -429,14 +429,15 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     if isinstance(structure, CyclicStructure):
         return cyclic_equations(structure, force, static_force, H, engine_order, samples, max_periods, reduction,
                                 modes)
-    reduction, modes = choose_reduction(structure, H, reduction, modes)
+    loads = excitation(structure, force, H)
+    loads[0] += structure.preload_force()
+    retained = retained_dofs(structure, loads)
+    reduction, modes = choose_reduction(structure, H, reduction, modes, retained.size)
     if reduction == "none":
         return (HarmonicBalance(structure, static_force, 0), HarmonicBalance(structure, force, H, samples=samples,
                                                                               max_periods=max_periods),
                 (reduction, modes))
-    loads = excitation(structure, force, H)
-    loads[0] += structure.preload_force()
-    linear = linear_part(structure, retained_dofs(structure, loads), reduction, modes)
+    linear = linear_part(structure, retained, reduction, modes)
     return (ReducedHarmonicBalance(structure, static_force, 0, linear),
             ReducedHarmonicBalance(structure, force, H, linear, samples=samples, max_periods=max_periods),
             (reduction, modes))
@@ -568,7 +569,9 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         solver tolerance) or from normal modes plus the residual flexibility
         of the omitted ones (``"modal"``); ``"none"``: every DOF is an
         unknown. ``"auto"`` chooses by size (``"none"`` for small dense
-        problems, ``"exact"`` up to 5000 DOFs, ``"modal"`` above) and the
+        problems, unless they have 20 DOFs or more of which the equations
+        keep at most a quarter; ``"exact"`` up to 5000 DOFs, ``"modal"``
+        above) and the
         result says which (:attr:`FrequencyResponse.reduction`). A cyclic
         sector is condensed in each harmonic's nodal diameter, exactly or from
         that diameter's modes (``"auto"``: exact up to 5000 independent DOFs).
