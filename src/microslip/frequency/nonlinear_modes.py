@@ -22,6 +22,7 @@ import scipy.sparse as sp
 from ..common import _checks
 from ..common._progress import Progress
 from .aft import MAX_PERIODS, check_harmonics
+from ._blas import small_dense
 from .continuation import BranchPointWarning, StepControl, continuation, newton
 from .cyclic import CyclicStructure
 from .epmc import (DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedCyclicBalance, DampedReducedBalance, EpmcEquations,
@@ -349,33 +350,34 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     ctl = control or default_control(lo, hi)
     progress = _checks.flag("progress", progress)
     _check_determined(structure)
-    if diameter is None:
-        static_hb, hb, reduction, modes = _equations(structure, H, samples, max_periods, reduction, modes)
-    else:
-        static_hb, hb, reduction, modes = _cyclic_equations(structure, H, diameter, samples, max_periods,
-                                                            reduction, modes)
-    x0, *static = _static_state(static_hb)
-    lam, phi, M, C = stuck_mode(structure, static_hb._full(x0, 1.0)[0], mode, diameter)
-    phi_u = phi[hb.linear.retained] if hasattr(hb, "linear") else phi  # on the unknowns' DOFs
-    rho = float(np.max(np.abs(hb.stuck_stiffness() @ phi_u)))
-    # a = phi^H M z_1 = w . z_1 over the DOFs the matrices act on
-    eq = EpmcEquations(hb, x0, np.conj(M @ phi), float(np.max(np.abs(phi))), float(np.sqrt(lam)), rho)
+    with small_dense(structure, H):  # small dense systems solved many times: one BLAS thread
+        if diameter is None:
+            static_hb, hb, reduction, modes = _equations(structure, H, samples, max_periods, reduction, modes)
+        else:
+            static_hb, hb, reduction, modes = _cyclic_equations(structure, H, diameter, samples, max_periods,
+                                                                reduction, modes)
+        x0, *static = _static_state(static_hb)
+        lam, phi, M, C = stuck_mode(structure, static_hb._full(x0, 1.0)[0], mode, diameter)
+        phi_u = phi[hb.linear.retained] if hasattr(hb, "linear") else phi  # on the unknowns' DOFs
+        rho = float(np.max(np.abs(hb.stuck_stiffness() @ phi_u)))
+        # a = phi^H M z_1 = w . z_1 over the DOFs the matrices act on
+        eq = EpmcEquations(hb, x0, np.conj(M @ phi), float(np.max(np.abs(phi))), float(np.sqrt(lam)), rho)
 
-    s0, s1 = np.log(lo), np.log(hi)
-    x = np.zeros(hb.n)
-    x[:hb.ndof] = x0
-    x[hb.ndof:2 * hb.ndof] = lo * phi_u.real  # z_1 = a_1 - i b_1 = lo phi
-    x[2 * hb.ndof:3 * hb.ndof] = -lo * phi_u.imag
-    y = eq.pack(x, np.sqrt(lam), float(np.real(np.conj(phi) @ (C @ phi))), s0)
-    y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
-    report = Progress(10, enabled=progress)
-    tick = tenths(report, s0, s1, lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
-    branches = []
-    ys, ss, iters, complete = continuation(eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, callback=tick,
-                                           branch_points=branches)
-    if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
-        phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
-    result = _collect(eq, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes, diameter)
+        s0, s1 = np.log(lo), np.log(hi)
+        x = np.zeros(hb.n)
+        x[:hb.ndof] = x0
+        x[hb.ndof:2 * hb.ndof] = lo * phi_u.real  # z_1 = a_1 - i b_1 = lo phi
+        x[2 * hb.ndof:3 * hb.ndof] = -lo * phi_u.imag
+        y = eq.pack(x, np.sqrt(lam), float(np.real(np.conj(phi) @ (C @ phi))), s0)
+        y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
+        report = Progress(10, enabled=progress)
+        tick = tenths(report, s0, s1, lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
+        branches = []
+        ys, ss, iters, complete = continuation(eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, callback=tick,
+                                               branch_points=branches)
+        if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
+            phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
+        result = _collect(eq, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes, diameter)
     report.done(f"nonlinear mode: {result.points} points")
     if not complete:
         warnings.warn(f"the continuation stopped at max_points = {ctl.max_points} points at modal amplitude "

@@ -21,6 +21,7 @@ from ..common._io import write_csv
 from ..common._progress import Progress
 from ..common.units import plot_factor
 from .aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, synthesise
+from ._blas import small_dense
 from .continuation import StepControl, continuation, newton
 from .hbm import HarmonicBalance, excitation
 from .cyclic import CyclicStructure
@@ -615,15 +616,18 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
     progress = _checks.flag("progress", progress)
     stability = _checks.flag("stability", stability)
-    hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
-                                                   reduction, modes, engine_order)
-    report = Progress(10, enabled=progress)
-    tick = tenths(report, lo, hi, lambda w, count: f"omega = {w:.6g} rad/s, {count} points")
-    xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
-                                               control=control, callback=tick)
-    result = _collect(hb, xs, omegas, iters, static, complete)
-    if stability:
-        result = _with_stability(result, hb, xs, omegas)
+    if not isinstance(structure, Structure):
+        raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+    with small_dense(structure, check_harmonics(harmonics, minimum=0)):  # small systems solved many times
+        hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
+                                                       reduction, modes, engine_order)
+        report = Progress(10, enabled=progress)
+        tick = tenths(report, lo, hi, lambda w, count: f"omega = {w:.6g} rad/s, {count} points")
+        xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
+                                                   control=control, callback=tick)
+        result = _collect(hb, xs, omegas, iters, static, complete)
+        if stability:
+            result = _with_stability(result, hb, xs, omegas)
     report.done(f"frequency response: {omegas.size} points")
     if not complete:
         warnings.warn(incomplete_message(result, hi, control or StepControl()), IncompleteCurveWarning,

@@ -85,15 +85,14 @@ stretches by time integration (:class:`~microslip.frequency.transient.PeriodMap`
 from __future__ import annotations
 
 import warnings
-from contextlib import contextmanager
 from dataclasses import dataclass
-from functools import cache
 
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ._blas import one_blas_thread
 from .hbm import HarmonicBalance, harmonic_operators
 from .modal import ModalCondensation
 from .reduced import DEFAULT_MODES
@@ -145,20 +144,6 @@ class Bifurcation:
         """A per-point quantity ``values`` (shape ``(points,)``) at :attr:`point` (linear)."""
         values = np.asarray(values, dtype=float)
         return float(np.interp(self.point, np.arange(values.size), values))
-
-
-@cache
-def _controller():
-    from threadpoolctl import ThreadpoolController
-
-    return ThreadpoolController()
-
-
-@contextmanager
-def one_blas_thread():
-    """Dense LAPACK with one BLAS thread inside the block (the previous limits restored after)."""
-    with _controller().limit(limits=1, user_api="blas"):
-        yield
 
 
 class HillProblem:
