@@ -67,6 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
+from ._simd import LANES, slip_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -161,12 +162,25 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
     return s1, s2
 
 
+#: the sweep's coefficient rows are padded to a multiple of this many values (a multiple of ``LANES``): its loops
+#: over them then run a whole number of vector steps, never one value at a time
+PAD = 16
+
+
 @lru_cache(maxsize=32)
-def transposed_projection(H: int, Ns: int) -> np.ndarray:
-    """``P.T`` of :func:`~microslip.frequency._aft.tables`, C-contiguous ``(Ns, 2H+1)`` (read-only)."""
-    PT = np.ascontiguousarray(tables(H, Ns)[1].T)
-    PT.setflags(write=False)
-    return PT
+def sweep_tables(H: int, Ns: int) -> np.ndarray:
+    """The sweep's tables, C-contiguous ``(2 Ns + 1, nbp)`` (read-only), ``nbp`` = ``2H+1`` padded to :data:`PAD`.
+
+    Rows ``0 .. Ns-1`` hold ``P.T`` (:func:`~microslip.frequency._aft.tables`), rows ``Ns .. 2 Ns`` its
+    cumulative sums ``cum``; the padding columns are zero.
+    """
+    _, P, _, _, cum = tables(H, Ns)
+    nbasis = 2 * H + 1
+    out = np.zeros((2 * Ns + 1, -(-nbasis // PAD) * PAD))
+    out[:Ns, :nbasis] = P.T
+    out[Ns:, :nbasis] = cum
+    out.setflags(write=False)
+    return out
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -554,93 +568,65 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
 
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
-def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used):  # pragma: no cover
-    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (nb, 6) for its slip and open samples.
+def _sweep(kt, rk, code, alpha, V1, V2, PT, cum, B, Y, w, active, U, used):  # pragma: no cover - compiled
+    """Backward sweep of the active elements together: adds ``Y_m G_m`` to ``U[m]`` (6, nbp) for their slip and
+    open samples.
 
-    ``Y = beta (x) I + y (x) w^T`` (``beta`` (nb), ``y`` (2, nb), both
-    overwritten) is the coefficient of the slider at the end of the period;
-    the form is kept through the sweep (a slip makes it ``y (x) v^T``, a
-    stick adds to ``beta``, an opening clears it).
+    For element ``i``, ``Y = beta (x) I + y (x) w^T`` (``beta = B[i]``
+    (nbp), ``y = Y[i]`` (2, nbp), ``w = w[:, i]``, all overwritten) is the
+    coefficient of its slider at the end of the period; the form is kept
+    through the sweep (a slip makes it ``y (x) v^T``, a stick adds to
+    ``beta``, an opening clears it). ``U[m, 3 a + b]`` is column ``m``'s
+    coefficient row for output ``a`` and input ``b``; a slip updates six of
+    them and ``y`` in one vector loop (:func:`._simd.slip_rows`). The
+    elements go through each sample in turn, so that its column stays in the
+    nearest cache while they add to it.
     """
     Ns = PT.shape[0]
-    nbasis = PT.shape[1]
-    y1 = y[0]
-    y2 = y[1]
-    bare = False  # beta known to be zero (after a slip or an opening): the cheaper update
-    hi = Ns  # the stick samples m + 1, ..., hi - 1 are still to be applied to Y
+    nbp = PT.shape[1]
+    J = kt.shape[0]
+    hi = np.full(J, Ns)  # element i's stick samples m + 1, ..., hi[i] - 1 are still to be applied to its Y
     for m in range(Ns - 1, -1, -1):
-        c = code[m, i]
-        if c == STICK:
-            continue
-        if hi > m + 1:
-            for p in range(nbasis):
-                beta[p] -= kti * (cum[hi, p] - cum[m + 1, p])
-            bare = False
-        hi = m
-        Um = U[m]
-        if not used[m]:
-            used[m] = True
-            Um[:] = 0.0
-        if c == OPEN:
-            for p in range(nbasis):
-                Um[p, 0] += beta[p] + y1[p] * w1
-                Um[p, 1] += y1[p] * w2
-                Um[p, 3] += y2[p] * w1
-                Um[p, 4] += beta[p] + y2[p] * w2
-                beta[p] = 0.0
-                y1[p] = 0.0
-                y2[p] = 0.0
-            bare = True
-            continue
-        al = alpha[m, i]
-        v1 = V1[m, i]
-        v2 = V2[m, i]
-        u1 = v2
-        u2 = -v1
-        # G = [I - al v v^T | -rk u]; w^T G = h
-        wv = w1 * v1 + w2 * v2
-        h1 = w1 - al * wv * v1
-        h2 = w2 - al * wv * v2
-        h3 = -rki * (w1 * u1 + w2 * u2)
-        g11 = 1.0 - al * v1 * v1
-        g12 = -al * v1 * v2
-        g22 = 1.0 - al * v2 * v2
-        g13 = -rki * u1
-        g23 = -rki * u2
-        if bare:  # consecutive slips: Y = y (x) w^T
-            awv = al * wv
-            for p in range(nbasis):
-                a1 = y1[p]
-                a2 = y2[p]
-                Um[p, 0] += a1 * h1
-                Um[p, 1] += a1 * h2
-                Um[p, 2] += a1 * h3
-                Um[p, 3] += a2 * h1
-                Um[p, 4] += a2 * h2
-                Um[p, 5] += a2 * h3
-                q = -al * kti * PT[m, p]
-                y1[p] = q * v1 + awv * a1
-                y2[p] = q * v2 + awv * a2
-            w1 = v1
-            w2 = v2
-            continue
-        bare = True
-        for p in range(nbasis):
-            bp = beta[p]
-            a1 = y1[p]
-            a2 = y2[p]
-            Um[p, 0] += bp * g11 + a1 * h1
-            Um[p, 1] += bp * g12 + a1 * h2
-            Um[p, 2] += bp * g13 + a1 * h3
-            Um[p, 3] += bp * g12 + a2 * h1
-            Um[p, 4] += bp * g22 + a2 * h2
-            Um[p, 5] += bp * g23 + a2 * h3
-            q = al * (bp - kti * PT[m, p])
-            y1[p] = q * v1 + al * wv * a1
-            y2[p] = q * v2 + al * wv * a2
-            beta[p] = 0.0
-        w1 = v1
-        w2 = v2
+        for i in range(J):
+            c = code[m, i]
+            if c == STICK or not active[i]:
+                continue
+            kti = kt[i]
+            if hi[i] > m + 1:
+                for p in range(nbp):
+                    B[i, p] -= kti * (cum[hi[i], p] - cum[m + 1, p])
+            hi[i] = m
+            if not used[m]:
+                used[m] = True
+                U[m] = 0.0
+            w1 = w[0, i]
+            w2 = w[1, i]
+            if c == OPEN:
+                for p in range(nbp):
+                    U[m, 0, p] += B[i, p] + Y[i, 0, p] * w1
+                    U[m, 1, p] += Y[i, 0, p] * w2
+                    U[m, 3, p] += Y[i, 1, p] * w1
+                    U[m, 4, p] += B[i, p] + Y[i, 1, p] * w2
+                    B[i, p] = 0.0
+                    Y[i, 0, p] = 0.0
+                    Y[i, 1, p] = 0.0
+                continue
+            al = alpha[m, i]
+            v1 = V1[m, i]
+            v2 = V2[m, i]
+            u1 = v2
+            u2 = -v1
+            rki = rk[i]
+            # G = [I - al v v^T | -rk u]; w^T G = h
+            wv = w1 * v1 + w2 * v2
+            h1 = w1 - al * wv * v1
+            h2 = w2 - al * wv * v2
+            h3 = -rki * (w1 * u1 + w2 * u2)
+            # Y G_m into column m, then Y <- (Y - kt P[:, m] (x) I) A_m = y' (x) v^T
+            slip_rows(U, m, B, Y, i, PT, (1.0 - al * v1 * v1, -al * v1 * v2, -rki * u1, 1.0 - al * v2 * v2,
+                                          -rki * u2, h1, h2, h3, al, -al * kti, v1, v2, al * wv))
+            w[0, i] = v1
+            w[1, i] = v2
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -650,7 +636,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
 
     ``F`` holds the coefficients of ``T1, T2, N``; ``Jac[a, b]`` the
     derivative of output ``a`` with respect to the coefficients of input
-    ``b`` (``t1, t2, n``); ``PT`` is :func:`transposed_projection`. Returns
+    ``b`` (``t1, t2, n``); ``PT`` is :func:`sweep_tables` (``cum`` is not used:
+    the padded one in ``PT`` is). Returns
     the number of periods marched until every element was periodic, or
     ``-1`` if some element was not after ``max_periods``.
     """
@@ -731,17 +718,26 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     for b in range(2):
         Jac[2, b] = 0.0
     # -- the history parts, element by element -------------------------------------------
-    # column m's coefficients (zeroed when first used), times E[m] at the end; U[m, p, 3 a + b] for output a, input b
-    # (the six of one p together: the sweep's update of all six is one short contiguous store)
-    U = np.empty((Ns, nbasis, 6))
+    # column m's coefficients (zeroed when first used), times E[m] at the end; U[m, 3 a + b, p] for output a, input b
+    # (rows of nbp values, padded: the sweep's loops over them vectorise)
+    nbp = PT.shape[1]
+    PTp = PT[:Ns]
+    cump = PT[Ns:]
+    U = np.empty((Ns, 6, nbp))
     used = np.zeros(Ns, dtype=np.bool_)
-    beta = np.empty(nbasis)
-    y = np.empty((2, nbasis))
+    B = np.empty((J, nbp))
+    Y = np.empty((J, 2, nbp))
+    w = np.empty((2, J))
+    active = np.empty(J, dtype=np.bool_)
     D = np.empty((2, 3, nbasis))
     for i in range(J):
-        kti = kt[i]
-        w1, w2, cc, l1, l2 = _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, y)
+        beta = B[i]
+        y = Y[i]
+        w1, w2, cc, l1, l2 = _element_start(i, kt[i], code, alpha, V1, V2, PTp, cump, beta, y)
+        w[0, i] = w1
+        w[1, i] = w2
         stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
+        active[i] = not stuck
         rho = 1.0 if stuck else cc * (l1 * w1 + l2 * w2)  # the eigenvalue of Phi_s = c l w^T
         if tried[i] == 2 or (not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN):
             # the slider at the start of the period is (nearly) neutral to the period map: at a corner of its
@@ -759,8 +755,6 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
                         da = D[a, b, q]
                         for p in range(nbasis):
                             Jac[a, b, p, q] += beta[p] * da + y[a, p] * wd
-            if stuck:
-                continue
             beta[:] = 0.0
             y[:] = 0.0
         elif cc != 0.0:
@@ -770,26 +764,26 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             for p in range(nbasis):
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
-        _element_columns(i, kti, rk[i], code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used)
+    _sweep(kt, rk, code, alpha, V1, V2, PTp, cump, B, Y, w, active, U, used)
     # -- the used columns times their basis rows: one matrix product ------------------------------
     rows = np.flatnonzero(used)
     if rows.size == 0:
         return periods
     if rows.size < Ns:  # gather the used rows
-        Uc = np.empty((rows.size, 6 * nbasis))
+        Uc = np.empty((rows.size, 6 * nbp))
         Ec = np.empty((rows.size, nbasis))
         for j in range(rows.size):
-            Uc[j] = U[rows[j]].reshape(6 * nbasis)
+            Uc[j] = U[rows[j]].reshape(6 * nbp)
             Ec[j] = E[rows[j]]
         acc = np.dot(Uc.T, Ec)
     else:
-        acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
-    for p in range(nbasis):
-        for r in range(6):
-            a = r // 3
-            b = r % 3
+        acc = np.dot(U.reshape(Ns, 6 * nbp).T, E)
+    for r in range(6):
+        a = r // 3
+        b = r % 3
+        for p in range(nbasis):
             for q in range(nbasis):
-                Jac[a, b, p, q] += acc[p * 6 + r, q]
+                Jac[a, b, p, q] += acc[r * nbp + p, q]
     return periods
 
 
