@@ -67,7 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
-from ._simd import LANES, slip_rows
+from ._simd import MARCH_LANES, period_lanes, slip_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -162,7 +162,7 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
     return s1, s2
 
 
-#: the sweep's coefficient rows are padded to a multiple of this many values (a multiple of ``LANES``): its loops
+#: the sweep's coefficient rows are padded to a multiple of this many values (a multiple of ``_simd.LANES``): its loops
 #: over them then run a whole number of vector steps, never one value at a time
 PAD = 16
 
@@ -183,57 +183,49 @@ def sweep_tables(H: int, Ns: int) -> np.ndarray:
     return out
 
 
-@nb.njit(cache=True, nogil=True, error_model="numpy")
-def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved):  # pragma: no cover
-    """March every element over one period from sliders ``s1, s2`` (updated in place).
+@nb.njit(cache=True, nogil=True)
+def march_work(J, Ns):  # pragma: no cover - compiled
+    """The march's rows for ``J`` elements over ``Ns`` samples: ``(st (6, Jp), rec (6, Ns, Jp))``.
 
-    Writes, per sample ``k`` and element ``i``, the condition ``code[k, i]``,
-    ``alpha[k, i]`` and the perpendicular ``v = (V1, V2)`` of a slip, and the
-    element's force ``Te1, Te2``; ``C`` (4, J) receives the period map's
-    derivative ``dPhi/ds`` (row-major 2x2 per element), ``moved[i]`` 1 if
-    element ``i`` slipped or opened. A stick costs a comparison; a slip one
-    square root and one division (``s = t - alpha d``, ``T = mu N d / |d|``).
+    ``Jp`` is ``J`` rounded up to a multiple of ``MARCH_LANES`` (:func:`_period`
+    updates that many elements at a time). ``st`` holds the sliders
+    ``s1, s2`` and the period map's derivative ``C`` (4 rows, row-major
+    2x2 per element); ``rec`` the period's records (condition, ``alpha``,
+    ``V1, V2``, the element's force ``Te1, Te2``), each ``(Ns, Jp)``.
+    """
+    Jp = -(-J // MARCH_LANES) * MARCH_LANES
+    return np.empty((6, Jp)), np.empty((6, Ns, Jp))
+
+
+@nb.njit(cache=True, nogil=True)
+def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - compiled
+    """March every element over one period from the sliders ``st[0], st[1]`` (updated in place).
+
+    Writes, per sample ``k`` and element ``i``, the condition ``rec[0, k, i]``
+    (0 open, 1 stick, 2 slip), ``alpha = rec[1, k, i]`` and the
+    perpendicular ``v = rec[2:4, k, i]`` of a slip (0 otherwise), and the
+    element's force ``rec[4:6, k, i]``; ``st[2:6]`` receives the period
+    map's derivative ``dPhi/ds`` (row-major 2x2 per element). The rows are
+    :func:`march_work`'s; the elements past ``J`` (padding) stay open. The
+    element update is :func:`microslip._kernels.plane_step`'s arithmetic,
+    ``MARCH_LANES`` elements at a time (:func:`._simd.period_lanes`).
     """
     J = kt.shape[0]
-    for i in range(J):
-        C[0, i] = 1.0
-        C[1, i] = 0.0
-        C[2, i] = 0.0
-        C[3, i] = 1.0
-        moved[i] = 0.0
+    Jp = st.shape[1]
+    par = np.empty((5, Jp))
+    for i in range(Jp):
+        real = i < J
+        par[0, i] = kt[i] if real else 1.0
+        par[1, i] = rk[i] if real else 0.0
+        par[2, i] = mu * kn[i] if real else 0.0
+        par[3, i] = kn[i] if real else 0.0
+        par[4, i] = gaps[i] if real else np.inf  # never closed
+        st[2, i] = 1.0
+        st[3, i] = 0.0
+        st[4, i] = 0.0
+        st[5, i] = 1.0
     for k in range(t1.shape[0]):
-        tk1 = t1[k]
-        tk2 = t2[k]
-        nk0 = n[k]
-        for i in range(J):
-            s1i = s1[i]
-            s2i = s2[i]
-            f1, f2, _, c, s1[i], s2[i], al, q = plane_step(kt[i], rk[i], mu * kn[i], kn[i], nk0 - gaps[i], tk1, tk2,
-                                                           s1i, s2i)
-            Te1[k, i] = f1
-            Te2[k, i] = f2
-            code[k, i] = c
-            if c == STICK:
-                continue
-            moved[i] = 1.0
-            if c == OPEN:  # the period map forgets
-                C[0, i] = 0.0
-                C[1, i] = 0.0
-                C[2, i] = 0.0
-                C[3, i] = 0.0
-                continue
-            alpha[k, i] = al
-            v1 = -(tk2 - s2i) * q
-            v2 = (tk1 - s1i) * q
-            V1[k, i] = v1
-            V2[k, i] = v2
-            # C <- A C = alpha v v^T C
-            w1 = al * (v1 * C[0, i] + v2 * C[2, i])
-            w2 = al * (v1 * C[1, i] + v2 * C[3, i])
-            C[0, i] = v1 * w1
-            C[1, i] = v1 * w2
-            C[2, i] = v2 * w1
-            C[3, i] = v2 * w2
+        period_lanes(par, st, rec, k, t1[k], t2[k], n[k])
 
 
 @nb.njit(cache=True, nogil=True)
@@ -392,11 +384,11 @@ def _corner_derivative(t1, t2, rk, s1, s2, a, b, E, D):  # pragma: no cover - co
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
-def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
-           code, alpha, V1, V2, Te1, Te2, C, moved, corner):  # pragma: no cover - compiled
+def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried,
+           corner):  # pragma: no cover - compiled
     """Static step, then periods until every element's slider repeats to ``tol`` (Newton-accelerated).
 
-    On return the arrays of :func:`_period` hold the periodic period;
+    On return the rows of :func:`_period` (``st``, ``rec``: :func:`march_work`) hold the periodic period;
     ``count[i]`` is the number of plain periods since element ``i`` last
     started from the static step, ``tried[i]`` 1 if a Newton step brought it
     where it is, 2 if that is a corner of its stick region, the samples
@@ -404,6 +396,9 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
     ``max_periods``.
     """
     J = kt.shape[0]
+    s1 = st[0]
+    s2 = st[1]
+    C = st[2:]
     el = np.empty((8, J))
     b1, b2 = el[0], el[1]  # slider at the start of the period
     st1, st2 = el[2], el[3]  # after the static step (the restart point)
@@ -427,7 +422,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
         for i in range(J):
             b1[i] = s1[i]
             b2[i] = s2[i]
-        _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved)
+        _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec)
         periods += 1
         done = True
         for i in range(J):
@@ -653,14 +648,12 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     _synthesise(E, xn, n)
     T1s, T2s, Nsum = smp[3], smp[4], smp[5]  # the forces' samples
     d11, d12, d22, c1, c2, dcl = smp[6], smp[7], smp[8], smp[9], smp[10], smp[11]  # local derivative sums
-    el = np.empty((4, J))
-    rk, s1, s2, moved = el[0], el[1], el[2], el[3]
+    rk = np.empty(J)
     ivec = np.empty((2, J), dtype=np.int64)
     count, tried = ivec[0], ivec[1]
-    code = np.empty((Ns, J), dtype=np.int8)
-    per = np.empty((5, Ns, J))  # per sample and element: alpha, v of a slip; the element's force
-    alpha, V1, V2, Te1, Te2 = per[0], per[1], per[2], per[3], per[4]
-    C = np.empty((4, J))
+    st, rec = march_work(J, Ns)
+    s1, s2 = st[0], st[1]
+    code, alpha, V1, V2, Te1, Te2 = rec[0], rec[1], rec[2], rec[3], rec[4], rec[5]
     size = 0.0
     for k in range(Ns):
         size = max(size, abs(t1[k]) + abs(t2[k]))
@@ -671,8 +664,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
     corner = np.empty((2, J), dtype=np.int64)
-    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
-                     code, alpha, V1, V2, Te1, Te2, C, moved, corner)
+    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, corner)
     # -- the periodic period: forces and the local derivatives ---------------------------
     for k in range(Ns):
         f1 = 0.0

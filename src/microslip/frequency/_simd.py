@@ -1,4 +1,4 @@
-"""Explicit vector loops for the backward sweep of the AFT on the contact plane (private).
+"""Explicit vector loops for the AFT on the contact plane: its periods and its backward sweep (private).
 
 The sweep (:func:`microslip.frequency._aft_plane._sweep`) updates, per slipping sample and
 element, six coefficient rows of ``nbp`` values (16 at H = 7) and the two rows of its state. Written as
@@ -7,6 +7,11 @@ a plain loop, the compiler vectorises it only behind run-time checks that the ni
 are distinct rows of arrays the kernel allocates), so the loop is written here directly in LLVM's
 vector form, ``LANES`` values at a time, without those checks. On a machine without vectors that wide
 LLVM splits each operation into narrower ones: the results are the same everywhere.
+
+The period (:func:`microslip.frequency._aft_plane._period`) updates every element at every sample; a
+compiled loop over the elements calling :func:`microslip._kernels.plane_step` vectorises likewise only
+behind run-time checks between its dozen rows, repeated at every sample (at J = 8 slower than one
+element at a time). :func:`period_lanes` is that loop in vector form, without the checks.
 """
 
 from __future__ import annotations
@@ -21,13 +26,17 @@ LANES = 8
 
 _DOUBLE = ir.DoubleType()
 _VECTOR = ir.VectorType(_DOUBLE, LANES)
+#: elements per vector operation in the period's march (four: the march waits on each sample's square root and
+#: division, whose latency is shorter on four values than on eight, and two vectors of four overlap)
+MARCH_LANES = 4
+_MARCH_VECTOR = ir.VectorType(_DOUBLE, MARCH_LANES)
 
 
-def _splat(builder, x):
+def _splat(builder, x, vector=_VECTOR):
     """The scalar ``x`` in every lane."""
-    v = builder.insert_element(ir.Constant(_VECTOR, ir.Undefined), x, ir.Constant(ir.IntType(32), 0))
-    return builder.shuffle_vector(v, ir.Constant(_VECTOR, ir.Undefined),
-                                  ir.Constant(ir.VectorType(ir.IntType(32), LANES), [0] * LANES))
+    v = builder.insert_element(ir.Constant(vector, ir.Undefined), x, ir.Constant(ir.IntType(32), 0))
+    return builder.shuffle_vector(v, ir.Constant(vector, ir.Undefined),
+                                  ir.Constant(ir.VectorType(ir.IntType(32), vector.count), [0] * vector.count))
 
 
 @intrinsic
@@ -95,6 +104,100 @@ def slip_rows(typingctx, U, m, B, Y, i, PT, coefs):  # pragma: no cover - compil
         following = builder.add(p, ir.Constant(index, LANES))
         p.add_incoming(following, builder.block)
         builder.cbranch(builder.icmp_signed("<", following, nbp), loop, done)
+        builder.position_at_end(done)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@intrinsic
+def period_lanes(typingctx, par, st, rec, k, tx, ty, n):  # pragma: no cover - compiled
+    """Sample ``k`` of the AFT's period on the plane for every element, ``MARCH_LANES`` elements at a time.
+
+    The arithmetic of :func:`microslip._kernels.plane_step`, operation for
+    operation (no fused multiply-adds: the same numbers bit for bit; a
+    compiled loop over the elements calling it stays one element at a time,
+    see the module's note), on rows of ``Jp`` elements (a multiple of
+    ``MARCH_LANES``), all C-contiguous
+    float64: ``par`` (5, Jp) ``kt, mu kn / kt, mu kn, kn, gap``; ``st``
+    (6, Jp) the sliders ``s1, s2`` before the sample (updated) and the
+    period map's derivative so far ``C`` (2x2 per element, row-major,
+    updated: ``alpha v v^T C`` in slip, unchanged in stick, 0 when open);
+    ``rec`` (6, Ns, Jp) receives at ``[:, k]`` the condition (0 open, 1
+    stick, 2 slip, as a float), ``alpha = r / |d|`` and ``v = (-d2, d1) /
+    |d|`` of a slip (0 otherwise) and the element's force ``T1, T2``.
+    ``tx, ty, n`` are the sample's motion.
+    """
+    sig = types.void(par, st, rec, k, tx, ty, n)
+
+    def codegen(context, builder, signature, args):
+        pv, sv, rv, kv, txv, tyv, nv = args
+        pa = context.make_array(signature.args[0])(context, builder, pv)
+        sa = context.make_array(signature.args[1])(context, builder, sv)
+        ra = context.make_array(signature.args[2])(context, builder, rv)
+        Jp = cgutils.unpack_tuple(builder, pa.shape, 2)[1]
+        Ns = cgutils.unpack_tuple(builder, ra.shape, 3)[1]
+        index = Jp.type
+
+        def const(v):
+            return ir.Constant(index, v)
+
+        prow = [builder.gep(pa.data, [builder.mul(const(r), Jp)]) for r in range(5)]
+        srow = [builder.gep(sa.data, [builder.mul(const(r), Jp)]) for r in range(6)]
+        rrow = [builder.gep(ra.data, [builder.mul(builder.add(builder.mul(const(r), Ns), kv), Jp)]) for r in range(6)]
+        tx, ty, nk0 = (_splat(builder, v, _MARCH_VECTOR) for v in (txv, tyv, nv))
+        zero = ir.Constant(_MARCH_VECTOR, [0.0] * MARCH_LANES)
+        one = ir.Constant(_MARCH_VECTOR, [1.0] * MARCH_LANES)
+        two = ir.Constant(_MARCH_VECTOR, [2.0] * MARCH_LANES)
+        sqrt_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_MARCH_VECTOR, [_MARCH_VECTOR]),
+                                                 "llvm.sqrt.v%df64" % MARCH_LANES)
+        entry = builder.block
+        loop = builder.append_basic_block("period_lanes.loop")
+        done = builder.append_basic_block("period_lanes.done")
+        builder.cbranch(builder.icmp_signed(">", Jp, const(0)), loop, done)
+        builder.position_at_end(loop)
+        j = builder.phi(index)
+        j.add_incoming(const(0), entry)
+
+        def at(ptr):
+            return builder.bitcast(builder.gep(ptr, [j]), _MARCH_VECTOR.as_pointer())
+
+        kt, rk, mkn, _, gap = (builder.load(at(p), align=8) for p in prow)
+        s1, s2, c0, c1, c2, c3 = (builder.load(at(p), align=8) for p in srow)
+        mul, sub, add, select = builder.fmul, builder.fsub, builder.fadd, builder.select
+        # plane_step
+        nk = sub(nk0, gap)
+        closed = builder.fcmp_ordered(">", nk, zero)
+        r = mul(rk, nk)
+        dx = sub(tx, s1)
+        dy = sub(ty, s2)
+        dd2 = add(mul(dx, dx), mul(dy, dy))
+        slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
+        q = builder.fdiv(one, builder.call(sqrt_fn, [dd2]))
+        al = mul(r, q)
+        g = mul(mul(mkn, nk), q)
+        T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
+        T2 = select(closed, select(slipped, mul(g, dy), mul(kt, dy)), zero)
+        n1 = select(closed, select(slipped, sub(tx, mul(al, dx)), s1), tx)
+        n2 = select(closed, select(slipped, sub(ty, mul(al, dy)), s2), ty)
+        code = select(closed, select(slipped, two, one), zero)
+        # the period map's derivative: C <- alpha v v^T C in slip, kept in stick, 0 when open
+        slip = builder.and_(closed, slipped)
+        stick = builder.and_(closed, builder.xor(slipped, ir.Constant(slipped.type, [True] * MARCH_LANES)))
+        v1 = mul(builder.fneg(dy), q)
+        v2 = mul(dx, q)
+        w1 = mul(al, add(mul(v1, c0), mul(v2, c2)))
+        w2 = mul(al, add(mul(v1, c1), mul(v2, c3)))
+        C = [select(slip, mul(vv, ww), select(stick, cc, zero))
+             for vv, ww, cc in ((v1, w1, c0), (v1, w2, c1), (v2, w1, c2), (v2, w2, c3))]
+        for val, ptr in zip((n1, n2, *C), srow):
+            builder.store(val, at(ptr), align=8)
+        for val, ptr in zip((code, select(slip, al, zero), select(slip, v1, zero), select(slip, v2, zero), T1, T2),
+                            rrow):
+            builder.store(val, at(ptr), align=8)
+        following = builder.add(j, const(MARCH_LANES))
+        j.add_incoming(following, builder.block)
+        builder.cbranch(builder.icmp_signed("<", following, Jp), loop, done)
         builder.position_at_end(done)
         return context.get_dummy_value()
 
