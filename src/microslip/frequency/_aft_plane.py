@@ -67,7 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
-from ._simd import MARCH_LANES, period_lanes, slip_rows
+from ._simd import MARCH_LANES, period_lanes, sample_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -563,48 +563,41 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
 
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
-def _sweep(kt, rk, code, alpha, V1, V2, PT, cum, B, Y, w, active, U, used):  # pragma: no cover - compiled
-    """Backward sweep of the active elements together: adds ``Y_m G_m`` to ``U[m]`` (6, nbp) for their slip and
-    open samples.
+def _sweep(kt, rk, code, alpha, V1, V2, PT, B, Y, w, active, U):  # pragma: no cover - compiled
+    """Backward sweep of the active elements together: ``U[m]`` (6, nbp) receives ``sum Y_m G_m`` over them.
 
     For element ``i``, ``Y = beta (x) I + y (x) w^T`` (``beta = B[i]``
     (nbp), ``y = Y[i]`` (2, nbp), ``w = w[:, i]``, all overwritten) is the
     coefficient of its slider at the end of the period; the form is kept
-    through the sweep (a slip makes it ``y (x) v^T``, a stick adds to
-    ``beta``, an opening clears it). ``U[m, 3 a + b]`` is column ``m``'s
-    coefficient row for output ``a`` and input ``b``; a slip updates six of
-    them and ``y`` in one vector loop (:func:`._simd.slip_rows`). The
-    elements go through each sample in turn, so that its column stays in the
-    nearest cache while they add to it.
+    through the sweep (a slip makes it ``y (x) v^T``, a stick adds
+    ``-kt P[:, m]`` to ``beta``, an opening clears it). ``U[m, 3 a + b]`` is
+    column ``m``'s coefficient row for output ``a`` and input ``b``. Each
+    sample is one vector loop over the columns and the elements
+    (:func:`._simd.sample_rows`); here, each element's coefficients for it.
     """
     Ns = PT.shape[0]
-    nbp = PT.shape[1]
     J = kt.shape[0]
-    hi = np.full(J, Ns)  # element i's stick samples m + 1, ..., hi[i] - 1 are still to be applied to its Y
+    order = np.flatnonzero(active)
+    count = order.size
+    coefs = np.zeros((J, 16))
     for m in range(Ns - 1, -1, -1):
-        for i in range(J):
+        for e in range(count):
+            i = order[e]
             c = code[m, i]
-            if c == STICK or not active[i]:
-                continue
-            kti = kt[i]
-            if hi[i] > m + 1:
-                for p in range(nbp):
-                    B[i, p] -= kti * (cum[hi[i], p] - cum[m + 1, p])
-            hi[i] = m
-            if not used[m]:
-                used[m] = True
-                U[m] = 0.0
             w1 = w[0, i]
             w2 = w[1, i]
-            if c == OPEN:
-                for p in range(nbp):
-                    U[m, 0, p] += B[i, p] + Y[i, 0, p] * w1
-                    U[m, 1, p] += Y[i, 0, p] * w2
-                    U[m, 3, p] += Y[i, 1, p] * w1
-                    U[m, 4, p] += B[i, p] + Y[i, 1, p] * w2
-                    B[i, p] = 0.0
-                    Y[i, 0, p] = 0.0
-                    Y[i, 1, p] = 0.0
+            if c == STICK:  # G = 0, A = I: y kept, beta -= kt P[:, m]
+                coefs[i] = 0.0
+                coefs[i, 12] = 1.0
+                coefs[i, 13] = 1.0
+                coefs[i, 14] = -kt[i]
+                continue
+            if c == OPEN:  # G = [I | 0], A = 0
+                coefs[i] = 0.0
+                coefs[i, 0] = 1.0
+                coefs[i, 3] = 1.0
+                coefs[i, 5] = w1
+                coefs[i, 6] = w2
                 continue
             al = alpha[m, i]
             v1 = V1[m, i]
@@ -612,16 +605,26 @@ def _sweep(kt, rk, code, alpha, V1, V2, PT, cum, B, Y, w, active, U, used):  # p
             u1 = v2
             u2 = -v1
             rki = rk[i]
-            # G = [I - al v v^T | -rk u]; w^T G = h
+            # G = [I - al v v^T | -rk u], w^T G = h; then Y <- (Y - kt P[:, m] (x) I) A_m = y' (x) v^T
             wv = w1 * v1 + w2 * v2
-            h1 = w1 - al * wv * v1
-            h2 = w2 - al * wv * v2
-            h3 = -rki * (w1 * u1 + w2 * u2)
-            # Y G_m into column m, then Y <- (Y - kt P[:, m] (x) I) A_m = y' (x) v^T
-            slip_rows(U, m, B, Y, i, PT, (1.0 - al * v1 * v1, -al * v1 * v2, -rki * u1, 1.0 - al * v2 * v2,
-                                          -rki * u2, h1, h2, h3, al, -al * kti, v1, v2, al * wv))
+            coefs[i, 0] = 1.0 - al * v1 * v1
+            coefs[i, 1] = -al * v1 * v2
+            coefs[i, 2] = -rki * u1
+            coefs[i, 3] = 1.0 - al * v2 * v2
+            coefs[i, 4] = -rki * u2
+            coefs[i, 5] = w1 - al * wv * v1
+            coefs[i, 6] = w2 - al * wv * v2
+            coefs[i, 7] = -rki * (w1 * u1 + w2 * u2)
+            coefs[i, 8] = al
+            coefs[i, 9] = -al * kt[i]
+            coefs[i, 10] = v1
+            coefs[i, 11] = v2
+            coefs[i, 12] = al * wv
+            coefs[i, 13] = 0.0
+            coefs[i, 14] = 0.0
             w[0, i] = v1
             w[1, i] = v2
+        sample_rows(U, m, B, Y, PT, coefs, order, count)
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -666,34 +669,43 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     corner = np.empty((2, J), dtype=np.int64)
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, corner)
     # -- the periodic period: forces and the local derivatives ---------------------------
+    # (without branches: a slip's records alpha, v are 0 in stick and when open, so its terms add zeros there)
     for k in range(Ns):
         f1 = 0.0
         f2 = 0.0
         fn = 0.0
+        s11 = 0.0
+        s12 = 0.0
+        s22 = 0.0
+        sc1 = 0.0
+        sc2 = 0.0
+        scl = 0.0
         for i in range(J):
             c = code[k, i]
+            closed = c != OPEN
+            stick = c == STICK
             f1 += Te1[k, i]
             f2 += Te2[k, i]
-            if c == OPEN:
-                continue
-            fn += kn[i] * (n[k] - gaps[i])
-            dcl[k] += kn[i]
-            if c == STICK:
-                d11[k] += kt[i]
-                d22[k] += kt[i]
-                continue
+            fn += kn[i] * (n[k] - gaps[i]) if closed else 0.0
+            scl += kn[i] if closed else 0.0
             a = kt[i] * alpha[k, i]
             v1 = V1[k, i]
             v2 = V2[k, i]
-            d11[k] += a * v1 * v1
-            d12[k] += a * v1 * v2
-            d22[k] += a * v2 * v2
+            s11 += kt[i] if stick else a * v1 * v1
+            s12 += a * v1 * v2
+            s22 += kt[i] if stick else a * v2 * v2
             g = mu * kn[i]
-            c1[k] += g * v2
-            c2[k] -= g * v1
+            sc1 += g * v2
+            sc2 -= g * v1
         T1s[k] = f1
         T2s[k] = f2
         Nsum[k] = fn
+        d11[k] = s11
+        d12[k] = s12
+        d22[k] = s22
+        c1[k] = sc1
+        c2[k] = sc2
+        dcl[k] = scl
     _project(P, T1s, T2s, F[0], F[1])
     for p in range(nbasis):
         acc = 0.0
@@ -710,13 +722,12 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     for b in range(2):
         Jac[2, b] = 0.0
     # -- the history parts, element by element -------------------------------------------
-    # column m's coefficients (zeroed when first used), times E[m] at the end; U[m, 3 a + b, p] for output a, input b
+    # column m's coefficients, times E[m] at the end; U[m, 3 a + b, p] for output a, input b
     # (rows of nbp values, padded: the sweep's loops over them vectorise)
     nbp = PT.shape[1]
     PTp = PT[:Ns]
     cump = PT[Ns:]
     U = np.empty((Ns, 6, nbp))
-    used = np.zeros(Ns, dtype=np.bool_)
     B = np.empty((J, nbp))
     Y = np.empty((J, 2, nbp))
     w = np.empty((2, J))
@@ -756,20 +767,11 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             for p in range(nbasis):
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
-    _sweep(kt, rk, code, alpha, V1, V2, PTp, cump, B, Y, w, active, U, used)
-    # -- the used columns times their basis rows: one matrix product ------------------------------
-    rows = np.flatnonzero(used)
-    if rows.size == 0:
+    _sweep(kt, rk, code, alpha, V1, V2, PTp, B, Y, w, active, U)
+    # -- the columns times their basis rows: one matrix product ---------------------------------------
+    if not active.any():
         return periods
-    if rows.size < Ns:  # gather the used rows
-        Uc = np.empty((rows.size, 6 * nbp))
-        Ec = np.empty((rows.size, nbasis))
-        for j in range(rows.size):
-            Uc[j] = U[rows[j]].reshape(6 * nbp)
-            Ec[j] = E[rows[j]]
-        acc = np.dot(Uc.T, Ec)
-    else:
-        acc = np.dot(U.reshape(Ns, 6 * nbp).T, E)
+    acc = np.dot(U.reshape(Ns, 6 * nbp).T, E)
     for r in range(6):
         a = r // 3
         b = r % 3

@@ -1,12 +1,13 @@
 """Explicit vector loops for the AFT on the contact plane: its periods and its backward sweep (private).
 
-The sweep (:func:`microslip.frequency._aft_plane._sweep`) updates, per slipping sample and
-element, six coefficient rows of ``nbp`` values (16 at H = 7) and the two rows of its state. Written as
-a plain loop, the compiler vectorises it only behind run-time checks that the nine rows do not overlap
-(28 pairwise comparisons), which cost more than the 16 values they guard. The rows never overlap (they
-are distinct rows of arrays the kernel allocates), so the loop is written here directly in LLVM's
-vector form, ``LANES`` values at a time, without those checks. On a machine without vectors that wide
-LLVM splits each operation into narrower ones: the results are the same everywhere.
+The sweep (:func:`microslip.frequency._aft_plane._sweep`) adds, at each sample, every element's
+contribution to six coefficient rows of ``nbp`` values (16 at H = 7) and updates its three state rows.
+Written as plain loops, the compiler vectorises them only behind run-time checks that the rows do not
+overlap (28 pairwise comparisons for one element), which cost more than the 16 values they guard. The
+rows never overlap (they are distinct rows of arrays the kernel allocates), so :func:`sample_rows` is
+written here directly in LLVM's vector form, ``LANES`` values at a time, without those checks, the six
+sums of a sample kept in registers while the elements add to them. On a machine without vectors that
+wide LLVM splits each operation into narrower ones: the results are the same everywhere.
 
 The period (:func:`microslip.frequency._aft_plane._period`) updates every element at every sample; a
 compiled loop over the elements calling :func:`microslip._kernels.plane_step` vectorises likewise only
@@ -39,71 +40,105 @@ def _splat(builder, x, vector=_VECTOR):
                                   ir.Constant(ir.VectorType(ir.IntType(32), vector.count), [0] * vector.count))
 
 
+#: the coefficients of one element at one sample in :func:`sample_rows`, in this order
+SAMPLE_COEFFICIENTS = ("g11", "g12", "g13", "g22", "g23", "h1", "h2", "h3", "cb", "cp", "v1", "v2", "cy", "sb", "sp")
+
+
 @intrinsic
-def slip_rows(typingctx, U, m, B, Y, i, PT, coefs):  # pragma: no cover - compiled
-    """Sample ``m`` of element ``i`` in the sweep, a slip, over the ``nbp`` columns (a multiple of ``LANES``).
+def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no cover - compiled
+    """Sample ``m`` of the sweep for the elements ``order[:count]``, over the ``nbp`` columns (a multiple of
+    ``LANES``).
 
-    ``U`` (Ns, 6, nbp), ``B`` (J, nbp), ``Y`` (J, 2, nbp), ``PT`` (Ns, nbp), all C-contiguous float64
-    (``beta = B[i]``, ``y = Y[i]``);
-    ``coefs`` = ``(g11, g12, g13, g22, g23, h1, h2, h3, al, -al kt, v1, v2, al w.v)``. With
-    ``g21 = g12``::
+    ``U`` (Ns, 6, nbp), ``B`` (J, nbp), ``Y`` (J, 2, nbp), ``PT`` (Ns, nbp)
+    and ``coefs`` (J, 16) C-contiguous float64, ``order`` int64. With
+    element ``i``'s ``beta = B[i]``, ``y = Y[i]`` and coefficients
+    ``coefs[i]`` (:data:`SAMPLE_COEFFICIENTS`, ``g21 = g12``)::
 
-        U[m, 3a + b] += beta g_ab + y_a h_b     (a = 0, 1; b = 0, 1, 2)
-        y_a = (al beta - al kt PT[m]) v_a + (al w.v) y_a
-        beta = 0
+        U[m, 3a + b] = sum over the elements of (beta g_ab + y_a h_b)     (a = 0, 1; b = 0, 1, 2)
+        y_a = (cb beta + cp PT[m]) v_a + cy y_a
+        beta = sb beta + sp PT[m]
+
+    ``U[m]`` is written once, each element's rows read and written once.
     """
-    sig = types.void(U, m, B, Y, i, PT, coefs)
+    sig = types.void(U, m, B, Y, PT, coefs, order, count)
 
     def codegen(context, builder, signature, args):
-        Uv, mv, bv, yv, iv, pv, cv = args
-        Ua = context.make_array(signature.args[0])(context, builder, Uv)
-        ba = context.make_array(signature.args[2])(context, builder, bv)
-        ya = context.make_array(signature.args[3])(context, builder, yv)
-        pa = context.make_array(signature.args[5])(context, builder, pv)
+        Uv, mv, bv, yv, pv, cv, ov, nv = args
+        Ua, ba, ya, pa, ca, oa = (context.make_array(signature.args[j])(context, builder, args[j])
+                                  for j in (0, 2, 3, 4, 5, 6))
         shape = cgutils.unpack_tuple(builder, Ua.shape, 3)
         nbp = shape[2]
         index = nbp.type
+
+        def const(v):
+            return ir.Constant(index, v)
+
         base = builder.mul(mv, builder.mul(shape[1], nbp))
-        urows = [builder.gep(Ua.data, [builder.add(base, builder.mul(ir.Constant(index, r), nbp))]) for r in range(6)]
-        brow = builder.gep(ba.data, [builder.mul(iv, nbp)])
-        y1 = builder.gep(ya.data, [builder.mul(iv, builder.add(nbp, nbp))])
-        y2 = builder.gep(y1, [nbp])
+        urows = [builder.gep(Ua.data, [builder.add(base, builder.mul(const(r), nbp))]) for r in range(6)]
         prow = builder.gep(pa.data, [builder.mul(mv, nbp)])
-        g11, g12, g13, g22, g23, h1, h2, h3, al, malkt, v1, v2, awv = (
-            _splat(builder, builder.extract_value(cv, j)) for j in range(13))
-        g = (g11, g12, g13, g12, g22, g23)
-        h = (h1, h2, h3, h1, h2, h3)
         fma_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_VECTOR, [_VECTOR] * 3),
                                                 "llvm.fma.v%df64" % LANES)
 
         def fma(a, b, c):
             return builder.call(fma_fn, [a, b, c])
 
+        zero = ir.Constant(_VECTOR, [0.0] * LANES)
         entry = builder.block
-        loop = builder.append_basic_block("slip_rows.loop")
-        done = builder.append_basic_block("slip_rows.done")
-        builder.cbranch(builder.icmp_signed(">", nbp, ir.Constant(index, 0)), loop, done)
-        builder.position_at_end(loop)
+        chunks = builder.append_basic_block("sample_rows.chunks")
+        elements = builder.append_basic_block("sample_rows.elements")
+        stored = builder.append_basic_block("sample_rows.stored")
+        done = builder.append_basic_block("sample_rows.done")
+        builder.cbranch(builder.icmp_signed(">", nbp, const(0)), chunks, done)
+        # over the columns, LANES at a time
+        builder.position_at_end(chunks)
         p = builder.phi(index)
-        p.add_incoming(ir.Constant(index, 0), entry)
+        p.add_incoming(const(0), entry)
 
         def at(ptr):
             return builder.bitcast(builder.gep(ptr, [p]), _VECTOR.as_pointer())
 
+        pt = builder.load(at(prow), align=8)
+        builder.cbranch(builder.icmp_signed(">", nv, const(0)), elements, stored)
+        # over the elements: the six sums stay in registers
+        builder.position_at_end(elements)
+        e = builder.phi(index)
+        e.add_incoming(const(0), chunks)
+        acc = [builder.phi(_VECTOR) for _ in range(6)]
+        for a in acc:
+            a.add_incoming(zero, chunks)
+        i = builder.load(builder.gep(oa.data, [e]))
+        crow = builder.gep(ca.data, [builder.mul(i, const(16))])
+        g11, g12, g13, g22, g23, h1, h2, h3, cb, cp, v1, v2, cy, sb, sp = (
+            _splat(builder, builder.load(builder.gep(crow, [const(j)]))) for j in range(15))
+        brow = builder.gep(ba.data, [builder.mul(i, nbp)])
+        y1 = builder.gep(ya.data, [builder.mul(i, builder.add(nbp, nbp))])
+        y2 = builder.gep(y1, [nbp])
         bp = builder.load(at(brow), align=8)
         a1 = builder.load(at(y1), align=8)
         a2 = builder.load(at(y2), align=8)
-        pt = builder.load(at(prow), align=8)
+        g = (g11, g12, g13, g12, g22, g23)
+        h = (h1, h2, h3, h1, h2, h3)
+        new = [fma(bp, g[r], fma(a1 if r < 3 else a2, h[r], acc[r])) for r in range(6)]
+        q = fma(pt, cp, builder.fmul(cb, bp))
+        builder.store(fma(q, v1, builder.fmul(cy, a1)), at(y1), align=8)
+        builder.store(fma(q, v2, builder.fmul(cy, a2)), at(y2), align=8)
+        builder.store(fma(pt, sp, builder.fmul(sb, bp)), at(brow), align=8)
+        following = builder.add(e, const(1))
+        for a, v in zip(acc, new):
+            a.add_incoming(v, builder.block)
+        e.add_incoming(following, builder.block)
+        builder.cbranch(builder.icmp_signed("<", following, nv), elements, stored)
+        # the column's six rows, written once
+        builder.position_at_end(stored)
+        sums = [builder.phi(_VECTOR) for _ in range(6)]
+        for s_, a, v in zip(sums, acc, new):
+            s_.add_incoming(zero, chunks)
+            s_.add_incoming(v, elements)
         for r in range(6):
-            ptr = at(urows[r])
-            builder.store(fma(bp, g[r], fma(a1 if r < 3 else a2, h[r], builder.load(ptr, align=8))), ptr, align=8)
-        q = fma(pt, malkt, builder.fmul(al, bp))
-        builder.store(fma(q, v1, builder.fmul(awv, a1)), at(y1), align=8)
-        builder.store(fma(q, v2, builder.fmul(awv, a2)), at(y2), align=8)
-        builder.store(ir.Constant(_VECTOR, [0.0] * LANES), at(brow), align=8)
-        following = builder.add(p, ir.Constant(index, LANES))
-        p.add_incoming(following, builder.block)
-        builder.cbranch(builder.icmp_signed("<", following, nbp), loop, done)
+            builder.store(sums[r], at(urows[r]), align=8)
+        nextp = builder.add(p, const(LANES))
+        p.add_incoming(nextp, stored)
+        builder.cbranch(builder.icmp_signed("<", nextp, nbp), chunks, done)
         builder.position_at_end(done)
         return context.get_dummy_value()
 
