@@ -384,13 +384,14 @@ def _corner_derivative(t1, t2, rk, s1, s2, a, b, E, D):  # pragma: no cover - co
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
-def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried,
+def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
            corner):  # pragma: no cover - compiled
     """Static step, then periods until every element's slider repeats to ``tol`` (Newton-accelerated).
 
     On return the rows of :func:`_period` (``st``, ``rec``: :func:`march_work`) hold the periodic period;
     ``count[i]`` is the number of plain periods since element ``i`` last
-    started from the static step, ``tried[i]`` 1 if a Newton step brought it
+    started from the static step, ``moving[i]`` the last of them in which it
+    slipped or opened (0: none; it stuck through the later ones), ``tried[i]`` 1 if a Newton step brought it
     where it is, 2 if that is a corner of its stick region, the samples
     ``corner[:, i]`` fixing it. Returns the periods marched, ``-1`` past
     ``max_periods``.
@@ -415,6 +416,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
         s2[i] = a2
         prev[i] = np.inf
         count[i] = 0
+        moving[i] = 0
         tried[i] = 0
         lam[i] = 1.0
     periods = 0
@@ -427,6 +429,8 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
         done = True
         for i in range(J):
             count[i] += 1
+            if C[0, i] != 1.0 or C[1, i] != 0.0 or C[2, i] != 0.0 or C[3, i] != 1.0:  # C = I: stuck throughout
+                moving[i] = count[i]
             r1 = s1[i] - b1[i]
             r2 = s2[i] - b2[i]
             res = max(abs(r1), abs(r2))
@@ -488,6 +492,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
                 newton[i] = 0
                 tried[i] = 0
                 count[i] = 0
+                moving[i] = 0
                 prev[i] = np.inf
                 stepped[i] = 0
         if done:
@@ -652,8 +657,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     T1s, T2s, Nsum = smp[3], smp[4], smp[5]  # the forces' samples
     d11, d12, d22, c1, c2, dcl = smp[6], smp[7], smp[8], smp[9], smp[10], smp[11]  # local derivative sums
     rk = np.empty(J)
-    ivec = np.empty((2, J), dtype=np.int64)
-    count, tried = ivec[0], ivec[1]
+    ivec = np.empty((3, J), dtype=np.int64)
+    count, tried, moving = ivec[0], ivec[1], ivec[2]
     st, rec = march_work(J, Ns)
     s1, s2 = st[0], st[1]
     code, alpha, V1, V2, Te1, Te2 = rec[0], rec[1], rec[2], rec[3], rec[4], rec[5]
@@ -667,7 +672,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
     corner = np.empty((2, J), dtype=np.int64)
-    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, corner)
+    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
+                     corner)
     # -- the periodic period: forces and the local derivatives ---------------------------
     # (without branches: a slip's records alpha, v are 0 in stick and when open, so its terms add zeros there)
     for k in range(Ns):
@@ -750,7 +756,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             if tried[i] == 2:
                 _corner_derivative(t1, t2, rk[i], s1[i], s2[i], corner[0, i], corner[1, i], E, D)
             else:
-                _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, count[i] - 1, D)
+                # (the periods after the last in which it slipped or opened leave the derivative as it is)
+                _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, min(count[i] - 1, moving[i]),
+                                    D)
             for b in range(3):
                 for q in range(nbasis):
                     wd = w1 * D[0, b, q] + w2 * D[1, b, q]

@@ -81,13 +81,13 @@ def periodic_state_of_samples(kt, kn, gaps, mu, m1, m2, mn, t1, t2, n, max_perio
         for i in range(J):
             rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
-    ivec = np.empty((2, J), dtype=np.int64)
+    ivec = np.empty((3, J), dtype=np.int64)
     st, rec = march_work(J, Ns)
     x1 = np.array([m1])
     x2 = np.array([m2])
     xn = np.array([mn])
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, ivec[0], ivec[1],
-                     np.empty((2, J), dtype=np.int64))
+                     ivec[2], np.empty((2, J), dtype=np.int64))
     # the march ends with the periodic period; its start is one period back from the end, to 32 ulps
     s[:] = st[:2, :J]
     return periods
