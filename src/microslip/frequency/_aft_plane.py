@@ -66,7 +66,7 @@ import numba as nb
 import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
-from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
+from ._aft import _aft_contact, _diagonal_jacobian, _project, _synthesise, tables
 from ._simd import MARCH_LANES, period_lanes, sample_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
@@ -632,6 +632,35 @@ def _sweep(kt, rk, code, alpha, V1, V2, PT, B, Y, w, active, U):  # pragma: no c
         sample_rows(U, m, B, Y, PT, coefs, order, count)
 
 
+@nb.njit(cache=True, nogil=True, fastmath=True)
+def _dft_rows(cos2, sin2, D, C, S):  # pragma: no cover - compiled
+    """``C[r, j] = sum_k D[r, k] cos(j tau_k)``, ``S[r, j]`` likewise with sines, for the six rows of ``D``.
+
+    :func:`microslip.frequency._aft._dft` of each row, in one pass over the tables.
+    """
+    Ns = D.shape[1]
+    for j in range(cos2.shape[0]):
+        c0 = c1 = c2 = c3 = c4 = c5 = 0.0
+        s0 = s1 = s2 = s3 = s4 = s5 = 0.0
+        for k in range(Ns):
+            ck = cos2[j, k]
+            sk = sin2[j, k]
+            c0 += ck * D[0, k]
+            c1 += ck * D[1, k]
+            c2 += ck * D[2, k]
+            c3 += ck * D[3, k]
+            c4 += ck * D[4, k]
+            c5 += ck * D[5, k]
+            s0 += sk * D[0, k]
+            s1 += sk * D[1, k]
+            s2 += sk * D[2, k]
+            s3 += sk * D[3, k]
+            s4 += sk * D[4, k]
+            s5 += sk * D[5, k]
+        C[0, j], C[1, j], C[2, j], C[3, j], C[4, j], C[5, j] = c0, c1, c2, c3, c4, c5
+        S[0, j], S[1, j], S[2, j], S[3, j], S[4, j], S[5, j] = s0, s1, s2, s3, s4, s5
+
+
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_periods,
                F, Jac):  # pragma: no cover - compiled
@@ -718,13 +747,13 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
         for k in range(Ns):
             acc += P[p, k] * Nsum[k]
         F[2, p] = acc
-    CS = np.empty((2, nbasis))
+    CS = np.empty((2, 6, nbasis))
+    _dft_rows(cos2, sin2, smp[6:], CS[0], CS[1])  # of d11, d12, d22, c1, c2, dcl
     for which in range(7):
-        d = (d11, d12, d12, d22, c1, c2, dcl)[which]
+        row = (0, 1, 1, 2, 3, 4, 5)[which]
         a = (0, 0, 1, 1, 0, 1, 2)[which]
         b = (0, 1, 0, 1, 2, 2, 2)[which]
-        _dft(cos2, sin2, d, CS[0], CS[1])
-        _diagonal_jacobian(CS[0], CS[1], Ns, Jac[a, b])
+        _diagonal_jacobian(CS[0, row], CS[1, row], Ns, Jac[a, b])
     for b in range(2):
         Jac[2, b] = 0.0
     # -- the history parts, element by element -------------------------------------------
