@@ -67,7 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _diagonal_jacobian, _project, _synthesise, tables
-from ._simd import MARCH_LANES, period_lanes, sample_rows
+from ._simd import MARCH_LANES, period_lanes, sample_coefficients, sample_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -567,8 +567,8 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
     return w1, w2, cc, l1, l2
 
 
-@nb.njit(cache=True, nogil=True, fastmath=True)
-def _sweep(kt, rk, code, alpha, V1, V2, PT, B, Y, w, active, U):  # pragma: no cover - compiled
+@nb.njit(cache=True, nogil=True)
+def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
     """Backward sweep of the active elements together: ``U[m]`` (6, nbp) receives ``sum Y_m G_m`` over them.
 
     For element ``i``, ``Y = beta (x) I + y (x) w^T`` (``beta = B[i]``
@@ -577,59 +577,18 @@ def _sweep(kt, rk, code, alpha, V1, V2, PT, B, Y, w, active, U):  # pragma: no c
     through the sweep (a slip makes it ``y (x) v^T``, a stick adds
     ``-kt P[:, m]`` to ``beta``, an opening clears it). ``U[m, 3 a + b]`` is
     column ``m``'s coefficient row for output ``a`` and input ``b``. Each
-    sample is one vector loop over the columns and the elements
-    (:func:`._simd.sample_rows`); here, each element's coefficients for it.
+    sample is two vector loops: the elements' coefficients
+    (:func:`._simd.sample_coefficients`, from the records ``rec`` of
+    :func:`_period` and ``KR`` = ``kt, rk`` padded like them), then their
+    contributions to the column and their new ``Y``
+    (:func:`._simd.sample_rows`).
     """
     Ns = PT.shape[0]
-    J = kt.shape[0]
     order = np.flatnonzero(active)
-    count = order.size
-    coefs = np.zeros((J, 16))
+    coefs = np.empty((15, w.shape[1]))
     for m in range(Ns - 1, -1, -1):
-        for e in range(count):
-            i = order[e]
-            c = code[m, i]
-            w1 = w[0, i]
-            w2 = w[1, i]
-            if c == STICK:  # G = 0, A = I: y kept, beta -= kt P[:, m]
-                coefs[i] = 0.0
-                coefs[i, 12] = 1.0
-                coefs[i, 13] = 1.0
-                coefs[i, 14] = -kt[i]
-                continue
-            if c == OPEN:  # G = [I | 0], A = 0
-                coefs[i] = 0.0
-                coefs[i, 0] = 1.0
-                coefs[i, 3] = 1.0
-                coefs[i, 5] = w1
-                coefs[i, 6] = w2
-                continue
-            al = alpha[m, i]
-            v1 = V1[m, i]
-            v2 = V2[m, i]
-            u1 = v2
-            u2 = -v1
-            rki = rk[i]
-            # G = [I - al v v^T | -rk u], w^T G = h; then Y <- (Y - kt P[:, m] (x) I) A_m = y' (x) v^T
-            wv = w1 * v1 + w2 * v2
-            coefs[i, 0] = 1.0 - al * v1 * v1
-            coefs[i, 1] = -al * v1 * v2
-            coefs[i, 2] = -rki * u1
-            coefs[i, 3] = 1.0 - al * v2 * v2
-            coefs[i, 4] = -rki * u2
-            coefs[i, 5] = w1 - al * wv * v1
-            coefs[i, 6] = w2 - al * wv * v2
-            coefs[i, 7] = -rki * (w1 * u1 + w2 * u2)
-            coefs[i, 8] = al
-            coefs[i, 9] = -al * kt[i]
-            coefs[i, 10] = v1
-            coefs[i, 11] = v2
-            coefs[i, 12] = al * wv
-            coefs[i, 13] = 0.0
-            coefs[i, 14] = 0.0
-            w[0, i] = v1
-            w[1, i] = v2
-        sample_rows(U, m, B, Y, PT, coefs, order, count)
+        sample_coefficients(coefs, rec, KR, w, m)
+        sample_rows(U, m, B, Y, PT, coefs, order, order.size)
 
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
@@ -765,7 +724,11 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     U = np.empty((Ns, 6, nbp))
     B = np.empty((J, nbp))
     Y = np.empty((J, 2, nbp))
-    w = np.empty((2, J))
+    Jp = st.shape[1]
+    w = np.zeros((2, Jp))
+    KR = np.zeros((2, Jp))
+    KR[0, :J] = kt
+    KR[1, :J] = rk
     active = np.empty(J, dtype=np.bool_)
     D = np.empty((2, 3, nbasis))
     for i in range(J):
@@ -804,7 +767,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             for p in range(nbasis):
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
-    _sweep(kt, rk, code, alpha, V1, V2, PTp, B, Y, w, active, U)
+    _sweep(rec, KR, PTp, B, Y, w, active, U)
     # -- the columns times their basis rows: one matrix product ---------------------------------------
     if not active.any():
         return periods

@@ -50,9 +50,10 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
     ``LANES``).
 
     ``U`` (Ns, 6, nbp), ``B`` (J, nbp), ``Y`` (J, 2, nbp), ``PT`` (Ns, nbp)
-    and ``coefs`` (J, 16) C-contiguous float64, ``order`` int64. With
+    and ``coefs`` (15, Jp) C-contiguous float64, ``order`` int64. With
     element ``i``'s ``beta = B[i]``, ``y = Y[i]`` and coefficients
-    ``coefs[i]`` (:data:`SAMPLE_COEFFICIENTS`, ``g21 = g12``)::
+    ``coefs[:, i]`` (:data:`SAMPLE_COEFFICIENTS`, ``g21 = g12``;
+    :func:`sample_coefficients`)::
 
         U[m, 3a + b] = sum over the elements of (beta g_ab + y_a h_b)     (a = 0, 1; b = 0, 1, 2)
         y_a = (cb beta + cp PT[m]) v_a + cy y_a
@@ -107,9 +108,10 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
         for a in acc:
             a.add_incoming(zero, chunks)
         i = builder.load(builder.gep(oa.data, [e]))
-        crow = builder.gep(ca.data, [builder.mul(i, const(16))])
+        Jp = cgutils.unpack_tuple(builder, ca.shape, 2)[1]
         g11, g12, g13, g22, g23, h1, h2, h3, cb, cp, v1, v2, cy, sb, sp = (
-            _splat(builder, builder.load(builder.gep(crow, [const(j)]))) for j in range(15))
+            _splat(builder, builder.load(builder.gep(ca.data, [builder.add(builder.mul(const(j), Jp), i)])))
+            for j in range(15))
         brow = builder.gep(ba.data, [builder.mul(i, nbp)])
         y1 = builder.gep(ya.data, [builder.mul(i, builder.add(nbp, nbp))])
         y2 = builder.gep(y1, [nbp])
@@ -230,6 +232,77 @@ def period_lanes(typingctx, par, st, rec, k, tx, ty, n):  # pragma: no cover - c
         for val, ptr in zip((code, select(slip, al, zero), select(slip, v1, zero), select(slip, v2, zero), T1, T2),
                             rrow):
             builder.store(val, at(ptr), align=8)
+        following = builder.add(j, const(MARCH_LANES))
+        j.add_incoming(following, builder.block)
+        builder.cbranch(builder.icmp_signed("<", following, Jp), loop, done)
+        builder.position_at_end(done)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@intrinsic
+def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - compiled
+    """Every element's coefficients for sample ``m`` of the sweep, ``MARCH_LANES`` elements at a time.
+
+    ``coefs`` (15, Jp) receives :data:`SAMPLE_COEFFICIENTS` of each element
+    (the rows :func:`sample_rows` reads); ``rec`` (6, Ns, Jp) is the
+    periodic period's records (:func:`period_lanes`: condition, ``alpha``,
+    ``v``), ``KR`` (2, Jp) the elements' ``kt`` and ``rk = mu kn / kt``,
+    ``w`` (2, Jp) the ``w`` of each element's ``Y = beta I + y w^T``, set to
+    ``v`` by a slip. With ``G = [I - alpha v v^T | -rk u]`` (``u = (v2,
+    -v1)``; ``[I | 0]`` when open, where the records' ``alpha, v`` are 0)
+    and ``h = w^T G``: ``g = G`` (``g21 = g12``), ``cb = alpha``, ``cp =
+    -alpha kt``, ``cy = alpha w.v``, ``sb = sp = 0``; in stick ``g = h = 0``,
+    ``cb = cp = v = 0``, ``cy = sb = 1``, ``sp = -kt`` (``y`` kept, ``beta -=
+    kt P[:, m]``).
+    """
+    sig = types.void(coefs, rec, KR, w, m)
+
+    def codegen(context, builder, signature, args):
+        cv, rv, kv, wv, mv = args
+        ca, ra, ka, wa = (context.make_array(signature.args[j])(context, builder, args[j]) for j in range(4))
+        Jp = cgutils.unpack_tuple(builder, ca.shape, 2)[1]
+        Ns = cgutils.unpack_tuple(builder, ra.shape, 3)[1]
+        index = Jp.type
+
+        def const(v):
+            return ir.Constant(index, v)
+
+        def row(data, r):
+            return builder.gep(data, [builder.mul(const(r), Jp)])
+
+        rrow = [builder.gep(ra.data, [builder.mul(builder.add(builder.mul(const(r), Ns), mv), Jp)]) for r in range(4)]
+        V = _MARCH_VECTOR
+        zero = ir.Constant(V, [0.0] * MARCH_LANES)
+        one = ir.Constant(V, [1.0] * MARCH_LANES)
+        entry = builder.block
+        loop = builder.append_basic_block("sample_coefficients.loop")
+        done = builder.append_basic_block("sample_coefficients.done")
+        builder.cbranch(builder.icmp_signed(">", Jp, const(0)), loop, done)
+        builder.position_at_end(loop)
+        j = builder.phi(index)
+        j.add_incoming(const(0), entry)
+
+        def at(ptr):
+            return builder.bitcast(builder.gep(ptr, [j]), V.as_pointer())
+
+        code, al, v1, v2 = (builder.load(at(r), align=8) for r in rrow)
+        kt, rk = (builder.load(at(row(ka.data, r)), align=8) for r in range(2))
+        w1, w2 = (builder.load(at(row(wa.data, r)), align=8) for r in range(2))
+        mul, sub, add, select, neg = builder.fmul, builder.fsub, builder.fadd, builder.select, builder.fneg
+        stick = builder.fcmp_ordered("==", code, one)
+        wv = add(mul(w1, v1), mul(w2, v2))
+        awv = mul(al, wv)
+        slip = (sub(one, mul(mul(al, v1), v1)), neg(mul(mul(al, v1), v2)), neg(mul(rk, v2)),
+                sub(one, mul(mul(al, v2), v2)), mul(rk, v1), sub(w1, mul(awv, v1)), sub(w2, mul(awv, v2)),
+                neg(mul(rk, sub(mul(w1, v2), mul(w2, v1)))), al, neg(mul(al, kt)), v1, v2, awv, zero, zero)
+        held = (zero,) * 12 + (one, one, neg(kt))
+        for r, (a, b) in enumerate(zip(slip, held)):
+            builder.store(select(stick, b, a), at(row(ca.data, r)), align=8)
+        moved = builder.fcmp_ordered("==", code, ir.Constant(V, [2.0] * MARCH_LANES))
+        builder.store(select(moved, v1, w1), at(row(wa.data, 0)), align=8)
+        builder.store(select(moved, v2, w2), at(row(wa.data, 1)), align=8)
         following = builder.add(j, const(MARCH_LANES))
         j.add_incoming(following, builder.block)
         builder.cbranch(builder.icmp_signed("<", following, Jp), loop, done)
