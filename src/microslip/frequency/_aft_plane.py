@@ -67,7 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _diagonal_jacobian, _project, _synthesise, tables
-from ._simd import MARCH_LANES, period_lanes, sample_coefficients, sample_rows
+from ._simd import MARCH_LANES, add_row_multiples, period_lanes, sample_coefficients, sample_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -502,19 +502,21 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
 
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
-def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no cover - compiled
+def _element_start(i, kti, code, alpha, V1, V2, PT, cum, B, Y):  # pragma: no cover - compiled
     """The coefficient ``Z = beta (x) I + z (x) w^T`` of the slider at the start of the period.
 
     ``Z = sum_k -kt P[:, k] (x) C_k`` with ``C_k = A_k ... A_0``: the identity
     up to the first slip, ``c_k v_k w^T`` after it (``w`` the first slip's
-    ``v``), zero from the first opening on. Writes ``beta`` (nb) and ``z``
-    (2, nb); returns ``(w1, w2, c, l1, l2)``: ``w``, and ``Phi_s = C_(Ns-1)
+    ``v``), zero from the first opening on. Writes ``beta = B[i]`` (nbp) and
+    ``z = Y[i]`` (2, nbp); returns ``(w1, w2, c, l1, l2)``: ``w``, and ``Phi_s = C_(Ns-1)
     = c l w^T`` (``c = 1``, ``l = w = 0`` for an element that sticks
     throughout, whose ``Phi_s`` is the identity; ``c = 0`` once it opens).
     """
     Ns = PT.shape[0]
     nbasis = PT.shape[1]
+    beta = B[i]
     beta[:] = 0.0
+    z = Y[i]
     z[:] = 0.0
     z1 = z[0]
     z2 = z[1]
@@ -559,11 +561,7 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
             cc *= al * (v1 * l1 + v2 * l2)
         l1 = v1
         l2 = v2
-        f1 = -kti * cc * l1
-        f2 = -kti * cc * l2
-        for p in range(nbasis):
-            z1[p] += f1 * PT[k, p]
-            z2[p] += f2 * PT[k, p]
+        add_row_multiples(Y, i, PT, k, -kti * cc * l1, -kti * cc * l2)
     return w1, w2, cc, l1, l2
 
 
@@ -734,7 +732,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     for i in range(J):
         beta = B[i]
         y = Y[i]
-        w1, w2, cc, l1, l2 = _element_start(i, kt[i], code, alpha, V1, V2, PTp, cump, beta, y)
+        w1, w2, cc, l1, l2 = _element_start(i, kt[i], code, alpha, V1, V2, PTp, cump, B, Y)
         w[0, i] = w1
         w[1, i] = w2
         stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0

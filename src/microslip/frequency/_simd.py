@@ -40,6 +40,56 @@ def _splat(builder, x, vector=_VECTOR):
                                   ir.Constant(ir.VectorType(ir.IntType(32), vector.count), [0] * vector.count))
 
 
+def _fma(builder):
+    """``fma(a, b, c) = a b + c`` on vectors of ``LANES`` values, rounded once."""
+    fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_VECTOR, [_VECTOR] * 3),
+                                        "llvm.fma.v%df64" % LANES)
+    return lambda a, b, c: builder.call(fn, [a, b, c])
+
+
+@intrinsic
+def add_row_multiples(typingctx, Y, i, PT, k, f1, f2):  # pragma: no cover - compiled
+    """``Y[i, 0] += f1 PT[k]``, ``Y[i, 1] += f2 PT[k]`` over the ``nbp`` columns (a multiple of ``LANES``).
+
+    ``Y`` (J, 2, nbp) and ``PT`` (Ns, nbp) C-contiguous float64 (the forward
+    pass of the sweep, :func:`microslip.frequency._aft_plane._element_start`).
+    """
+    sig = types.void(Y, i, PT, k, f1, f2)
+
+    def codegen(context, builder, signature, args):
+        yv, iv, pv, kv, f1v, f2v = args
+        ya = context.make_array(signature.args[0])(context, builder, yv)
+        pa = context.make_array(signature.args[2])(context, builder, pv)
+        nbp = cgutils.unpack_tuple(builder, pa.shape, 2)[1]
+        index = nbp.type
+        y1 = builder.gep(ya.data, [builder.mul(iv, builder.add(nbp, nbp))])
+        y2 = builder.gep(y1, [nbp])
+        prow = builder.gep(pa.data, [builder.mul(kv, nbp)])
+        f1, f2 = _splat(builder, f1v), _splat(builder, f2v)
+        fma = _fma(builder)
+        entry = builder.block
+        loop = builder.append_basic_block("add_row_multiples.loop")
+        done = builder.append_basic_block("add_row_multiples.done")
+        builder.cbranch(builder.icmp_signed(">", nbp, ir.Constant(index, 0)), loop, done)
+        builder.position_at_end(loop)
+        p = builder.phi(index)
+        p.add_incoming(ir.Constant(index, 0), entry)
+
+        def at(ptr):
+            return builder.bitcast(builder.gep(ptr, [p]), _VECTOR.as_pointer())
+
+        pt = builder.load(at(prow), align=8)
+        builder.store(fma(f1, pt, builder.load(at(y1), align=8)), at(y1), align=8)
+        builder.store(fma(f2, pt, builder.load(at(y2), align=8)), at(y2), align=8)
+        following = builder.add(p, ir.Constant(index, LANES))
+        p.add_incoming(following, builder.block)
+        builder.cbranch(builder.icmp_signed("<", following, nbp), loop, done)
+        builder.position_at_end(done)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
 #: the coefficients of one element at one sample in :func:`sample_rows`, in this order
 SAMPLE_COEFFICIENTS = ("g11", "g12", "g13", "g22", "g23", "h1", "h2", "h3", "cb", "cp", "v1", "v2", "cy", "sb", "sp")
 
@@ -77,11 +127,7 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
         base = builder.mul(mv, builder.mul(shape[1], nbp))
         urows = [builder.gep(Ua.data, [builder.add(base, builder.mul(const(r), nbp))]) for r in range(6)]
         prow = builder.gep(pa.data, [builder.mul(mv, nbp)])
-        fma_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_VECTOR, [_VECTOR] * 3),
-                                                "llvm.fma.v%df64" % LANES)
-
-        def fma(a, b, c):
-            return builder.call(fma_fn, [a, b, c])
+        fma = _fma(builder)
 
         zero = ir.Constant(_VECTOR, [0.0] * LANES)
         entry = builder.block
