@@ -41,9 +41,11 @@ def _splat(builder, x, vector=_VECTOR):
 
 
 def _fma(builder):
-    """``fma(a, b, c) = a b + c`` on vectors of ``LANES`` values, rounded once."""
+    """``fma(a, b, c) = a b + c`` on vectors of ``LANES`` values: one fused operation where the machine has
+    it, a product and a sum where it has not (``llvm.fmuladd``, not ``llvm.fma``, which would call a slow
+    exact emulation there)."""
     fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_VECTOR, [_VECTOR] * 3),
-                                        "llvm.fma.v%df64" % LANES)
+                                        "llvm.fmuladd.v%df64" % LANES)
     return lambda a, b, c: builder.call(fn, [a, b, c])
 
 
