@@ -590,32 +590,16 @@ def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
-def _dft_rows(cos2, sin2, D, C, S):  # pragma: no cover - compiled
-    """``C[r, j] = sum_k D[r, k] cos(j tau_k)``, ``S[r, j]`` likewise with sines, for the six rows of ``D``.
-
-    :func:`microslip.frequency._aft._dft` of each row, in one pass over the tables.
-    """
-    Ns = D.shape[1]
+def _dft_pair(cos2, sin2, a, b, C, S, r):  # pragma: no cover - compiled
+    """:func:`microslip.frequency._aft._dft` of ``a`` and ``b`` into rows ``r`` and ``r + 1`` of ``C, S``."""
     for j in range(cos2.shape[0]):
-        c0 = c1 = c2 = c3 = c4 = c5 = 0.0
-        s0 = s1 = s2 = s3 = s4 = s5 = 0.0
-        for k in range(Ns):
-            ck = cos2[j, k]
-            sk = sin2[j, k]
-            c0 += ck * D[0, k]
-            c1 += ck * D[1, k]
-            c2 += ck * D[2, k]
-            c3 += ck * D[3, k]
-            c4 += ck * D[4, k]
-            c5 += ck * D[5, k]
-            s0 += sk * D[0, k]
-            s1 += sk * D[1, k]
-            s2 += sk * D[2, k]
-            s3 += sk * D[3, k]
-            s4 += sk * D[4, k]
-            s5 += sk * D[5, k]
-        C[0, j], C[1, j], C[2, j], C[3, j], C[4, j], C[5, j] = c0, c1, c2, c3, c4, c5
-        S[0, j], S[1, j], S[2, j], S[3, j], S[4, j], S[5, j] = s0, s1, s2, s3, s4, s5
+        ca = cb = sa = sb = 0.0
+        for k in range(a.shape[0]):
+            ca += cos2[j, k] * a[k]
+            cb += cos2[j, k] * b[k]
+            sa += sin2[j, k] * a[k]
+            sb += sin2[j, k] * b[k]
+        C[r, j], C[r + 1, j], S[r, j], S[r + 1, j] = ca, cb, sa, sb
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -705,7 +689,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             acc += P[p, k] * Nsum[k]
         F[2, p] = acc
     CS = np.empty((2, 6, nbasis))
-    _dft_rows(cos2, sin2, smp[6:], CS[0], CS[1])  # of d11, d12, d22, c1, c2, dcl
+    for row in range(0, 6, 2):  # the DFTs of d11, d12, d22, c1, c2, dcl, two at a time
+        _dft_pair(cos2, sin2, smp[6 + row], smp[7 + row], CS[0], CS[1], row)
     for which in range(7):
         row = (0, 1, 1, 2, 3, 4, 5)[which]
         a = (0, 0, 1, 1, 0, 1, 2)[which]

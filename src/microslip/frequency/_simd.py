@@ -49,6 +49,27 @@ def _fma(builder):
     return lambda a, b, c: builder.call(fn, [a, b, c])
 
 
+def _vector_loop(builder, count, step, vector, name, body):
+    """Emit ``for j in range(0, count, step): body(at)``, ``count`` a multiple of ``step``.
+
+    ``at(ptr)`` is the pointer to the ``vector`` of values from ``ptr[j]`` on;
+    ``body`` may add blocks of its own. The builder ends after the loop.
+    """
+    index = count.type
+    entry = builder.block
+    loop = builder.append_basic_block(name + ".loop")
+    done = builder.append_basic_block(name + ".done")
+    builder.cbranch(builder.icmp_signed(">", count, ir.Constant(index, 0)), loop, done)
+    builder.position_at_end(loop)
+    j = builder.phi(index)
+    j.add_incoming(ir.Constant(index, 0), entry)
+    body(lambda ptr: builder.bitcast(builder.gep(ptr, [j]), vector.as_pointer()))
+    following = builder.add(j, ir.Constant(index, step))
+    j.add_incoming(following, builder.block)
+    builder.cbranch(builder.icmp_signed("<", following, count), loop, done)
+    builder.position_at_end(done)
+
+
 @intrinsic
 def add_row_multiples(typingctx, Y, i, PT, k, f1, f2):  # pragma: no cover - compiled
     """``Y[i, 0] += f1 PT[k]``, ``Y[i, 1] += f2 PT[k]`` over the ``nbp`` columns (a multiple of ``LANES``).
@@ -69,24 +90,13 @@ def add_row_multiples(typingctx, Y, i, PT, k, f1, f2):  # pragma: no cover - com
         prow = builder.gep(pa.data, [builder.mul(kv, nbp)])
         f1, f2 = _splat(builder, f1v), _splat(builder, f2v)
         fma = _fma(builder)
-        entry = builder.block
-        loop = builder.append_basic_block("add_row_multiples.loop")
-        done = builder.append_basic_block("add_row_multiples.done")
-        builder.cbranch(builder.icmp_signed(">", nbp, ir.Constant(index, 0)), loop, done)
-        builder.position_at_end(loop)
-        p = builder.phi(index)
-        p.add_incoming(ir.Constant(index, 0), entry)
 
-        def at(ptr):
-            return builder.bitcast(builder.gep(ptr, [p]), _VECTOR.as_pointer())
+        def body(at):
+            pt = builder.load(at(prow), align=8)
+            builder.store(fma(f1, pt, builder.load(at(y1), align=8)), at(y1), align=8)
+            builder.store(fma(f2, pt, builder.load(at(y2), align=8)), at(y2), align=8)
 
-        pt = builder.load(at(prow), align=8)
-        builder.store(fma(f1, pt, builder.load(at(y1), align=8)), at(y1), align=8)
-        builder.store(fma(f2, pt, builder.load(at(y2), align=8)), at(y2), align=8)
-        following = builder.add(p, ir.Constant(index, LANES))
-        p.add_incoming(following, builder.block)
-        builder.cbranch(builder.icmp_signed("<", following, nbp), loop, done)
-        builder.position_at_end(done)
+        _vector_loop(builder, nbp, LANES, _VECTOR, "add_row_multiples", body)
         return context.get_dummy_value()
 
     return sig, codegen
@@ -132,64 +142,50 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
         fma = _fma(builder)
 
         zero = ir.Constant(_VECTOR, [0.0] * LANES)
-        entry = builder.block
-        chunks = builder.append_basic_block("sample_rows.chunks")
-        elements = builder.append_basic_block("sample_rows.elements")
-        stored = builder.append_basic_block("sample_rows.stored")
-        done = builder.append_basic_block("sample_rows.done")
-        builder.cbranch(builder.icmp_signed(">", nbp, const(0)), chunks, done)
-        # over the columns, LANES at a time
-        builder.position_at_end(chunks)
-        p = builder.phi(index)
-        p.add_incoming(const(0), entry)
-
-        def at(ptr):
-            return builder.bitcast(builder.gep(ptr, [p]), _VECTOR.as_pointer())
-
-        pt = builder.load(at(prow), align=8)
-        builder.cbranch(builder.icmp_signed(">", nv, const(0)), elements, stored)
-        # over the elements: the six sums stay in registers
-        builder.position_at_end(elements)
-        e = builder.phi(index)
-        e.add_incoming(const(0), chunks)
-        acc = [builder.phi(_VECTOR) for _ in range(6)]
-        for a in acc:
-            a.add_incoming(zero, chunks)
-        i = builder.load(builder.gep(oa.data, [e]))
         Jp = cgutils.unpack_tuple(builder, ca.shape, 2)[1]
-        g11, g12, g13, g22, g23, h1, h2, h3, cb, cp, v1, v2, cy, sb, sp = (
-            _splat(builder, builder.load(builder.gep(ca.data, [builder.add(builder.mul(const(j), Jp), i)])))
-            for j in range(15))
-        brow = builder.gep(ba.data, [builder.mul(i, nbp)])
-        y1 = builder.gep(ya.data, [builder.mul(i, builder.add(nbp, nbp))])
-        y2 = builder.gep(y1, [nbp])
-        bp = builder.load(at(brow), align=8)
-        a1 = builder.load(at(y1), align=8)
-        a2 = builder.load(at(y2), align=8)
-        g = (g11, g12, g13, g12, g22, g23)
-        h = (h1, h2, h3, h1, h2, h3)
-        new = [fma(bp, g[r], fma(a1 if r < 3 else a2, h[r], acc[r])) for r in range(6)]
-        q = fma(pt, cp, builder.fmul(cb, bp))
-        builder.store(fma(q, v1, builder.fmul(cy, a1)), at(y1), align=8)
-        builder.store(fma(q, v2, builder.fmul(cy, a2)), at(y2), align=8)
-        builder.store(fma(pt, sp, builder.fmul(sb, bp)), at(brow), align=8)
-        following = builder.add(e, const(1))
-        for a, v in zip(acc, new):
-            a.add_incoming(v, builder.block)
-        e.add_incoming(following, builder.block)
-        builder.cbranch(builder.icmp_signed("<", following, nv), elements, stored)
-        # the column's six rows, written once
-        builder.position_at_end(stored)
-        sums = [builder.phi(_VECTOR) for _ in range(6)]
-        for s_, a, v in zip(sums, acc, new):
-            s_.add_incoming(zero, chunks)
-            s_.add_incoming(v, elements)
-        for r in range(6):
-            builder.store(sums[r], at(urows[r]), align=8)
-        nextp = builder.add(p, const(LANES))
-        p.add_incoming(nextp, stored)
-        builder.cbranch(builder.icmp_signed("<", nextp, nbp), chunks, done)
-        builder.position_at_end(done)
+
+        def chunk(at):  # LANES columns
+            pt = builder.load(at(prow), align=8)
+            chunks = builder.block
+            elements = builder.append_basic_block("sample_rows.elements")
+            stored = builder.append_basic_block("sample_rows.stored")
+            builder.cbranch(builder.icmp_signed(">", nv, const(0)), elements, stored)
+            # over the elements: the six sums stay in registers
+            builder.position_at_end(elements)
+            e = builder.phi(index)
+            e.add_incoming(const(0), chunks)
+            acc = [builder.phi(_VECTOR) for _ in range(6)]
+            for a in acc:
+                a.add_incoming(zero, chunks)
+            i = builder.load(builder.gep(oa.data, [e]))
+            g11, g12, g13, g22, g23, h1, h2, h3, cb, cp, v1, v2, cy, sb, sp = (
+                _splat(builder, builder.load(builder.gep(ca.data, [builder.add(builder.mul(const(j), Jp), i)])))
+                for j in range(15))
+            brow = builder.gep(ba.data, [builder.mul(i, nbp)])
+            y1 = builder.gep(ya.data, [builder.mul(i, builder.add(nbp, nbp))])
+            y2 = builder.gep(y1, [nbp])
+            bp, a1, a2 = (builder.load(at(ptr), align=8) for ptr in (brow, y1, y2))
+            g = (g11, g12, g13, g12, g22, g23)
+            h = (h1, h2, h3, h1, h2, h3)
+            new = [fma(bp, g[r], fma(a1 if r < 3 else a2, h[r], acc[r])) for r in range(6)]
+            q = fma(pt, cp, builder.fmul(cb, bp))
+            builder.store(fma(q, v1, builder.fmul(cy, a1)), at(y1), align=8)
+            builder.store(fma(q, v2, builder.fmul(cy, a2)), at(y2), align=8)
+            builder.store(fma(pt, sp, builder.fmul(sb, bp)), at(brow), align=8)
+            following = builder.add(e, const(1))
+            for a, v in zip(acc, new):
+                a.add_incoming(v, builder.block)
+            e.add_incoming(following, builder.block)
+            builder.cbranch(builder.icmp_signed("<", following, nv), elements, stored)
+            # the column's six rows, written once
+            builder.position_at_end(stored)
+            for r, (a, v) in enumerate(zip(acc, new)):
+                total = builder.phi(_VECTOR)
+                total.add_incoming(zero, chunks)
+                total.add_incoming(v, elements)
+                builder.store(total, at(urows[r]), align=8)
+
+        _vector_loop(builder, nbp, LANES, _VECTOR, "sample_rows", chunk)
         return context.get_dummy_value()
 
     return sig, codegen
@@ -236,54 +232,43 @@ def period_lanes(typingctx, par, st, rec, k, tx, ty, n):  # pragma: no cover - c
         two = ir.Constant(_MARCH_VECTOR, [2.0] * MARCH_LANES)
         sqrt_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_MARCH_VECTOR, [_MARCH_VECTOR]),
                                                  "llvm.sqrt.v%df64" % MARCH_LANES)
-        entry = builder.block
-        loop = builder.append_basic_block("period_lanes.loop")
-        done = builder.append_basic_block("period_lanes.done")
-        builder.cbranch(builder.icmp_signed(">", Jp, const(0)), loop, done)
-        builder.position_at_end(loop)
-        j = builder.phi(index)
-        j.add_incoming(const(0), entry)
-
-        def at(ptr):
-            return builder.bitcast(builder.gep(ptr, [j]), _MARCH_VECTOR.as_pointer())
-
-        kt, rk, mkn, _, gap = (builder.load(at(p), align=8) for p in prow)
-        s1, s2, c0, c1, c2, c3 = (builder.load(at(p), align=8) for p in srow)
         mul, sub, add, select = builder.fmul, builder.fsub, builder.fadd, builder.select
-        # plane_step
-        nk = sub(nk0, gap)
-        closed = builder.fcmp_ordered(">", nk, zero)
-        r = mul(rk, nk)
-        dx = sub(tx, s1)
-        dy = sub(ty, s2)
-        dd2 = add(mul(dx, dx), mul(dy, dy))
-        slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
-        q = builder.fdiv(one, builder.call(sqrt_fn, [dd2]))
-        al = mul(r, q)
-        g = mul(mul(mkn, nk), q)
-        T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
-        T2 = select(closed, select(slipped, mul(g, dy), mul(kt, dy)), zero)
-        n1 = select(closed, select(slipped, sub(tx, mul(al, dx)), s1), tx)
-        n2 = select(closed, select(slipped, sub(ty, mul(al, dy)), s2), ty)
-        code = select(closed, select(slipped, two, one), zero)
-        # the period map's derivative: C <- alpha v v^T C in slip, kept in stick, 0 when open
-        slip = builder.and_(closed, slipped)
-        stick = builder.and_(closed, builder.xor(slipped, ir.Constant(slipped.type, [True] * MARCH_LANES)))
-        v1 = mul(builder.fneg(dy), q)
-        v2 = mul(dx, q)
-        w1 = mul(al, add(mul(v1, c0), mul(v2, c2)))
-        w2 = mul(al, add(mul(v1, c1), mul(v2, c3)))
-        C = [select(slip, mul(vv, ww), select(stick, cc, zero))
-             for vv, ww, cc in ((v1, w1, c0), (v1, w2, c1), (v2, w1, c2), (v2, w2, c3))]
-        for val, ptr in zip((n1, n2, *C), srow):
-            builder.store(val, at(ptr), align=8)
-        for val, ptr in zip((code, select(slip, al, zero), select(slip, v1, zero), select(slip, v2, zero), T1, T2),
-                            rrow):
-            builder.store(val, at(ptr), align=8)
-        following = builder.add(j, const(MARCH_LANES))
-        j.add_incoming(following, builder.block)
-        builder.cbranch(builder.icmp_signed("<", following, Jp), loop, done)
-        builder.position_at_end(done)
+
+        def lanes(at):
+            kt, rk, mkn, _, gap = (builder.load(at(p), align=8) for p in prow)
+            s1, s2, c0, c1, c2, c3 = (builder.load(at(p), align=8) for p in srow)
+            # plane_step
+            nk = sub(nk0, gap)
+            closed = builder.fcmp_ordered(">", nk, zero)
+            r = mul(rk, nk)
+            dx = sub(tx, s1)
+            dy = sub(ty, s2)
+            dd2 = add(mul(dx, dx), mul(dy, dy))
+            slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
+            q = builder.fdiv(one, builder.call(sqrt_fn, [dd2]))
+            al = mul(r, q)
+            g = mul(mul(mkn, nk), q)
+            T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
+            T2 = select(closed, select(slipped, mul(g, dy), mul(kt, dy)), zero)
+            n1 = select(closed, select(slipped, sub(tx, mul(al, dx)), s1), tx)
+            n2 = select(closed, select(slipped, sub(ty, mul(al, dy)), s2), ty)
+            code = select(closed, select(slipped, two, one), zero)
+            # the period map's derivative: C <- alpha v v^T C in slip, kept in stick, 0 when open
+            slip = builder.and_(closed, slipped)
+            stick = builder.and_(closed, builder.xor(slipped, ir.Constant(slipped.type, [True] * MARCH_LANES)))
+            v1 = mul(builder.fneg(dy), q)
+            v2 = mul(dx, q)
+            w1 = mul(al, add(mul(v1, c0), mul(v2, c2)))
+            w2 = mul(al, add(mul(v1, c1), mul(v2, c3)))
+            C = [select(slip, mul(vv, ww), select(stick, cc, zero))
+                 for vv, ww, cc in ((v1, w1, c0), (v1, w2, c1), (v2, w1, c2), (v2, w2, c3))]
+            for val, ptr in zip((n1, n2, *C), srow):
+                builder.store(val, at(ptr), align=8)
+            for val, ptr in zip((code, select(slip, al, zero), select(slip, v1, zero), select(slip, v2, zero), T1,
+                                 T2), rrow):
+                builder.store(val, at(ptr), align=8)
+
+        _vector_loop(builder, Jp, MARCH_LANES, _MARCH_VECTOR, "period_lanes", lanes)
         return context.get_dummy_value()
 
     return sig, codegen
@@ -324,37 +309,26 @@ def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - 
         V = _MARCH_VECTOR
         zero = ir.Constant(V, [0.0] * MARCH_LANES)
         one = ir.Constant(V, [1.0] * MARCH_LANES)
-        entry = builder.block
-        loop = builder.append_basic_block("sample_coefficients.loop")
-        done = builder.append_basic_block("sample_coefficients.done")
-        builder.cbranch(builder.icmp_signed(">", Jp, const(0)), loop, done)
-        builder.position_at_end(loop)
-        j = builder.phi(index)
-        j.add_incoming(const(0), entry)
-
-        def at(ptr):
-            return builder.bitcast(builder.gep(ptr, [j]), V.as_pointer())
-
-        code, al, v1, v2 = (builder.load(at(r), align=8) for r in rrow)
-        kt, rk = (builder.load(at(row(ka.data, r)), align=8) for r in range(2))
-        w1, w2 = (builder.load(at(row(wa.data, r)), align=8) for r in range(2))
         mul, sub, add, select, neg = builder.fmul, builder.fsub, builder.fadd, builder.select, builder.fneg
-        stick = builder.fcmp_ordered("==", code, one)
-        wv = add(mul(w1, v1), mul(w2, v2))
-        awv = mul(al, wv)
-        slip = (sub(one, mul(mul(al, v1), v1)), neg(mul(mul(al, v1), v2)), neg(mul(rk, v2)),
-                sub(one, mul(mul(al, v2), v2)), mul(rk, v1), sub(w1, mul(awv, v1)), sub(w2, mul(awv, v2)),
-                neg(mul(rk, sub(mul(w1, v2), mul(w2, v1)))), al, neg(mul(al, kt)), v1, v2, awv, zero, zero)
-        held = (zero,) * 12 + (one, one, neg(kt))
-        for r, (a, b) in enumerate(zip(slip, held)):
-            builder.store(select(stick, b, a), at(row(ca.data, r)), align=8)
-        moved = builder.fcmp_ordered("==", code, ir.Constant(V, [2.0] * MARCH_LANES))
-        builder.store(select(moved, v1, w1), at(row(wa.data, 0)), align=8)
-        builder.store(select(moved, v2, w2), at(row(wa.data, 1)), align=8)
-        following = builder.add(j, const(MARCH_LANES))
-        j.add_incoming(following, builder.block)
-        builder.cbranch(builder.icmp_signed("<", following, Jp), loop, done)
-        builder.position_at_end(done)
+
+        def lanes(at):
+            code, al, v1, v2 = (builder.load(at(r), align=8) for r in rrow)
+            kt, rk = (builder.load(at(row(ka.data, r)), align=8) for r in range(2))
+            w1, w2 = (builder.load(at(row(wa.data, r)), align=8) for r in range(2))
+            stick = builder.fcmp_ordered("==", code, one)
+            wv = add(mul(w1, v1), mul(w2, v2))
+            awv = mul(al, wv)
+            slip = (sub(one, mul(mul(al, v1), v1)), neg(mul(mul(al, v1), v2)), neg(mul(rk, v2)),
+                    sub(one, mul(mul(al, v2), v2)), mul(rk, v1), sub(w1, mul(awv, v1)), sub(w2, mul(awv, v2)),
+                    neg(mul(rk, sub(mul(w1, v2), mul(w2, v1)))), al, neg(mul(al, kt)), v1, v2, awv, zero, zero)
+            held = (zero,) * 12 + (one, one, neg(kt))
+            for r, (a, b) in enumerate(zip(slip, held)):
+                builder.store(select(stick, b, a), at(row(ca.data, r)), align=8)
+            moved = builder.fcmp_ordered("==", code, ir.Constant(V, [2.0] * MARCH_LANES))
+            builder.store(select(moved, v1, w1), at(row(wa.data, 0)), align=8)
+            builder.store(select(moved, v2, w2), at(row(wa.data, 1)), align=8)
+
+        _vector_loop(builder, Jp, MARCH_LANES, V, "sample_coefficients", lanes)
         return context.get_dummy_value()
 
     return sig, codegen
