@@ -23,7 +23,7 @@ from numba.core import cgutils
 from numba.extending import intrinsic
 
 #: values per vector operation; the rows' length must be a multiple of it
-LANES = 8
+LANES = 16
 
 _DOUBLE = ir.DoubleType()
 _VECTOR = ir.VectorType(_DOUBLE, LANES)
@@ -179,11 +179,12 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
             builder.cbranch(builder.icmp_signed("<", following, nv), elements, stored)
             # the column's six rows, written once
             builder.position_at_end(stored)
-            for r, (a, v) in enumerate(zip(acc, new)):
-                total = builder.phi(_VECTOR)
+            totals = [builder.phi(_VECTOR) for _ in range(6)]
+            for total, v in zip(totals, new):
                 total.add_incoming(zero, chunks)
                 total.add_incoming(v, elements)
-                builder.store(total, at(urows[r]), align=8)
+            for total, ptr in zip(totals, urows):
+                builder.store(total, at(ptr), align=8)
 
         _vector_loop(builder, nbp, LANES, _VECTOR, "sample_rows", chunk)
         return context.get_dummy_value()
