@@ -583,7 +583,7 @@ def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
     """
     Ns = PT.shape[0]
     order = np.flatnonzero(active)
-    coefs = np.empty((15, w.shape[1]))
+    coefs = np.empty((16, w.shape[1]))
     for m in range(Ns - 1, -1, -1):
         sample_coefficients(coefs, rec, KR, w, m)
         sample_rows(U, m, B, Y, PT, coefs, order, order.size)
@@ -708,7 +708,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     B = np.empty((J, nbp))
     Y = np.empty((J, 2, nbp))
     Jp = st.shape[1]
-    w = np.zeros((2, Jp))
+    w = np.zeros((3, Jp))  # w, and whether beta is known to be zero (not yet)
     KR = np.zeros((2, Jp))
     KR[0, :J] = kt
     KR[1, :J] = rk

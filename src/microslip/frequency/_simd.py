@@ -103,7 +103,8 @@ def add_row_multiples(typingctx, Y, i, PT, k, f1, f2):  # pragma: no cover - com
 
 
 #: the coefficients of one element at one sample in :func:`sample_rows`, in this order
-SAMPLE_COEFFICIENTS = ("g11", "g12", "g13", "g22", "g23", "h1", "h2", "h3", "cb", "cp", "v1", "v2", "cy", "sb", "sp")
+SAMPLE_COEFFICIENTS = ("g11", "g12", "g13", "g22", "g23", "h1", "h2", "h3", "cb", "cp", "v1", "v2", "cy", "sb", "sp",
+                       "full")
 
 
 @intrinsic
@@ -112,7 +113,7 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
     ``LANES``).
 
     ``U`` (Ns, 6, nbp), ``B`` (J, nbp), ``Y`` (J, 2, nbp), ``PT`` (Ns, nbp)
-    and ``coefs`` (15, Jp) C-contiguous float64, ``order`` int64. With
+    and ``coefs`` (16, Jp) C-contiguous float64, ``order`` int64. With
     element ``i``'s ``beta = B[i]``, ``y = Y[i]`` and coefficients
     ``coefs[:, i]`` (:data:`SAMPLE_COEFFICIENTS`, ``g21 = g12``;
     :func:`sample_coefficients`)::
@@ -121,7 +122,9 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
         y_a = (cb beta + cp PT[m]) v_a + cy y_a
         beta = sb beta + sp PT[m]
 
-    ``U[m]`` is written once, each element's rows read and written once.
+    An element whose ``full`` is 0 has ``beta = 0`` before and after (it
+    slips or opens after a slip or an opening): its ``beta`` terms are left
+    out. ``U[m]`` is written once, each element's rows read and written once.
     """
     sig = types.void(U, m, B, Y, PT, coefs, order, count)
 
@@ -158,31 +161,52 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
             for a in acc:
                 a.add_incoming(zero, chunks)
             i = builder.load(builder.gep(oa.data, [e]))
-            g11, g12, g13, g22, g23, h1, h2, h3, cb, cp, v1, v2, cy, sb, sp = (
-                _splat(builder, builder.load(builder.gep(ca.data, [builder.add(builder.mul(const(j), Jp), i)])))
-                for j in range(15))
-            brow = builder.gep(ba.data, [builder.mul(i, nbp)])
+
+            def coefficient(j):
+                return builder.load(builder.gep(ca.data, [builder.add(builder.mul(const(j), Jp), i)]))
+
+            h1, h2, h3, cp, v1, v2, cy = (_splat(builder, coefficient(j)) for j in (5, 6, 7, 9, 10, 11, 12))
             y1 = builder.gep(ya.data, [builder.mul(i, builder.add(nbp, nbp))])
             y2 = builder.gep(y1, [nbp])
-            bp, a1, a2 = (builder.load(at(ptr), align=8) for ptr in (brow, y1, y2))
-            g = (g11, g12, g13, g12, g22, g23)
+            a1, a2 = (builder.load(at(ptr), align=8) for ptr in (y1, y2))
             h = (h1, h2, h3, h1, h2, h3)
-            new = [fma(bp, g[r], fma(a1 if r < 3 else a2, h[r], acc[r])) for r in range(6)]
-            q = fma(pt, cp, builder.fmul(cb, bp))
-            builder.store(fma(q, v1, builder.fmul(cy, a1)), at(y1), align=8)
-            builder.store(fma(q, v2, builder.fmul(cy, a2)), at(y2), align=8)
-            builder.store(fma(pt, sp, builder.fmul(sb, bp)), at(brow), align=8)
+            full = builder.append_basic_block("sample_rows.full")
+            bare = builder.append_basic_block("sample_rows.bare")
+            added = builder.append_basic_block("sample_rows.added")
+            builder.cbranch(builder.fcmp_ordered("!=", coefficient(15), ir.Constant(_DOUBLE, 0.0)), full, bare)
+            sums = {}
+            for block in (full, bare):
+                builder.position_at_end(block)
+                news = [fma(a1 if r < 3 else a2, h[r], acc[r]) for r in range(6)]
+                q = builder.fmul(pt, cp)
+                if block is full:  # the beta terms
+                    g11, g12, g13, g22, g23, cb, sb, sp = (_splat(builder, coefficient(j))
+                                                           for j in (0, 1, 2, 3, 4, 8, 13, 14))
+                    brow = builder.gep(ba.data, [builder.mul(i, nbp)])
+                    bp = builder.load(at(brow), align=8)
+                    news = [fma(bp, g, v) for g, v in zip((g11, g12, g13, g12, g22, g23), news)]
+                    q = fma(cb, bp, q)
+                    builder.store(fma(pt, sp, builder.fmul(sb, bp)), at(brow), align=8)
+                builder.store(fma(q, v1, builder.fmul(cy, a1)), at(y1), align=8)
+                builder.store(fma(q, v2, builder.fmul(cy, a2)), at(y2), align=8)
+                builder.branch(added)
+                sums[block] = (builder.block, news)
+            builder.position_at_end(added)
+            new = [builder.phi(_VECTOR) for _ in range(6)]
+            for block_end, news in sums.values():
+                for phi, v in zip(new, news):
+                    phi.add_incoming(v, block_end)
             following = builder.add(e, const(1))
             for a, v in zip(acc, new):
-                a.add_incoming(v, builder.block)
-            e.add_incoming(following, builder.block)
+                a.add_incoming(v, added)
+            e.add_incoming(following, added)
             builder.cbranch(builder.icmp_signed("<", following, nv), elements, stored)
             # the column's six rows, written once
             builder.position_at_end(stored)
             totals = [builder.phi(_VECTOR) for _ in range(6)]
             for total, v in zip(totals, new):
                 total.add_incoming(zero, chunks)
-                total.add_incoming(v, elements)
+                total.add_incoming(v, added)
             for total, ptr in zip(totals, urows):
                 builder.store(total, at(ptr), align=8)
 
@@ -279,12 +303,14 @@ def period_lanes(typingctx, par, st, rec, k, tx, ty, n):  # pragma: no cover - c
 def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - compiled
     """Every element's coefficients for sample ``m`` of the sweep, ``MARCH_LANES`` elements at a time.
 
-    ``coefs`` (15, Jp) receives :data:`SAMPLE_COEFFICIENTS` of each element
+    ``coefs`` (16, Jp) receives :data:`SAMPLE_COEFFICIENTS` of each element
     (the rows :func:`sample_rows` reads); ``rec`` (6, Ns, Jp) is the
     periodic period's records (:func:`period_lanes`: condition, ``alpha``,
     ``v``), ``KR`` (2, Jp) the elements' ``kt`` and ``rk = mu kn / kt``,
-    ``w`` (2, Jp) the ``w`` of each element's ``Y = beta I + y w^T``, set to
-    ``v`` by a slip. With ``G = [I - alpha v v^T | -rk u]`` (``u = (v2,
+    ``w`` (3, Jp) the ``w`` of each element's ``Y = beta I + y w^T``, set to
+    ``v`` by a slip, and whether its ``beta`` is known to be zero (1: after
+    a slip or an opening; 0: not known, or after a stick) for ``full``, 1
+    when the ``beta`` terms are needed. With ``G = [I - alpha v v^T | -rk u]`` (``u = (v2,
     -v1)``; ``[I | 0]`` when open, where the records' ``alpha, v`` are 0)
     and ``h = w^T G``: ``g = G`` (``g21 = g12``), ``cb = alpha``, ``cp =
     -alpha kt``, ``cy = alpha w.v``, ``sb = sp = 0``; in stick ``g = h = 0``,
@@ -315,7 +341,7 @@ def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - 
         def lanes(at):
             code, al, v1, v2 = (builder.load(at(r), align=8) for r in rrow)
             kt, rk = (builder.load(at(row(ka.data, r)), align=8) for r in range(2))
-            w1, w2 = (builder.load(at(row(wa.data, r)), align=8) for r in range(2))
+            w1, w2, bare = (builder.load(at(row(wa.data, r)), align=8) for r in range(3))
             stick = builder.fcmp_ordered("==", code, one)
             wv = add(mul(w1, v1), mul(w2, v2))
             awv = mul(al, wv)
@@ -325,6 +351,8 @@ def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - 
             held = (zero,) * 12 + (one, one, neg(kt))
             for r, (a, b) in enumerate(zip(slip, held)):
                 builder.store(select(stick, b, a), at(row(ca.data, r)), align=8)
+            builder.store(select(stick, one, sub(one, bare)), at(row(ca.data, 15)), align=8)
+            builder.store(select(stick, zero, one), at(row(wa.data, 2)), align=8)
             moved = builder.fcmp_ordered("==", code, ir.Constant(V, [2.0] * MARCH_LANES))
             builder.store(select(moved, v1, w1), at(row(wa.data, 0)), align=8)
             builder.store(select(moved, v2, w2), at(row(wa.data, 1)), align=8)
