@@ -101,7 +101,7 @@ def cases():
 def main():
     tables = _aft.tables(H, NS)
     E, P = tables[0], tables[1]
-    PT = _aft_plane.transposed_projection(H, NS)
+    PT = _aft_plane.sweep_tables(H, NS)
     print(f"AFT on the contact plane with Jacobian, J = {J}, H = {H}, {NS} samples per period "
           f"(best of 7, microseconds per call)")
     rows = []

@@ -126,7 +126,7 @@ def peer_aft(peer, model, line, xn):
 
 def compare_aft(peer) -> list:
     tables = _aft.tables(AFT_H, AFT_SAMPLES)
-    PT = _aft_plane.transposed_projection(AFT_H, AFT_SAMPLES)
+    PT = _aft_plane.sweep_tables(AFT_H, AFT_SAMPLES)
     e = np.array([np.cos(np.radians(ANGLE)), np.sin(np.radians(ANGLE))])
     nb = 2 * AFT_H + 1
     print(f"(a) AFT with Jacobian of one contact, J = {AFT_ELEMENTS}, harmonics 0-{AFT_H}, {AFT_SAMPLES} samples "

@@ -253,6 +253,32 @@ def test_an_element_on_a_corner_of_its_stick_region_takes_its_derivative_from_th
         np.testing.assert_allclose(exact, approx, atol=1e-6 * k)
 
 
+def test_the_period_eight_elements_at_a_time_is_plane_step_to_the_bit():
+    """The period's element update, ``LANES`` elements at a time in vector form, against the scalar
+    ``plane_step`` marched sample by sample (the contact cycles' march) from the same sliders, on 11
+    elements (one vector and a padded one) that open, stick and slip: the conditions, each element's
+    force and the sliders equal to the bit (the same operations in the same order)."""
+    from microslip.frequency import _aft_plane, _plane_march
+
+    rng = np.random.default_rng(5)
+    J, Ns = 11, 64
+    kt, kn = rng.uniform(1e6, 1e7, J), rng.uniform(1e6, 1e7, J)
+    gaps, mu = np.linspace(0.0, 2e-7, J), 0.3
+    tau = 2 * np.pi * np.arange(Ns) / Ns
+    t1, t2, n = 1e-7 * np.cos(tau), 0.4e-7 * np.sin(2 * tau), 1.5e-7 + 1e-7 * np.cos(tau)
+    s = rng.normal(scale=1e-7, size=(2, J))
+    st, rec = _aft_plane.march_work(J, Ns)
+    st[:2, :J] = s
+    _aft_plane._period(kt, kn, gaps, mu, mu * kn / kt, t1, t2, n, st, rec)
+    Ti, cond = np.empty((Ns, J, 2)), np.empty((Ns, J), dtype=np.int8)
+    _plane_march.march_plane(kt, kn, gaps, mu, t1, t2, n, s, np.empty((Ns, 2)), np.empty(Ns), Ti, cond)
+    assert set(np.unique(cond)) == {0, 1, 2}  # open, stick and slip all occur
+    np.testing.assert_array_equal(rec[0][:, :J], cond)
+    np.testing.assert_array_equal(rec[4][:, :J], Ti[:, :, 0])
+    np.testing.assert_array_equal(rec[5][:, :J], Ti[:, :, 1])
+    np.testing.assert_array_equal(st[:2, :J], s)
+
+
 def _plain_periods(model, t, n, Ns, periods):
     """The tangential force coefficients (N, (2, 2H+1)) after ``periods`` plain periods from the static step."""
     from microslip.frequency import _aft, _aft_plane
@@ -262,11 +288,11 @@ def _plain_periods(model, t, n, Ns, periods):
     t1, t2, nn = E @ t[0], E @ t[1], E @ n
     rk = model.mu * model.kn / model.kt
     _, a1, a2, _, _ = _aft_plane._static(rk[0], n[0] - model.gaps[0], t[0, 0], t[1, 0])
-    s1, s2 = np.array([a1]), np.array([a2])
-    code, per, C, moved = np.empty((Ns, 1), dtype=np.int8), np.empty((5, Ns, 1)), np.empty((4, 1)), np.empty(1)
+    st, rec = _aft_plane.march_work(1, Ns)
+    st[0, 0], st[1, 0] = a1, a2
     for _ in range(periods):
-        _aft_plane._period(model.kt, model.kn, model.gaps, model.mu, rk, t1, t2, nn, s1, s2, code, *per, C, moved)
-    return np.array([P @ per[3][:, 0], P @ per[4][:, 0]])
+        _aft_plane._period(model.kt, model.kn, model.gaps, model.mu, rk, t1, t2, nn, st, rec)
+    return np.array([P @ rec[4][:, 0], P @ rec[5][:, 0]])
 
 
 def test_an_element_slipping_between_two_nearly_touching_discs_is_periodic():

@@ -66,7 +66,8 @@ import numba as nb
 import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
-from ._aft import _aft_contact, _dft, _diagonal_jacobian, _project, _synthesise, tables
+from ._aft import _aft_contact, _diagonal_jacobian, _project, _synthesise, tables
+from ._simd import MARCH_LANES, add_row_multiples, period_lanes, sample_coefficients, sample_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -161,65 +162,70 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
     return s1, s2
 
 
+#: the sweep's coefficient rows are padded to a multiple of this many values (a multiple of ``_simd.LANES``): its loops
+#: over them then run a whole number of vector steps, never one value at a time
+PAD = 16
+
+
 @lru_cache(maxsize=32)
-def transposed_projection(H: int, Ns: int) -> np.ndarray:
-    """``P.T`` of :func:`~microslip.frequency._aft.tables`, C-contiguous ``(Ns, 2H+1)`` (read-only)."""
-    PT = np.ascontiguousarray(tables(H, Ns)[1].T)
-    PT.setflags(write=False)
-    return PT
+def sweep_tables(H: int, Ns: int) -> np.ndarray:
+    """The sweep's tables, C-contiguous ``(2 Ns + 1, nbp)`` (read-only), ``nbp`` = ``2H+1`` padded to :data:`PAD`.
+
+    Rows ``0 .. Ns-1`` hold ``P.T`` (:func:`~microslip.frequency._aft.tables`), rows ``Ns .. 2 Ns`` its
+    cumulative sums ``cum``; the padding columns are zero.
+    """
+    _, P, _, _, cum = tables(H, Ns)
+    nbasis = 2 * H + 1
+    out = np.zeros((2 * Ns + 1, -(-nbasis // PAD) * PAD))
+    out[:Ns, :nbasis] = P.T
+    out[Ns:, :nbasis] = cum
+    out.setflags(write=False)
+    return out
 
 
-@nb.njit(cache=True, nogil=True, error_model="numpy")
-def _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved):  # pragma: no cover
-    """March every element over one period from sliders ``s1, s2`` (updated in place).
+@nb.njit(cache=True, nogil=True)
+def march_work(J, Ns):  # pragma: no cover - compiled
+    """The march's rows for ``J`` elements over ``Ns`` samples: ``(st (6, Jp), rec (6, Ns, Jp))``.
 
-    Writes, per sample ``k`` and element ``i``, the condition ``code[k, i]``,
-    ``alpha[k, i]`` and the perpendicular ``v = (V1, V2)`` of a slip, and the
-    element's force ``Te1, Te2``; ``C`` (4, J) receives the period map's
-    derivative ``dPhi/ds`` (row-major 2x2 per element), ``moved[i]`` 1 if
-    element ``i`` slipped or opened. A stick costs a comparison; a slip one
-    square root and one division (``s = t - alpha d``, ``T = mu N d / |d|``).
+    ``Jp`` is ``J`` rounded up to a multiple of ``MARCH_LANES`` (:func:`_period`
+    updates that many elements at a time). ``st`` holds the sliders
+    ``s1, s2`` and the period map's derivative ``C`` (4 rows, row-major
+    2x2 per element); ``rec`` the period's records (condition, ``alpha``,
+    ``V1, V2``, the element's force ``Te1, Te2``), each ``(Ns, Jp)``.
+    """
+    Jp = -(-J // MARCH_LANES) * MARCH_LANES
+    return np.empty((6, Jp)), np.empty((6, Ns, Jp))
+
+
+@nb.njit(cache=True, nogil=True)
+def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - compiled
+    """March every element over one period from the sliders ``st[0], st[1]`` (updated in place).
+
+    Writes, per sample ``k`` and element ``i``, the condition ``rec[0, k, i]``
+    (0 open, 1 stick, 2 slip), ``alpha = rec[1, k, i]`` and the
+    perpendicular ``v = rec[2:4, k, i]`` of a slip (0 otherwise), and the
+    element's force ``rec[4:6, k, i]``; ``st[2:6]`` receives the period
+    map's derivative ``dPhi/ds`` (row-major 2x2 per element). The rows are
+    :func:`march_work`'s; the elements past ``J`` (padding) stay open. The
+    element update is :func:`microslip._kernels.plane_step`'s arithmetic,
+    ``MARCH_LANES`` elements at a time (:func:`._simd.period_lanes`).
     """
     J = kt.shape[0]
-    for i in range(J):
-        C[0, i] = 1.0
-        C[1, i] = 0.0
-        C[2, i] = 0.0
-        C[3, i] = 1.0
-        moved[i] = 0.0
+    Jp = st.shape[1]
+    par = np.empty((5, Jp))
+    for i in range(Jp):
+        real = i < J
+        par[0, i] = kt[i] if real else 1.0
+        par[1, i] = rk[i] if real else 0.0
+        par[2, i] = mu * kn[i] if real else 0.0
+        par[3, i] = kn[i] if real else 0.0
+        par[4, i] = gaps[i] if real else np.inf  # never closed
+        st[2, i] = 1.0
+        st[3, i] = 0.0
+        st[4, i] = 0.0
+        st[5, i] = 1.0
     for k in range(t1.shape[0]):
-        tk1 = t1[k]
-        tk2 = t2[k]
-        nk0 = n[k]
-        for i in range(J):
-            s1i = s1[i]
-            s2i = s2[i]
-            f1, f2, _, c, s1[i], s2[i], al, q = plane_step(kt[i], rk[i], mu * kn[i], kn[i], nk0 - gaps[i], tk1, tk2,
-                                                           s1i, s2i)
-            Te1[k, i] = f1
-            Te2[k, i] = f2
-            code[k, i] = c
-            if c == STICK:
-                continue
-            moved[i] = 1.0
-            if c == OPEN:  # the period map forgets
-                C[0, i] = 0.0
-                C[1, i] = 0.0
-                C[2, i] = 0.0
-                C[3, i] = 0.0
-                continue
-            alpha[k, i] = al
-            v1 = -(tk2 - s2i) * q
-            v2 = (tk1 - s1i) * q
-            V1[k, i] = v1
-            V2[k, i] = v2
-            # C <- A C = alpha v v^T C
-            w1 = al * (v1 * C[0, i] + v2 * C[2, i])
-            w2 = al * (v1 * C[1, i] + v2 * C[3, i])
-            C[0, i] = v1 * w1
-            C[1, i] = v1 * w2
-            C[2, i] = v2 * w1
-            C[3, i] = v2 * w2
+        period_lanes(par, st, rec, k, t1[k], t2[k], n[k])
 
 
 @nb.njit(cache=True, nogil=True)
@@ -378,18 +384,22 @@ def _corner_derivative(t1, t2, rk, s1, s2, a, b, E, D):  # pragma: no cover - co
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
-def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
-           code, alpha, V1, V2, Te1, Te2, C, moved, corner):  # pragma: no cover - compiled
+def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
+           corner):  # pragma: no cover - compiled
     """Static step, then periods until every element's slider repeats to ``tol`` (Newton-accelerated).
 
-    On return the arrays of :func:`_period` hold the periodic period;
+    On return the rows of :func:`_period` (``st``, ``rec``: :func:`march_work`) hold the periodic period;
     ``count[i]`` is the number of plain periods since element ``i`` last
-    started from the static step, ``tried[i]`` 1 if a Newton step brought it
+    started from the static step, ``moving[i]`` the last of them in which it
+    slipped or opened (0: none; it stuck through the later ones), ``tried[i]`` 1 if a Newton step brought it
     where it is, 2 if that is a corner of its stick region, the samples
     ``corner[:, i]`` fixing it. Returns the periods marched, ``-1`` past
     ``max_periods``.
     """
     J = kt.shape[0]
+    s1 = st[0]
+    s2 = st[1]
+    C = st[2:]
     el = np.empty((8, J))
     b1, b2 = el[0], el[1]  # slider at the start of the period
     st1, st2 = el[2], el[3]  # after the static step (the restart point)
@@ -406,6 +416,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
         s2[i] = a2
         prev[i] = np.inf
         count[i] = 0
+        moving[i] = 0
         tried[i] = 0
         lam[i] = 1.0
     periods = 0
@@ -413,11 +424,13 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
         for i in range(J):
             b1[i] = s1[i]
             b2[i] = s2[i]
-        _period(kt, kn, gaps, mu, rk, t1, t2, n, s1, s2, code, alpha, V1, V2, Te1, Te2, C, moved)
+        _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec)
         periods += 1
         done = True
         for i in range(J):
             count[i] += 1
+            if C[0, i] != 1.0 or C[1, i] != 0.0 or C[2, i] != 0.0 or C[3, i] != 1.0:  # C = I: stuck throughout
+                moving[i] = count[i]
             r1 = s1[i] - b1[i]
             r2 = s2[i] - b2[i]
             res = max(abs(r1), abs(r2))
@@ -479,6 +492,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
                 newton[i] = 0
                 tried[i] = 0
                 count[i] = 0
+                moving[i] = 0
                 prev[i] = np.inf
                 stepped[i] = 0
         if done:
@@ -488,19 +502,21 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2
 
 
 @nb.njit(cache=True, nogil=True, fastmath=True)
-def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no cover - compiled
+def _element_start(i, kti, code, alpha, V1, V2, PT, cum, B, Y):  # pragma: no cover - compiled
     """The coefficient ``Z = beta (x) I + z (x) w^T`` of the slider at the start of the period.
 
     ``Z = sum_k -kt P[:, k] (x) C_k`` with ``C_k = A_k ... A_0``: the identity
     up to the first slip, ``c_k v_k w^T`` after it (``w`` the first slip's
-    ``v``), zero from the first opening on. Writes ``beta`` (nb) and ``z``
-    (2, nb); returns ``(w1, w2, c, l1, l2)``: ``w``, and ``Phi_s = C_(Ns-1)
+    ``v``), zero from the first opening on. Writes ``beta = B[i]`` (nbp) and
+    ``z = Y[i]`` (2, nbp); returns ``(w1, w2, c, l1, l2)``: ``w``, and ``Phi_s = C_(Ns-1)
     = c l w^T`` (``c = 1``, ``l = w = 0`` for an element that sticks
     throughout, whose ``Phi_s`` is the identity; ``c = 0`` once it opens).
     """
     Ns = PT.shape[0]
     nbasis = PT.shape[1]
+    beta = B[i]
     beta[:] = 0.0
+    z = Y[i]
     z[:] = 0.0
     z1 = z[0]
     z2 = z[1]
@@ -545,102 +561,45 @@ def _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, z):  # pragma: no
             cc *= al * (v1 * l1 + v2 * l2)
         l1 = v1
         l2 = v2
-        f1 = -kti * cc * l1
-        f2 = -kti * cc * l2
-        for p in range(nbasis):
-            z1[p] += f1 * PT[k, p]
-            z2[p] += f2 * PT[k, p]
+        add_row_multiples(Y, i, PT, k, -kti * cc * l1, -kti * cc * l2)
     return w1, w2, cc, l1, l2
 
 
-@nb.njit(cache=True, nogil=True, fastmath=True)
-def _element_columns(i, kti, rki, code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used):  # pragma: no cover
-    """Backward sweep of element ``i``: adds ``Y_m G_m`` to ``U[m]`` (nb, 6) for its slip and open samples.
+@nb.njit(cache=True, nogil=True)
+def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
+    """Backward sweep of the active elements together: ``U[m]`` (6, nbp) receives ``sum Y_m G_m`` over them.
 
-    ``Y = beta (x) I + y (x) w^T`` (``beta`` (nb), ``y`` (2, nb), both
-    overwritten) is the coefficient of the slider at the end of the period;
-    the form is kept through the sweep (a slip makes it ``y (x) v^T``, a
-    stick adds to ``beta``, an opening clears it).
+    For element ``i``, ``Y = beta (x) I + y (x) w^T`` (``beta = B[i]``
+    (nbp), ``y = Y[i]`` (2, nbp), ``w = w[:, i]``, all overwritten) is the
+    coefficient of its slider at the end of the period; the form is kept
+    through the sweep (a slip makes it ``y (x) v^T``, a stick adds
+    ``-kt P[:, m]`` to ``beta``, an opening clears it). ``U[m, 3 a + b]`` is
+    column ``m``'s coefficient row for output ``a`` and input ``b``. Each
+    sample is two vector loops: the elements' coefficients
+    (:func:`._simd.sample_coefficients`, from the records ``rec`` of
+    :func:`_period` and ``KR`` = ``kt, rk`` padded like them), then their
+    contributions to the column and their new ``Y``
+    (:func:`._simd.sample_rows`).
     """
     Ns = PT.shape[0]
-    nbasis = PT.shape[1]
-    y1 = y[0]
-    y2 = y[1]
-    bare = False  # beta known to be zero (after a slip or an opening): the cheaper update
-    hi = Ns  # the stick samples m + 1, ..., hi - 1 are still to be applied to Y
+    order = np.flatnonzero(active)
+    coefs = np.empty((16, w.shape[1]))
     for m in range(Ns - 1, -1, -1):
-        c = code[m, i]
-        if c == STICK:
-            continue
-        if hi > m + 1:
-            for p in range(nbasis):
-                beta[p] -= kti * (cum[hi, p] - cum[m + 1, p])
-            bare = False
-        hi = m
-        Um = U[m]
-        if not used[m]:
-            used[m] = True
-            Um[:] = 0.0
-        if c == OPEN:
-            for p in range(nbasis):
-                Um[p, 0] += beta[p] + y1[p] * w1
-                Um[p, 1] += y1[p] * w2
-                Um[p, 3] += y2[p] * w1
-                Um[p, 4] += beta[p] + y2[p] * w2
-                beta[p] = 0.0
-                y1[p] = 0.0
-                y2[p] = 0.0
-            bare = True
-            continue
-        al = alpha[m, i]
-        v1 = V1[m, i]
-        v2 = V2[m, i]
-        u1 = v2
-        u2 = -v1
-        # G = [I - al v v^T | -rk u]; w^T G = h
-        wv = w1 * v1 + w2 * v2
-        h1 = w1 - al * wv * v1
-        h2 = w2 - al * wv * v2
-        h3 = -rki * (w1 * u1 + w2 * u2)
-        g11 = 1.0 - al * v1 * v1
-        g12 = -al * v1 * v2
-        g22 = 1.0 - al * v2 * v2
-        g13 = -rki * u1
-        g23 = -rki * u2
-        if bare:  # consecutive slips: Y = y (x) w^T
-            awv = al * wv
-            for p in range(nbasis):
-                a1 = y1[p]
-                a2 = y2[p]
-                Um[p, 0] += a1 * h1
-                Um[p, 1] += a1 * h2
-                Um[p, 2] += a1 * h3
-                Um[p, 3] += a2 * h1
-                Um[p, 4] += a2 * h2
-                Um[p, 5] += a2 * h3
-                q = -al * kti * PT[m, p]
-                y1[p] = q * v1 + awv * a1
-                y2[p] = q * v2 + awv * a2
-            w1 = v1
-            w2 = v2
-            continue
-        bare = True
-        for p in range(nbasis):
-            bp = beta[p]
-            a1 = y1[p]
-            a2 = y2[p]
-            Um[p, 0] += bp * g11 + a1 * h1
-            Um[p, 1] += bp * g12 + a1 * h2
-            Um[p, 2] += bp * g13 + a1 * h3
-            Um[p, 3] += bp * g12 + a2 * h1
-            Um[p, 4] += bp * g22 + a2 * h2
-            Um[p, 5] += bp * g23 + a2 * h3
-            q = al * (bp - kti * PT[m, p])
-            y1[p] = q * v1 + al * wv * a1
-            y2[p] = q * v2 + al * wv * a2
-            beta[p] = 0.0
-        w1 = v1
-        w2 = v2
+        sample_coefficients(coefs, rec, KR, w, m)
+        sample_rows(U, m, B, Y, PT, coefs, order, order.size)
+
+
+@nb.njit(cache=True, nogil=True, fastmath=True)
+def _dft_pair(cos2, sin2, a, b, C, S, r):  # pragma: no cover - compiled
+    """:func:`microslip.frequency._aft._dft` of ``a`` and ``b`` into rows ``r`` and ``r + 1`` of ``C, S``."""
+    for j in range(cos2.shape[0]):
+        ca = cb = sa = sb = 0.0
+        for k in range(a.shape[0]):
+            ca += cos2[j, k] * a[k]
+            cb += cos2[j, k] * b[k]
+            sa += sin2[j, k] * a[k]
+            sb += sin2[j, k] * b[k]
+        C[r, j], C[r + 1, j], S[r, j], S[r + 1, j] = ca, cb, sa, sb
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -650,7 +609,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
 
     ``F`` holds the coefficients of ``T1, T2, N``; ``Jac[a, b]`` the
     derivative of output ``a`` with respect to the coefficients of input
-    ``b`` (``t1, t2, n``); ``PT`` is :func:`transposed_projection`. Returns
+    ``b`` (``t1, t2, n``); ``PT`` is :func:`sweep_tables` (``cum`` is not used:
+    the padded one in ``PT`` is). Returns
     the number of periods marched until every element was periodic, or
     ``-1`` if some element was not after ``max_periods``.
     """
@@ -666,14 +626,12 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     _synthesise(E, xn, n)
     T1s, T2s, Nsum = smp[3], smp[4], smp[5]  # the forces' samples
     d11, d12, d22, c1, c2, dcl = smp[6], smp[7], smp[8], smp[9], smp[10], smp[11]  # local derivative sums
-    el = np.empty((4, J))
-    rk, s1, s2, moved = el[0], el[1], el[2], el[3]
-    ivec = np.empty((2, J), dtype=np.int64)
-    count, tried = ivec[0], ivec[1]
-    code = np.empty((Ns, J), dtype=np.int8)
-    per = np.empty((5, Ns, J))  # per sample and element: alpha, v of a slip; the element's force
-    alpha, V1, V2, Te1, Te2 = per[0], per[1], per[2], per[3], per[4]
-    C = np.empty((4, J))
+    rk = np.empty(J)
+    ivec = np.empty((3, J), dtype=np.int64)
+    count, tried, moving = ivec[0], ivec[1], ivec[2]
+    st, rec = march_work(J, Ns)
+    s1, s2 = st[0], st[1]
+    code, alpha, V1, V2, Te1, Te2 = rec[0], rec[1], rec[2], rec[3], rec[4], rec[5]
     size = 0.0
     for k in range(Ns):
         size = max(size, abs(t1[k]) + abs(t2[k]))
@@ -684,64 +642,86 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
     corner = np.empty((2, J), dtype=np.int64)
-    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, count, tried,
-                     code, alpha, V1, V2, Te1, Te2, C, moved, corner)
+    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
+                     corner)
     # -- the periodic period: forces and the local derivatives ---------------------------
+    # (without branches: a slip's records alpha, v are 0 in stick and when open, so its terms add zeros there)
     for k in range(Ns):
         f1 = 0.0
         f2 = 0.0
         fn = 0.0
+        s11 = 0.0
+        s12 = 0.0
+        s22 = 0.0
+        sc1 = 0.0
+        sc2 = 0.0
+        scl = 0.0
         for i in range(J):
             c = code[k, i]
+            closed = c != OPEN
+            stick = c == STICK
             f1 += Te1[k, i]
             f2 += Te2[k, i]
-            if c == OPEN:
-                continue
-            fn += kn[i] * (n[k] - gaps[i])
-            dcl[k] += kn[i]
-            if c == STICK:
-                d11[k] += kt[i]
-                d22[k] += kt[i]
-                continue
+            fn += kn[i] * (n[k] - gaps[i]) if closed else 0.0
+            scl += kn[i] if closed else 0.0
             a = kt[i] * alpha[k, i]
             v1 = V1[k, i]
             v2 = V2[k, i]
-            d11[k] += a * v1 * v1
-            d12[k] += a * v1 * v2
-            d22[k] += a * v2 * v2
+            s11 += kt[i] if stick else a * v1 * v1
+            s12 += a * v1 * v2
+            s22 += kt[i] if stick else a * v2 * v2
             g = mu * kn[i]
-            c1[k] += g * v2
-            c2[k] -= g * v1
+            sc1 += g * v2
+            sc2 -= g * v1
         T1s[k] = f1
         T2s[k] = f2
         Nsum[k] = fn
+        d11[k] = s11
+        d12[k] = s12
+        d22[k] = s22
+        c1[k] = sc1
+        c2[k] = sc2
+        dcl[k] = scl
     _project(P, T1s, T2s, F[0], F[1])
     for p in range(nbasis):
         acc = 0.0
         for k in range(Ns):
             acc += P[p, k] * Nsum[k]
         F[2, p] = acc
-    CS = np.empty((2, nbasis))
+    CS = np.empty((2, 6, nbasis))
+    for row in range(0, 6, 2):  # the DFTs of d11, d12, d22, c1, c2, dcl, two at a time
+        _dft_pair(cos2, sin2, smp[6 + row], smp[7 + row], CS[0], CS[1], row)
     for which in range(7):
-        d = (d11, d12, d12, d22, c1, c2, dcl)[which]
+        row = (0, 1, 1, 2, 3, 4, 5)[which]
         a = (0, 0, 1, 1, 0, 1, 2)[which]
         b = (0, 1, 0, 1, 2, 2, 2)[which]
-        _dft(cos2, sin2, d, CS[0], CS[1])
-        _diagonal_jacobian(CS[0], CS[1], Ns, Jac[a, b])
+        _diagonal_jacobian(CS[0, row], CS[1, row], Ns, Jac[a, b])
     for b in range(2):
         Jac[2, b] = 0.0
     # -- the history parts, element by element -------------------------------------------
-    # column m's coefficients (zeroed when first used), times E[m] at the end; U[m, p, 3 a + b] for output a, input b
-    # (the six of one p together: the sweep's update of all six is one short contiguous store)
-    U = np.empty((Ns, nbasis, 6))
-    used = np.zeros(Ns, dtype=np.bool_)
-    beta = np.empty(nbasis)
-    y = np.empty((2, nbasis))
+    # column m's coefficients, times E[m] at the end; U[m, 3 a + b, p] for output a, input b
+    # (rows of nbp values, padded: the sweep's loops over them vectorise)
+    nbp = PT.shape[1]
+    PTp = PT[:Ns]
+    cump = PT[Ns:]
+    U = np.empty((Ns, 6, nbp))
+    B = np.empty((J, nbp))
+    Y = np.empty((J, 2, nbp))
+    Jp = st.shape[1]
+    w = np.zeros((3, Jp))  # w, and whether beta is known to be zero (not yet)
+    KR = np.zeros((2, Jp))
+    KR[0, :J] = kt
+    KR[1, :J] = rk
+    active = np.empty(J, dtype=np.bool_)
     D = np.empty((2, 3, nbasis))
     for i in range(J):
-        kti = kt[i]
-        w1, w2, cc, l1, l2 = _element_start(i, kti, code, alpha, V1, V2, PT, cum, beta, y)
+        beta = B[i]
+        y = Y[i]
+        w1, w2, cc, l1, l2 = _element_start(i, kt[i], code, alpha, V1, V2, PTp, cump, B, Y)
+        w[0, i] = w1
+        w[1, i] = w2
         stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
+        active[i] = not stuck
         rho = 1.0 if stuck else cc * (l1 * w1 + l2 * w2)  # the eigenvalue of Phi_s = c l w^T
         if tried[i] == 2 or (not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN):
             # the slider at the start of the period is (nearly) neutral to the period map: at a corner of its
@@ -751,7 +731,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             if tried[i] == 2:
                 _corner_derivative(t1, t2, rk[i], s1[i], s2[i], corner[0, i], corner[1, i], E, D)
             else:
-                _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, count[i] - 1, D)
+                # (the periods after the last in which it slipped or opened leave the derivative as it is)
+                _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, min(count[i] - 1, moving[i]),
+                                    D)
             for b in range(3):
                 for q in range(nbasis):
                     wd = w1 * D[0, b, q] + w2 * D[1, b, q]
@@ -759,8 +741,6 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
                         da = D[a, b, q]
                         for p in range(nbasis):
                             Jac[a, b, p, q] += beta[p] * da + y[a, p] * wd
-            if stuck:
-                continue
             beta[:] = 0.0
             y[:] = 0.0
         elif cc != 0.0:
@@ -770,26 +750,17 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             for p in range(nbasis):
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
-        _element_columns(i, kti, rk[i], code, alpha, V1, V2, PT, cum, beta, y, w1, w2, U, used)
-    # -- the used columns times their basis rows: one matrix product ------------------------------
-    rows = np.flatnonzero(used)
-    if rows.size == 0:
+    _sweep(rec, KR, PTp, B, Y, w, active, U)
+    # -- the columns times their basis rows: one matrix product ---------------------------------------
+    if not active.any():
         return periods
-    if rows.size < Ns:  # gather the used rows
-        Uc = np.empty((rows.size, 6 * nbasis))
-        Ec = np.empty((rows.size, nbasis))
-        for j in range(rows.size):
-            Uc[j] = U[rows[j]].reshape(6 * nbasis)
-            Ec[j] = E[rows[j]]
-        acc = np.dot(Uc.T, Ec)
-    else:
-        acc = np.dot(U.reshape(Ns, 6 * nbasis).T, E)
-    for p in range(nbasis):
-        for r in range(6):
-            a = r // 3
-            b = r % 3
+    acc = np.dot(U.reshape(Ns, 6 * nbp).T, E)
+    for r in range(6):
+        a = r // 3
+        b = r % 3
+        for p in range(nbasis):
             for q in range(nbasis):
-                Jac[a, b, p, q] += acc[p * 6 + r, q]
+                Jac[a, b, p, q] += acc[r * nbp + p, q]
     return periods
 
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from .._kernels import plane_step
 from ._aft import _synthesise
-from ._aft_plane import PERIODIC_ULPS, _march
+from ._aft_plane import PERIODIC_ULPS, _march, march_work
 
 #: an empty array for the per-element records a caller does not want
 NO_ELEMENTS = np.empty((0, 0, 2))
@@ -81,22 +81,15 @@ def periodic_state_of_samples(kt, kn, gaps, mu, m1, m2, mn, t1, t2, n, max_perio
         for i in range(J):
             rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
-    ivec = np.empty((2, J), dtype=np.int64)
-    per = np.empty((5, Ns, J))
-    code = np.empty((Ns, J), dtype=np.int8)
-    C = np.empty((4, J))
-    moved = np.empty(J)
-    s1 = np.empty(J)
-    s2 = np.empty(J)
+    ivec = np.empty((3, J), dtype=np.int64)
+    st, rec = march_work(J, Ns)
     x1 = np.array([m1])
     x2 = np.array([m2])
     xn = np.array([mn])
-    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, s1, s2, ivec[0], ivec[1],
-                     code, per[0], per[1], per[2], per[3], per[4], C, moved, np.empty((2, J), dtype=np.int64))
+    periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, ivec[0], ivec[1],
+                     ivec[2], np.empty((2, J), dtype=np.int64))
     # the march ends with the periodic period; its start is one period back from the end, to 32 ulps
-    for i in range(J):
-        s[0, i] = s1[i]
-        s[1, i] = s2[i]
+    s[:] = st[:2, :J]
     return periods
 
 

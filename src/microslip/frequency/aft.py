@@ -377,7 +377,7 @@ def aft_plane(model: MicroslipModel, t, n, *, samples: int | None = None,
     Jac = np.empty((3, 3, nb, nb))
     periods = _aft_plane._aft_plane(model.kt, model.kn, model.gaps, model.mu, np.ascontiguousarray(t[0]),
                                     np.ascontiguousarray(t[1]), np.ascontiguousarray(n), *_aft.tables(H, Ns),
-                                    _aft_plane.transposed_projection(H, Ns), max_periods, F, Jac)
+                                    _aft_plane.sweep_tables(H, Ns), max_periods, F, Jac)
     check_periodic(int(periods), max_periods)
     return PlaneAFTResult(F[:2].copy(), F[2].copy(), Jac[:2, :2].copy(), Jac[:2, 2].copy(), Jac[2, 2].copy(),
                           int(periods), Ns)

@@ -189,7 +189,7 @@ class HarmonicBalance:
         xt, xn = self._local(x)
         if self.planar.any():
             _aft_plane.aft_mixed_batch(*self.packed, self.planar, xt, self._local2(x), xn, *self.tables,
-                                       _aft_plane.transposed_projection(self.H, self.samples), self.max_periods,
+                                       _aft_plane.sweep_tables(self.H, self.samples), self.max_periods,
                                        self.FT, self.FN, self.JTt, self.JTn, self.JNn, self.FT2, self.JT12, self.JT21,
                                        self.JT22, self.JT2n, self.periods)
         else:

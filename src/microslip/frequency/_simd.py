@@ -1,0 +1,363 @@
+"""Explicit vector loops for the AFT on the contact plane: its periods and its backward sweep (private).
+
+The sweep (:func:`microslip.frequency._aft_plane._sweep`) adds, at each sample, every element's
+contribution to six coefficient rows of ``nbp`` values (16 at H = 7) and updates its three state rows.
+Written as plain loops, the compiler vectorises them only behind run-time checks that the rows do not
+overlap (28 pairwise comparisons for one element), which cost more than the 16 values they guard. The
+rows never overlap (they are distinct rows of arrays the kernel allocates), so :func:`sample_rows` is
+written here directly in LLVM's vector form, ``LANES`` values at a time, without those checks, the six
+sums of a sample kept in registers while the elements add to them. On a machine without vectors that
+wide LLVM splits each operation into narrower ones: the results are the same everywhere.
+
+The period (:func:`microslip.frequency._aft_plane._period`) updates every element at every sample; a
+compiled loop over the elements calling :func:`microslip._kernels.plane_step` vectorises likewise only
+behind run-time checks between its dozen rows, repeated at every sample (at J = 8 slower than one
+element at a time). :func:`period_lanes` is that loop in vector form, without the checks.
+"""
+
+from __future__ import annotations
+
+from llvmlite import ir
+from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
+
+#: values per vector operation; the rows' length must be a multiple of it
+LANES = 16
+
+_DOUBLE = ir.DoubleType()
+_VECTOR = ir.VectorType(_DOUBLE, LANES)
+#: elements per vector operation in the period's march (four: the march waits on each sample's square root and
+#: division, whose latency is shorter on four values than on eight, and two vectors of four overlap)
+MARCH_LANES = 4
+_MARCH_VECTOR = ir.VectorType(_DOUBLE, MARCH_LANES)
+
+
+def _splat(builder, x, vector=_VECTOR):
+    """The scalar ``x`` in every lane."""
+    v = builder.insert_element(ir.Constant(vector, ir.Undefined), x, ir.Constant(ir.IntType(32), 0))
+    return builder.shuffle_vector(v, ir.Constant(vector, ir.Undefined),
+                                  ir.Constant(ir.VectorType(ir.IntType(32), vector.count), [0] * vector.count))
+
+
+def _fma(builder):
+    """``fma(a, b, c) = a b + c`` on vectors of ``LANES`` values: one fused operation where the machine has
+    it, a product and a sum where it has not (``llvm.fmuladd``, not ``llvm.fma``, which would call a slow
+    exact emulation there)."""
+    fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_VECTOR, [_VECTOR] * 3),
+                                        "llvm.fmuladd.v%df64" % LANES)
+    return lambda a, b, c: builder.call(fn, [a, b, c])
+
+
+def _vector_loop(builder, count, step, vector, name, body):
+    """Emit ``for j in range(0, count, step): body(at)``, ``count`` a multiple of ``step``.
+
+    ``at(ptr)`` is the pointer to the ``vector`` of values from ``ptr[j]`` on;
+    ``body`` may add blocks of its own. The builder ends after the loop.
+    """
+    index = count.type
+    entry = builder.block
+    loop = builder.append_basic_block(name + ".loop")
+    done = builder.append_basic_block(name + ".done")
+    builder.cbranch(builder.icmp_signed(">", count, ir.Constant(index, 0)), loop, done)
+    builder.position_at_end(loop)
+    j = builder.phi(index)
+    j.add_incoming(ir.Constant(index, 0), entry)
+    body(lambda ptr: builder.bitcast(builder.gep(ptr, [j]), vector.as_pointer()))
+    following = builder.add(j, ir.Constant(index, step))
+    j.add_incoming(following, builder.block)
+    builder.cbranch(builder.icmp_signed("<", following, count), loop, done)
+    builder.position_at_end(done)
+
+
+@intrinsic
+def add_row_multiples(typingctx, Y, i, PT, k, f1, f2):  # pragma: no cover - compiled
+    """``Y[i, 0] += f1 PT[k]``, ``Y[i, 1] += f2 PT[k]`` over the ``nbp`` columns (a multiple of ``LANES``).
+
+    ``Y`` (J, 2, nbp) and ``PT`` (Ns, nbp) C-contiguous float64 (the forward
+    pass of the sweep, :func:`microslip.frequency._aft_plane._element_start`).
+    """
+    sig = types.void(Y, i, PT, k, f1, f2)
+
+    def codegen(context, builder, signature, args):
+        yv, iv, pv, kv, f1v, f2v = args
+        ya = context.make_array(signature.args[0])(context, builder, yv)
+        pa = context.make_array(signature.args[2])(context, builder, pv)
+        nbp = cgutils.unpack_tuple(builder, pa.shape, 2)[1]
+        index = nbp.type
+        y1 = builder.gep(ya.data, [builder.mul(iv, builder.add(nbp, nbp))])
+        y2 = builder.gep(y1, [nbp])
+        prow = builder.gep(pa.data, [builder.mul(kv, nbp)])
+        f1, f2 = _splat(builder, f1v), _splat(builder, f2v)
+        fma = _fma(builder)
+
+        def body(at):
+            pt = builder.load(at(prow), align=8)
+            builder.store(fma(f1, pt, builder.load(at(y1), align=8)), at(y1), align=8)
+            builder.store(fma(f2, pt, builder.load(at(y2), align=8)), at(y2), align=8)
+
+        _vector_loop(builder, nbp, LANES, _VECTOR, "add_row_multiples", body)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+#: the coefficients of one element at one sample in :func:`sample_rows`, in this order
+SAMPLE_COEFFICIENTS = ("g11", "g12", "g13", "g22", "g23", "h1", "h2", "h3", "cb", "cp", "v1", "v2", "cy", "sb", "sp",
+                       "full")
+
+
+@intrinsic
+def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no cover - compiled
+    """Sample ``m`` of the sweep for the elements ``order[:count]``, over the ``nbp`` columns (a multiple of
+    ``LANES``).
+
+    ``U`` (Ns, 6, nbp), ``B`` (J, nbp), ``Y`` (J, 2, nbp), ``PT`` (Ns, nbp)
+    and ``coefs`` (16, Jp) C-contiguous float64, ``order`` int64. With
+    element ``i``'s ``beta = B[i]``, ``y = Y[i]`` and coefficients
+    ``coefs[:, i]`` (:data:`SAMPLE_COEFFICIENTS`, ``g21 = g12``;
+    :func:`sample_coefficients`)::
+
+        U[m, 3a + b] = sum over the elements of (beta g_ab + y_a h_b)     (a = 0, 1; b = 0, 1, 2)
+        y_a = (cb beta + cp PT[m]) v_a + cy y_a
+        beta = sb beta + sp PT[m]
+
+    An element whose ``full`` is 0 has ``beta = 0`` before and after (it
+    slips or opens after a slip or an opening): its ``beta`` terms are left
+    out. ``U[m]`` is written once, each element's rows read and written once.
+    """
+    sig = types.void(U, m, B, Y, PT, coefs, order, count)
+
+    def codegen(context, builder, signature, args):
+        Uv, mv, bv, yv, pv, cv, ov, nv = args
+        Ua, ba, ya, pa, ca, oa = (context.make_array(signature.args[j])(context, builder, args[j])
+                                  for j in (0, 2, 3, 4, 5, 6))
+        shape = cgutils.unpack_tuple(builder, Ua.shape, 3)
+        nbp = shape[2]
+        index = nbp.type
+
+        def const(v):
+            return ir.Constant(index, v)
+
+        base = builder.mul(mv, builder.mul(shape[1], nbp))
+        urows = [builder.gep(Ua.data, [builder.add(base, builder.mul(const(r), nbp))]) for r in range(6)]
+        prow = builder.gep(pa.data, [builder.mul(mv, nbp)])
+        fma = _fma(builder)
+
+        zero = ir.Constant(_VECTOR, [0.0] * LANES)
+        Jp = cgutils.unpack_tuple(builder, ca.shape, 2)[1]
+
+        def chunk(at):  # LANES columns
+            pt = builder.load(at(prow), align=8)
+            chunks = builder.block
+            elements = builder.append_basic_block("sample_rows.elements")
+            stored = builder.append_basic_block("sample_rows.stored")
+            builder.cbranch(builder.icmp_signed(">", nv, const(0)), elements, stored)
+            # over the elements: the six sums stay in registers
+            builder.position_at_end(elements)
+            e = builder.phi(index)
+            e.add_incoming(const(0), chunks)
+            acc = [builder.phi(_VECTOR) for _ in range(6)]
+            for a in acc:
+                a.add_incoming(zero, chunks)
+            i = builder.load(builder.gep(oa.data, [e]))
+
+            def coefficient(j):
+                return builder.load(builder.gep(ca.data, [builder.add(builder.mul(const(j), Jp), i)]))
+
+            h1, h2, h3, cp, v1, v2, cy = (_splat(builder, coefficient(j)) for j in (5, 6, 7, 9, 10, 11, 12))
+            y1 = builder.gep(ya.data, [builder.mul(i, builder.add(nbp, nbp))])
+            y2 = builder.gep(y1, [nbp])
+            a1, a2 = (builder.load(at(ptr), align=8) for ptr in (y1, y2))
+            h = (h1, h2, h3, h1, h2, h3)
+            full = builder.append_basic_block("sample_rows.full")
+            bare = builder.append_basic_block("sample_rows.bare")
+            added = builder.append_basic_block("sample_rows.added")
+            builder.cbranch(builder.fcmp_ordered("!=", coefficient(15), ir.Constant(_DOUBLE, 0.0)), full, bare)
+            sums = {}
+            for block in (full, bare):
+                builder.position_at_end(block)
+                news = [fma(a1 if r < 3 else a2, h[r], acc[r]) for r in range(6)]
+                q = builder.fmul(pt, cp)
+                if block is full:  # the beta terms
+                    g11, g12, g13, g22, g23, cb, sb, sp = (_splat(builder, coefficient(j))
+                                                           for j in (0, 1, 2, 3, 4, 8, 13, 14))
+                    brow = builder.gep(ba.data, [builder.mul(i, nbp)])
+                    bp = builder.load(at(brow), align=8)
+                    news = [fma(bp, g, v) for g, v in zip((g11, g12, g13, g12, g22, g23), news)]
+                    q = fma(cb, bp, q)
+                    builder.store(fma(pt, sp, builder.fmul(sb, bp)), at(brow), align=8)
+                builder.store(fma(q, v1, builder.fmul(cy, a1)), at(y1), align=8)
+                builder.store(fma(q, v2, builder.fmul(cy, a2)), at(y2), align=8)
+                builder.branch(added)
+                sums[block] = (builder.block, news)
+            builder.position_at_end(added)
+            new = [builder.phi(_VECTOR) for _ in range(6)]
+            for block_end, news in sums.values():
+                for phi, v in zip(new, news):
+                    phi.add_incoming(v, block_end)
+            following = builder.add(e, const(1))
+            for a, v in zip(acc, new):
+                a.add_incoming(v, added)
+            e.add_incoming(following, added)
+            builder.cbranch(builder.icmp_signed("<", following, nv), elements, stored)
+            # the column's six rows, written once
+            builder.position_at_end(stored)
+            totals = [builder.phi(_VECTOR) for _ in range(6)]
+            for total, v in zip(totals, new):
+                total.add_incoming(zero, chunks)
+                total.add_incoming(v, added)
+            for total, ptr in zip(totals, urows):
+                builder.store(total, at(ptr), align=8)
+
+        _vector_loop(builder, nbp, LANES, _VECTOR, "sample_rows", chunk)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@intrinsic
+def period_lanes(typingctx, par, st, rec, k, tx, ty, n):  # pragma: no cover - compiled
+    """Sample ``k`` of the AFT's period on the plane for every element, ``MARCH_LANES`` elements at a time.
+
+    The arithmetic of :func:`microslip._kernels.plane_step`, operation for
+    operation (no fused multiply-adds: the same numbers bit for bit; a
+    compiled loop over the elements calling it stays one element at a time,
+    see the module's note), on rows of ``Jp`` elements (a multiple of
+    ``MARCH_LANES``), all C-contiguous
+    float64: ``par`` (5, Jp) ``kt, mu kn / kt, mu kn, kn, gap``; ``st``
+    (6, Jp) the sliders ``s1, s2`` before the sample (updated) and the
+    period map's derivative so far ``C`` (2x2 per element, row-major,
+    updated: ``alpha v v^T C`` in slip, unchanged in stick, 0 when open);
+    ``rec`` (6, Ns, Jp) receives at ``[:, k]`` the condition (0 open, 1
+    stick, 2 slip, as a float), ``alpha = r / |d|`` and ``v = (-d2, d1) /
+    |d|`` of a slip (0 otherwise) and the element's force ``T1, T2``.
+    ``tx, ty, n`` are the sample's motion.
+    """
+    sig = types.void(par, st, rec, k, tx, ty, n)
+
+    def codegen(context, builder, signature, args):
+        pv, sv, rv, kv, txv, tyv, nv = args
+        pa = context.make_array(signature.args[0])(context, builder, pv)
+        sa = context.make_array(signature.args[1])(context, builder, sv)
+        ra = context.make_array(signature.args[2])(context, builder, rv)
+        Jp = cgutils.unpack_tuple(builder, pa.shape, 2)[1]
+        Ns = cgutils.unpack_tuple(builder, ra.shape, 3)[1]
+        index = Jp.type
+
+        def const(v):
+            return ir.Constant(index, v)
+
+        prow = [builder.gep(pa.data, [builder.mul(const(r), Jp)]) for r in range(5)]
+        srow = [builder.gep(sa.data, [builder.mul(const(r), Jp)]) for r in range(6)]
+        rrow = [builder.gep(ra.data, [builder.mul(builder.add(builder.mul(const(r), Ns), kv), Jp)]) for r in range(6)]
+        tx, ty, nk0 = (_splat(builder, v, _MARCH_VECTOR) for v in (txv, tyv, nv))
+        zero = ir.Constant(_MARCH_VECTOR, [0.0] * MARCH_LANES)
+        one = ir.Constant(_MARCH_VECTOR, [1.0] * MARCH_LANES)
+        two = ir.Constant(_MARCH_VECTOR, [2.0] * MARCH_LANES)
+        sqrt_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_MARCH_VECTOR, [_MARCH_VECTOR]),
+                                                 "llvm.sqrt.v%df64" % MARCH_LANES)
+        mul, sub, add, select = builder.fmul, builder.fsub, builder.fadd, builder.select
+
+        def lanes(at):
+            kt, rk, mkn, _, gap = (builder.load(at(p), align=8) for p in prow)
+            s1, s2, c0, c1, c2, c3 = (builder.load(at(p), align=8) for p in srow)
+            # plane_step
+            nk = sub(nk0, gap)
+            closed = builder.fcmp_ordered(">", nk, zero)
+            r = mul(rk, nk)
+            dx = sub(tx, s1)
+            dy = sub(ty, s2)
+            dd2 = add(mul(dx, dx), mul(dy, dy))
+            slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
+            q = builder.fdiv(one, builder.call(sqrt_fn, [dd2]))
+            al = mul(r, q)
+            g = mul(mul(mkn, nk), q)
+            T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
+            T2 = select(closed, select(slipped, mul(g, dy), mul(kt, dy)), zero)
+            n1 = select(closed, select(slipped, sub(tx, mul(al, dx)), s1), tx)
+            n2 = select(closed, select(slipped, sub(ty, mul(al, dy)), s2), ty)
+            code = select(closed, select(slipped, two, one), zero)
+            # the period map's derivative: C <- alpha v v^T C in slip, kept in stick, 0 when open
+            slip = builder.and_(closed, slipped)
+            stick = builder.and_(closed, builder.xor(slipped, ir.Constant(slipped.type, [True] * MARCH_LANES)))
+            v1 = mul(builder.fneg(dy), q)
+            v2 = mul(dx, q)
+            w1 = mul(al, add(mul(v1, c0), mul(v2, c2)))
+            w2 = mul(al, add(mul(v1, c1), mul(v2, c3)))
+            C = [select(slip, mul(vv, ww), select(stick, cc, zero))
+                 for vv, ww, cc in ((v1, w1, c0), (v1, w2, c1), (v2, w1, c2), (v2, w2, c3))]
+            for val, ptr in zip((n1, n2, *C), srow):
+                builder.store(val, at(ptr), align=8)
+            for val, ptr in zip((code, select(slip, al, zero), select(slip, v1, zero), select(slip, v2, zero), T1,
+                                 T2), rrow):
+                builder.store(val, at(ptr), align=8)
+
+        _vector_loop(builder, Jp, MARCH_LANES, _MARCH_VECTOR, "period_lanes", lanes)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@intrinsic
+def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - compiled
+    """Every element's coefficients for sample ``m`` of the sweep, ``MARCH_LANES`` elements at a time.
+
+    ``coefs`` (16, Jp) receives :data:`SAMPLE_COEFFICIENTS` of each element
+    (the rows :func:`sample_rows` reads); ``rec`` (6, Ns, Jp) is the
+    periodic period's records (:func:`period_lanes`: condition, ``alpha``,
+    ``v``), ``KR`` (2, Jp) the elements' ``kt`` and ``rk = mu kn / kt``,
+    ``w`` (3, Jp) the ``w`` of each element's ``Y = beta I + y w^T``, set to
+    ``v`` by a slip, and whether its ``beta`` is known to be zero (1: after
+    a slip or an opening; 0: not known, or after a stick) for ``full``, 1
+    when the ``beta`` terms are needed. With ``G = [I - alpha v v^T | -rk u]`` (``u = (v2,
+    -v1)``; ``[I | 0]`` when open, where the records' ``alpha, v`` are 0)
+    and ``h = w^T G``: ``g = G`` (``g21 = g12``), ``cb = alpha``, ``cp =
+    -alpha kt``, ``cy = alpha w.v``, ``sb = sp = 0``; in stick ``g = h = 0``,
+    ``cb = cp = v = 0``, ``cy = sb = 1``, ``sp = -kt`` (``y`` kept, ``beta -=
+    kt P[:, m]``).
+    """
+    sig = types.void(coefs, rec, KR, w, m)
+
+    def codegen(context, builder, signature, args):
+        cv, rv, kv, wv, mv = args
+        ca, ra, ka, wa = (context.make_array(signature.args[j])(context, builder, args[j]) for j in range(4))
+        Jp = cgutils.unpack_tuple(builder, ca.shape, 2)[1]
+        Ns = cgutils.unpack_tuple(builder, ra.shape, 3)[1]
+        index = Jp.type
+
+        def const(v):
+            return ir.Constant(index, v)
+
+        def row(data, r):
+            return builder.gep(data, [builder.mul(const(r), Jp)])
+
+        rrow = [builder.gep(ra.data, [builder.mul(builder.add(builder.mul(const(r), Ns), mv), Jp)]) for r in range(4)]
+        V = _MARCH_VECTOR
+        zero = ir.Constant(V, [0.0] * MARCH_LANES)
+        one = ir.Constant(V, [1.0] * MARCH_LANES)
+        mul, sub, add, select, neg = builder.fmul, builder.fsub, builder.fadd, builder.select, builder.fneg
+
+        def lanes(at):
+            code, al, v1, v2 = (builder.load(at(r), align=8) for r in rrow)
+            kt, rk = (builder.load(at(row(ka.data, r)), align=8) for r in range(2))
+            w1, w2, bare = (builder.load(at(row(wa.data, r)), align=8) for r in range(3))
+            stick = builder.fcmp_ordered("==", code, one)
+            wv = add(mul(w1, v1), mul(w2, v2))
+            awv = mul(al, wv)
+            slip = (sub(one, mul(mul(al, v1), v1)), neg(mul(mul(al, v1), v2)), neg(mul(rk, v2)),
+                    sub(one, mul(mul(al, v2), v2)), mul(rk, v1), sub(w1, mul(awv, v1)), sub(w2, mul(awv, v2)),
+                    neg(mul(rk, sub(mul(w1, v2), mul(w2, v1)))), al, neg(mul(al, kt)), v1, v2, awv, zero, zero)
+            held = (zero,) * 12 + (one, one, neg(kt))
+            for r, (a, b) in enumerate(zip(slip, held)):
+                builder.store(select(stick, b, a), at(row(ca.data, r)), align=8)
+            builder.store(select(stick, one, sub(one, bare)), at(row(ca.data, 15)), align=8)
+            builder.store(select(stick, zero, one), at(row(wa.data, 2)), align=8)
+            moved = builder.fcmp_ordered("==", code, ir.Constant(V, [2.0] * MARCH_LANES))
+            builder.store(select(moved, v1, w1), at(row(wa.data, 0)), align=8)
+            builder.store(select(moved, v2, w2), at(row(wa.data, 1)), align=8)
+
+        _vector_loop(builder, Jp, MARCH_LANES, V, "sample_coefficients", lanes)
+        return context.get_dummy_value()
+
+    return sig, codegen
