@@ -36,8 +36,8 @@ def friction_work_batch(kt, kn, gaps, offsets, mu, t, n, t0, n0, max_periods, wo
         lo, hi = offsets[c], offsets[c + 1]
         J = hi - lo
         k, kn_c, g = kt[lo:hi], kn[lo:hi], gaps[lo:hi]
-        tc, nc_ = t[c], n[c]
-        n_min, n_max = nc_.min(), nc_.max()
+        t_c, n_c = t[c], n[c]
+        n_min, n_max = n_c.min(), n_c.max()
         opens[c] = False
         for i in range(J):
             if n_min <= g[i] and n_max > g[i]:
@@ -50,7 +50,7 @@ def friction_work_batch(kt, kn, gaps, offsets, mu, t, n, t0, n0, max_periods, wo
         before = np.empty(J)
         for _ in range(max_periods):
             before[:] = s
-            march(k, kn_c, g, mu[c], tc, nc_, s, T, N, no_work, Ti, cond)
+            march(k, kn_c, g, mu[c], t_c, n_c, s, T, N, no_work, Ti, cond)
             same = True
             for i in range(J):
                 if before[i] != s[i]:
@@ -63,6 +63,6 @@ def friction_work_batch(kt, kn, gaps, offsets, mu, t, n, t0, n0, max_periods, wo
             p = m - 1 if m > 0 else Ns - 1  # the step into sample 0 starts from the last sample
             for i in range(J):
                 if cond[m, i] != STICK:  # the slider at each sample: T = kt (t - s) in every condition
-                    step = 0.5 * (Ti[m, i] + Ti[p, i]) * ((tc[m] - Ti[m, i] / k[i]) - (tc[p] - Ti[p, i] / k[i]))
+                    step = 0.5 * (Ti[m, i] + Ti[p, i]) * ((t_c[m] - Ti[m, i] / k[i]) - (t_c[p] - Ti[p, i] / k[i]))
                     total += max(step, 0.0)
         work[c] = total
