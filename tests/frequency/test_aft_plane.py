@@ -253,10 +253,10 @@ def test_an_element_on_a_corner_of_its_stick_region_takes_its_derivative_from_th
         np.testing.assert_allclose(exact, approx, atol=1e-6 * k)
 
 
-def test_the_period_eight_elements_at_a_time_is_plane_step_to_the_bit():
-    """The period's element update, ``LANES`` elements at a time in vector form, against the scalar
+def test_the_period_a_pair_of_vectors_at_a_time_is_plane_step_to_the_bit():
+    """The period's element update, two vectors of ``MARCH_LANES`` elements at a time, against the scalar
     ``plane_step`` marched sample by sample (the contact cycles' march) from the same sliders, on 11
-    elements (one vector and a padded one) that open, stick and slip: the conditions, each element's
+    elements (one pass and a padded one) that open, stick and slip: the conditions, each element's
     force and the sliders equal to the bit (the same operations in the same order)."""
     from microslip.frequency import _aft_plane, _plane_march
 

@@ -67,7 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _diagonal_jacobian, _project, _synthesise, tables
-from ._simd import MARCH_LANES, add_row_multiples, period_lanes, sample_coefficients, sample_rows
+from ._simd import MARCH_PAIR, add_row_multiples, period_march, sample_coefficients, sample_rows
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -187,13 +187,13 @@ def sweep_tables(H: int, Ns: int) -> np.ndarray:
 def march_work(J, Ns):  # pragma: no cover - compiled
     """The march's rows for ``J`` elements over ``Ns`` samples: ``(st (6, Jp), rec (6, Ns, Jp))``.
 
-    ``Jp`` is ``J`` rounded up to a multiple of ``MARCH_LANES`` (:func:`_period`
+    ``Jp`` is ``J`` rounded up to a multiple of ``MARCH_PAIR`` (:func:`_period`
     updates that many elements at a time). ``st`` holds the sliders
     ``s1, s2`` and the period map's derivative ``C`` (4 rows, row-major
     2x2 per element); ``rec`` the period's records (condition, ``alpha``,
     ``V1, V2``, the element's force ``Te1, Te2``), each ``(Ns, Jp)``.
     """
-    Jp = -(-J // MARCH_LANES) * MARCH_LANES
+    Jp = -(-J // MARCH_PAIR) * MARCH_PAIR
     return np.empty((6, Jp)), np.empty((6, Ns, Jp))
 
 
@@ -208,7 +208,7 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - com
     map's derivative ``dPhi/ds`` (row-major 2x2 per element). The rows are
     :func:`march_work`'s; the elements past ``J`` (padding) stay open. The
     element update is :func:`microslip._kernels.plane_step`'s arithmetic,
-    ``MARCH_LANES`` elements at a time (:func:`._simd.period_lanes`).
+    ``MARCH_PAIR`` elements at a time (:func:`._simd.period_march`).
     """
     J = kt.shape[0]
     Jp = st.shape[1]
@@ -224,8 +224,7 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - com
         st[3, i] = 0.0
         st[4, i] = 0.0
         st[5, i] = 1.0
-    for k in range(t1.shape[0]):
-        period_lanes(par, st, rec, k, t1[k], t2[k], n[k])
+    period_march(par, st, rec, t1, t2, n)
 
 
 @nb.njit(cache=True, nogil=True)

@@ -12,7 +12,7 @@ wide LLVM splits each operation into narrower ones: the results are the same eve
 The period (:func:`microslip.frequency._aft_plane._period`) updates every element at every sample; a
 compiled loop over the elements calling :func:`microslip._kernels.plane_step` vectorises likewise only
 behind run-time checks between its dozen rows, repeated at every sample (at J = 8 slower than one
-element at a time). :func:`period_lanes` is that loop in vector form, without the checks.
+element at a time). :func:`period_march` is that loop in vector form, without the checks, a whole period per call.
 """
 
 from __future__ import annotations
@@ -216,84 +216,143 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
     return sig, codegen
 
 
+#: elements per pass of :func:`period_march`: two vectors of ``MARCH_LANES`` marched side by side (their chains
+#: of square root and division overlap); the march's rows are padded to a multiple of it
+MARCH_PAIR = 2 * MARCH_LANES
+
+
+def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
+    """:func:`microslip._kernels.plane_step` on ``MARCH_LANES`` elements, with the period map's derivative.
+
+    ``par`` the vectors ``kt, mu kn / kt, mu kn, kn, gap``; ``state`` ``s1, s2, c0 .. c3``; ``tx, ty, nk0``
+    the sample's motion in every lane. Returns the new state and the records ``(code, alpha, v1, v2, T1,
+    T2)`` (see :func:`period_march`).
+    """
+    V = _MARCH_VECTOR
+    zero = ir.Constant(V, [0.0] * MARCH_LANES)
+    one = ir.Constant(V, [1.0] * MARCH_LANES)
+    two = ir.Constant(V, [2.0] * MARCH_LANES)
+    mul, sub, add, select = builder.fmul, builder.fsub, builder.fadd, builder.select
+    kt, rk, mkn, _, gap = par
+    s1, s2, c0, c1, c2, c3 = state
+    # plane_step, operation for operation
+    nk = sub(nk0, gap)
+    closed = builder.fcmp_ordered(">", nk, zero)
+    r = mul(rk, nk)
+    dx = sub(tx, s1)
+    dy = sub(ty, s2)
+    dd2 = add(mul(dx, dx), mul(dy, dy))
+    slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
+    q = builder.fdiv(one, builder.call(sqrt_fn, [dd2]))
+    al = mul(r, q)
+    g = mul(mul(mkn, nk), q)
+    T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
+    T2 = select(closed, select(slipped, mul(g, dy), mul(kt, dy)), zero)
+    n1 = select(closed, select(slipped, sub(tx, mul(al, dx)), s1), tx)
+    n2 = select(closed, select(slipped, sub(ty, mul(al, dy)), s2), ty)
+    code = select(closed, select(slipped, two, one), zero)
+    # the period map's derivative: C <- alpha v v^T C in slip, kept in stick, 0 when open
+    slip = builder.and_(closed, slipped)
+    stick = builder.and_(closed, builder.xor(slipped, ir.Constant(slipped.type, [True] * MARCH_LANES)))
+    v1 = mul(builder.fneg(dy), q)
+    v2 = mul(dx, q)
+    w1 = mul(al, add(mul(v1, c0), mul(v2, c2)))
+    w2 = mul(al, add(mul(v1, c1), mul(v2, c3)))
+    C = [select(slip, mul(vv, ww), select(stick, cc, zero))
+         for vv, ww, cc in ((v1, w1, c0), (v1, w2, c1), (v2, w1, c2), (v2, w2, c3))]
+    records = (code, select(slip, al, zero), select(slip, v1, zero), select(slip, v2, zero), T1, T2)
+    return [n1, n2, *C], records
+
+
 @intrinsic
-def period_lanes(typingctx, par, st, rec, k, tx, ty, n):  # pragma: no cover - compiled
-    """Sample ``k`` of the AFT's period on the plane for every element, ``MARCH_LANES`` elements at a time.
+def period_march(typingctx, par, st, rec, t1, t2, n):  # pragma: no cover - compiled
+    """One period of the AFT's march on the plane for every element, ``MARCH_PAIR`` elements per pass.
 
     The arithmetic of :func:`microslip._kernels.plane_step`, operation for
     operation (no fused multiply-adds: the same numbers bit for bit; a
     compiled loop over the elements calling it stays one element at a time,
-    see the module's note), on rows of ``Jp`` elements (a multiple of
-    ``MARCH_LANES``), all C-contiguous
+    see the module's note). Each pass marches two vectors of
+    ``MARCH_LANES`` elements through every sample side by side, their
+    sliders and derivatives held in registers between samples. Rows of
+    ``Jp`` elements (a multiple of ``MARCH_PAIR``), all C-contiguous
     float64: ``par`` (5, Jp) ``kt, mu kn / kt, mu kn, kn, gap``; ``st``
-    (6, Jp) the sliders ``s1, s2`` before the sample (updated) and the
-    period map's derivative so far ``C`` (2x2 per element, row-major,
-    updated: ``alpha v v^T C`` in slip, unchanged in stick, 0 when open);
-    ``rec`` (6, Ns, Jp) receives at ``[:, k]`` the condition (0 open, 1
-    stick, 2 slip, as a float), ``alpha = r / |d|`` and ``v = (-d2, d1) /
-    |d|`` of a slip (0 otherwise) and the element's force ``T1, T2``.
-    ``tx, ty, n`` are the sample's motion.
+    (6, Jp) the sliders ``s1, s2`` at the start of the period (updated to
+    its end) and the period map's derivative so far ``C`` (2x2 per element,
+    row-major, updated: ``alpha v v^T C`` in slip, unchanged in stick, 0
+    when open); ``rec`` (6, Ns, Jp) receives at ``[:, k]`` the condition of
+    sample ``k`` (0 open, 1 stick, 2 slip, as a float), ``alpha = r / |d|``
+    and ``v = (-d2, d1) / |d|`` of a slip (0 otherwise) and the element's
+    force ``T1, T2``. ``t1, t2, n`` (Ns,), ``Ns >= 1``, are the period's
+    motion.
     """
-    sig = types.void(par, st, rec, k, tx, ty, n)
+    sig = types.void(par, st, rec, t1, t2, n)
 
     def codegen(context, builder, signature, args):
-        pv, sv, rv, kv, txv, tyv, nv = args
-        pa = context.make_array(signature.args[0])(context, builder, pv)
-        sa = context.make_array(signature.args[1])(context, builder, sv)
-        ra = context.make_array(signature.args[2])(context, builder, rv)
+        pa, sa, ra, xa, ya, na = (context.make_array(signature.args[j])(context, builder, args[j]) for j in range(6))
         Jp = cgutils.unpack_tuple(builder, pa.shape, 2)[1]
         Ns = cgutils.unpack_tuple(builder, ra.shape, 3)[1]
         index = Jp.type
+        V = _MARCH_VECTOR
+        sqrt_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(V, [V]),
+                                                 "llvm.sqrt.v%df64" % MARCH_LANES)
 
         def const(v):
             return ir.Constant(index, v)
 
-        prow = [builder.gep(pa.data, [builder.mul(const(r), Jp)]) for r in range(5)]
-        srow = [builder.gep(sa.data, [builder.mul(const(r), Jp)]) for r in range(6)]
-        rrow = [builder.gep(ra.data, [builder.mul(builder.add(builder.mul(const(r), Ns), kv), Jp)]) for r in range(6)]
-        tx, ty, nk0 = (_splat(builder, v, _MARCH_VECTOR) for v in (txv, tyv, nv))
-        zero = ir.Constant(_MARCH_VECTOR, [0.0] * MARCH_LANES)
-        one = ir.Constant(_MARCH_VECTOR, [1.0] * MARCH_LANES)
-        two = ir.Constant(_MARCH_VECTOR, [2.0] * MARCH_LANES)
-        sqrt_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_MARCH_VECTOR, [_MARCH_VECTOR]),
-                                                 "llvm.sqrt.v%df64" % MARCH_LANES)
-        mul, sub, add, select = builder.fmul, builder.fsub, builder.fadd, builder.select
+        def vec(ptr):
+            return builder.bitcast(ptr, V.as_pointer())
 
-        def lanes(at):
-            kt, rk, mkn, _, gap = (builder.load(at(p), align=8) for p in prow)
-            s1, s2, c0, c1, c2, c3 = (builder.load(at(p), align=8) for p in srow)
-            # plane_step
-            nk = sub(nk0, gap)
-            closed = builder.fcmp_ordered(">", nk, zero)
-            r = mul(rk, nk)
-            dx = sub(tx, s1)
-            dy = sub(ty, s2)
-            dd2 = add(mul(dx, dx), mul(dy, dy))
-            slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
-            q = builder.fdiv(one, builder.call(sqrt_fn, [dd2]))
-            al = mul(r, q)
-            g = mul(mul(mkn, nk), q)
-            T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
-            T2 = select(closed, select(slipped, mul(g, dy), mul(kt, dy)), zero)
-            n1 = select(closed, select(slipped, sub(tx, mul(al, dx)), s1), tx)
-            n2 = select(closed, select(slipped, sub(ty, mul(al, dy)), s2), ty)
-            code = select(closed, select(slipped, two, one), zero)
-            # the period map's derivative: C <- alpha v v^T C in slip, kept in stick, 0 when open
-            slip = builder.and_(closed, slipped)
-            stick = builder.and_(closed, builder.xor(slipped, ir.Constant(slipped.type, [True] * MARCH_LANES)))
-            v1 = mul(builder.fneg(dy), q)
-            v2 = mul(dx, q)
-            w1 = mul(al, add(mul(v1, c0), mul(v2, c2)))
-            w2 = mul(al, add(mul(v1, c1), mul(v2, c3)))
-            C = [select(slip, mul(vv, ww), select(stick, cc, zero))
-                 for vv, ww, cc in ((v1, w1, c0), (v1, w2, c1), (v2, w1, c2), (v2, w2, c3))]
-            for val, ptr in zip((n1, n2, *C), srow):
-                builder.store(val, at(ptr), align=8)
-            for val, ptr in zip((code, select(slip, al, zero), select(slip, v1, zero), select(slip, v2, zero), T1,
-                                 T2), rrow):
-                builder.store(val, at(ptr), align=8)
+        def splat_at(a, k):
+            return _splat(builder, builder.load(builder.gep(a.data, [k])), V)
 
-        _vector_loop(builder, Jp, MARCH_LANES, _MARCH_VECTOR, "period_lanes", lanes)
+        entry = builder.block
+        passes = builder.append_basic_block("period_march.pass")
+        samples = builder.append_basic_block("period_march.samples")
+        passed = builder.append_basic_block("period_march.passed")
+        done = builder.append_basic_block("period_march.done")
+        builder.cbranch(builder.icmp_signed(">", Jp, const(0)), passes, done)
+        # one pass: elements j .. j + MARCH_PAIR
+        builder.position_at_end(passes)
+        j = builder.phi(index)
+        j.add_incoming(const(0), entry)
+        groups = (j, builder.add(j, const(MARCH_LANES)))
+
+        def at(data, row, col):
+            return vec(builder.gep(data, [builder.add(builder.mul(row, Jp), col)]))
+
+        par = [[builder.load(at(pa.data, const(r), g), align=8) for r in range(5)] for g in groups]
+        start = [[builder.load(at(sa.data, const(r), g), align=8) for r in range(6)] for g in groups]
+        builder.branch(samples)
+        # one sample, both vectors
+        builder.position_at_end(samples)
+        k = builder.phi(index)
+        k.add_incoming(const(0), passes)
+        state = [[builder.phi(V) for _ in range(6)] for _ in groups]
+        for phis, values in zip(state, start):
+            for phi, value in zip(phis, values):
+                phi.add_incoming(value, passes)
+        tx, ty, nk0 = splat_at(xa, k), splat_at(ya, k), splat_at(na, k)
+        news = []
+        for g, p, phis in zip(groups, par, state):
+            new, records = _plane_lanes(builder, sqrt_fn, p, phis, tx, ty, nk0)
+            for r, value in enumerate(records):
+                builder.store(value, at(ra.data, builder.add(builder.mul(const(r), Ns), k), g), align=8)
+            news.append(new)
+        following = builder.add(k, const(1))
+        k.add_incoming(following, builder.block)
+        for phis, values in zip(state, news):
+            for phi, value in zip(phis, values):
+                phi.add_incoming(value, builder.block)
+        builder.cbranch(builder.icmp_signed("<", following, Ns), samples, passed)
+        # the pass's state, written once
+        builder.position_at_end(passed)
+        for g, values in zip(groups, news):
+            for r, value in enumerate(values):
+                builder.store(value, at(sa.data, const(r), g), align=8)
+        after = builder.add(j, const(MARCH_PAIR))
+        j.add_incoming(after, passed)
+        builder.cbranch(builder.icmp_signed("<", after, Jp), passes, done)
+        builder.position_at_end(done)
         return context.get_dummy_value()
 
     return sig, codegen
@@ -305,7 +364,7 @@ def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - 
 
     ``coefs`` (16, Jp) receives :data:`SAMPLE_COEFFICIENTS` of each element
     (the rows :func:`sample_rows` reads); ``rec`` (6, Ns, Jp) is the
-    periodic period's records (:func:`period_lanes`: condition, ``alpha``,
+    periodic period's records (:func:`period_march`: condition, ``alpha``,
     ``v``), ``KR`` (2, Jp) the elements' ``kt`` and ``rk = mu kn / kt``,
     ``w`` (3, Jp) the ``w`` of each element's ``Y = beta I + y w^T``, set to
     ``v`` by a slip, and whether its ``beta`` is known to be zero (1: after
