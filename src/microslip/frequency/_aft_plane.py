@@ -67,7 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _diagonal_jacobian, _project, _synthesise, tables
-from ._simd import MARCH_PAIR, add_row_multiples, period_march, sample_coefficients, sample_rows
+from ._simd import MARCH_PAIR, period_march, sample_coefficients, sample_rows, start_weights
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -169,16 +169,12 @@ PAD = 16
 
 @lru_cache(maxsize=32)
 def sweep_tables(H: int, Ns: int) -> np.ndarray:
-    """The sweep's tables, C-contiguous ``(2 Ns + 1, nbp)`` (read-only), ``nbp`` = ``2H+1`` padded to :data:`PAD`.
-
-    Rows ``0 .. Ns-1`` hold ``P.T`` (:func:`~microslip.frequency._aft.tables`), rows ``Ns .. 2 Ns`` its
-    cumulative sums ``cum``; the padding columns are zero.
-    """
-    _, P, _, _, cum = tables(H, Ns)
+    """``P.T`` (:func:`~microslip.frequency._aft.tables`), C-contiguous ``(Ns, nbp)`` (read-only), ``nbp`` = ``2H+1``
+    padded to :data:`PAD` with zero columns: the basis rows the history part of the Jacobian is built from."""
+    _, P, _, _, _ = tables(H, Ns)
     nbasis = 2 * H + 1
-    out = np.zeros((2 * Ns + 1, -(-nbasis // PAD) * PAD))
-    out[:Ns, :nbasis] = P.T
-    out[Ns:, :nbasis] = cum
+    out = np.zeros((Ns, -(-nbasis // PAD) * PAD))
+    out[:, :nbasis] = P.T
     out.setflags(write=False)
     return out
 
@@ -500,70 +496,6 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
             return -1
 
 
-@nb.njit(cache=True, nogil=True, fastmath=True)
-def _element_start(i, kti, code, alpha, V1, V2, PT, cum, B, Y):  # pragma: no cover - compiled
-    """The coefficient ``Z = beta (x) I + z (x) w^T`` of the slider at the start of the period.
-
-    ``Z = sum_k -kt P[:, k] (x) C_k`` with ``C_k = A_k ... A_0``: the identity
-    up to the first slip, ``c_k v_k w^T`` after it (``w`` the first slip's
-    ``v``), zero from the first opening on. Writes ``beta = B[i]`` (nbp) and
-    ``z = Y[i]`` (2, nbp); returns ``(w1, w2, c, l1, l2)``: ``w``, and ``Phi_s = C_(Ns-1)
-    = c l w^T`` (``c = 1``, ``l = w = 0`` for an element that sticks
-    throughout, whose ``Phi_s`` is the identity; ``c = 0`` once it opens).
-    """
-    Ns = PT.shape[0]
-    nbasis = PT.shape[1]
-    beta = B[i]
-    beta[:] = 0.0
-    z = Y[i]
-    z[:] = 0.0
-    z1 = z[0]
-    z2 = z[1]
-    w1 = 0.0
-    w2 = 0.0
-    l1 = 0.0
-    l2 = 0.0
-    cc = 1.0
-    first = True  # no slip yet: C is the identity
-    run = -1
-    for k in range(Ns + 1):
-        c = code[k, i] if k < Ns else OPEN
-        if c == STICK:
-            if run < 0:
-                run = k
-            continue
-        if run >= 0:
-            if first:
-                for p in range(nbasis):
-                    beta[p] -= kti * (cum[k, p] - cum[run, p])
-            else:
-                f1 = -kti * cc * l1
-                f2 = -kti * cc * l2
-                for p in range(nbasis):
-                    seg = cum[k, p] - cum[run, p]
-                    z1[p] += f1 * seg
-                    z2[p] += f2 * seg
-            run = -1
-        if k == Ns:
-            break
-        if c == OPEN:
-            return w1, w2, 0.0, l1, l2
-        al = alpha[k, i]
-        v1 = V1[k, i]
-        v2 = V2[k, i]
-        if first:
-            first = False
-            w1 = v1
-            w2 = v2
-            cc = al
-        else:
-            cc *= al * (v1 * l1 + v2 * l2)
-        l1 = v1
-        l2 = v2
-        add_row_multiples(Y, i, PT, k, -kti * cc * l1, -kti * cc * l2)
-    return w1, w2, cc, l1, l2
-
-
 @nb.njit(cache=True, nogil=True)
 def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
     """Backward sweep of the active elements together: ``U[m]`` (6, nbp) receives ``sum Y_m G_m`` over them.
@@ -608,8 +540,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
 
     ``F`` holds the coefficients of ``T1, T2, N``; ``Jac[a, b]`` the
     derivative of output ``a`` with respect to the coefficients of input
-    ``b`` (``t1, t2, n``); ``PT`` is :func:`sweep_tables` (``cum`` is not used:
-    the padded one in ``PT`` is). Returns
+    ``b`` (``t1, t2, n``); ``PT`` is :func:`sweep_tables` (``cum`` is not
+    used). Returns
     the number of periods marched until every element was periodic, or
     ``-1`` if some element was not after ``max_periods``.
     """
@@ -701,8 +633,6 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     # column m's coefficients, times E[m] at the end; U[m, 3 a + b, p] for output a, input b
     # (rows of nbp values, padded: the sweep's loops over them vectorise)
     nbp = PT.shape[1]
-    PTp = PT[:Ns]
-    cump = PT[Ns:]
     U = np.empty((Ns, 6, nbp))
     B = np.empty((J, nbp))
     Y = np.empty((J, 2, nbp))
@@ -713,10 +643,20 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     KR[1, :J] = rk
     active = np.empty(J, dtype=np.bool_)
     D = np.empty((2, 3, nbasis))
+    wD = np.empty(nbasis)
+    nkt = np.zeros(Jp)
+    nkt[:J] = -kt
+    weights = np.empty((Ns, 3 * Jp))
+    ends = np.empty((5, Jp))
+    start_weights(rec, nkt, weights, ends)
+    BZ = np.dot(weights.T, PT)  # every element's beta (rows 0 .. Jp-1), z1 (Jp .. 2 Jp-1) and z2
     for i in range(J):
         beta = B[i]
         y = Y[i]
-        w1, w2, cc, l1, l2 = _element_start(i, kt[i], code, alpha, V1, V2, PTp, cump, B, Y)
+        beta[:] = BZ[i]
+        y[0] = BZ[Jp + i]
+        y[1] = BZ[2 * Jp + i]
+        w1, w2, cc, l1, l2 = ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i]
         w[0, i] = w1
         w[1, i] = w2
         stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
@@ -735,11 +675,14 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
                                     D)
             for b in range(3):
                 for q in range(nbasis):
-                    wd = w1 * D[0, b, q] + w2 * D[1, b, q]
-                    for a in range(2):
-                        da = D[a, b, q]
-                        for p in range(nbasis):
-                            Jac[a, b, p, q] += beta[p] * da + y[a, p] * wd
+                    wD[q] = w1 * D[0, b, q] + w2 * D[1, b, q]
+                for a in range(2):
+                    for p in range(nbasis):
+                        bp = beta[p]
+                        yp = y[a, p]
+                        row = Jac[a, b, p]
+                        for q in range(nbasis):
+                            row[q] += bp * D[a, b, q] + yp * wD[q]
             beta[:] = 0.0
             y[:] = 0.0
         elif cc != 0.0:
@@ -749,7 +692,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             for p in range(nbasis):
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
-    _sweep(rec, KR, PTp, B, Y, w, active, U)
+    _sweep(rec, KR, PT, B, Y, w, active, U)
     # -- the columns times their basis rows: one matrix product ---------------------------------------
     if not active.any():
         return periods

@@ -70,38 +70,6 @@ def _vector_loop(builder, count, step, vector, name, body):
     builder.position_at_end(done)
 
 
-@intrinsic
-def add_row_multiples(typingctx, Y, i, PT, k, f1, f2):  # pragma: no cover - compiled
-    """``Y[i, 0] += f1 PT[k]``, ``Y[i, 1] += f2 PT[k]`` over the ``nbp`` columns (a multiple of ``LANES``).
-
-    ``Y`` (J, 2, nbp) and ``PT`` (Ns, nbp) C-contiguous float64 (the forward
-    pass of the sweep, :func:`microslip.frequency._aft_plane._element_start`).
-    """
-    sig = types.void(Y, i, PT, k, f1, f2)
-
-    def codegen(context, builder, signature, args):
-        yv, iv, pv, kv, f1v, f2v = args
-        ya = context.make_array(signature.args[0])(context, builder, yv)
-        pa = context.make_array(signature.args[2])(context, builder, pv)
-        nbp = cgutils.unpack_tuple(builder, pa.shape, 2)[1]
-        index = nbp.type
-        y1 = builder.gep(ya.data, [builder.mul(iv, builder.add(nbp, nbp))])
-        y2 = builder.gep(y1, [nbp])
-        prow = builder.gep(pa.data, [builder.mul(kv, nbp)])
-        f1, f2 = _splat(builder, f1v), _splat(builder, f2v)
-        fma = _fma(builder)
-
-        def body(at):
-            pt = builder.load(at(prow), align=8)
-            builder.store(fma(f1, pt, builder.load(at(y1), align=8)), at(y1), align=8)
-            builder.store(fma(f2, pt, builder.load(at(y2), align=8)), at(y2), align=8)
-
-        _vector_loop(builder, nbp, LANES, _VECTOR, "add_row_multiples", body)
-        return context.get_dummy_value()
-
-    return sig, codegen
-
-
 #: the coefficients of one element at one sample in :func:`sample_rows`, in this order
 SAMPLE_COEFFICIENTS = ("g11", "g12", "g13", "g22", "g23", "h1", "h2", "h3", "cb", "cp", "v1", "v2", "cy", "sb", "sp",
                        "full")
@@ -129,6 +97,7 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, order, count):  # pragma: no c
     sig = types.void(U, m, B, Y, PT, coefs, order, count)
 
     def codegen(context, builder, signature, args):
+        set.add(builder.function.attributes, '"min-legal-vector-width"="512"')
         Uv, mv, bv, yv, pv, cv, ov, nv = args
         Ua, ba, ya, pa, ca, oa = (context.make_array(signature.args[j])(context, builder, args[j])
                                   for j in (0, 2, 3, 4, 5, 6))
@@ -264,6 +233,57 @@ def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
     return [n1, n2, *C], records
 
 
+def _lane_march(builder, Jp, Ns, name, start, sample, finish):
+    """Emit a march over ``Ns`` samples (``Ns >= 1``) of ``Jp`` elements (a multiple of ``MARCH_PAIR``).
+
+    Each pass takes ``MARCH_PAIR`` elements as two vectors of ``MARCH_LANES``
+    side by side, their state held in registers from sample to sample:
+    ``start(g)`` gives the state (a list of vectors) of the vector whose
+    first element is ``g``, ``sample(g, k, state)`` emits sample ``k`` and
+    gives the new state, ``finish(g, state)`` stores the state after the
+    last sample. The builder ends after the march.
+    """
+    index = Jp.type
+    entry = builder.block
+    passes = builder.append_basic_block(name + ".pass")
+    samples = builder.append_basic_block(name + ".samples")
+    passed = builder.append_basic_block(name + ".passed")
+    done = builder.append_basic_block(name + ".done")
+    builder.cbranch(builder.icmp_signed(">", Jp, ir.Constant(index, 0)), passes, done)
+    builder.position_at_end(passes)
+    j = builder.phi(index)
+    j.add_incoming(ir.Constant(index, 0), entry)
+    groups = (j, builder.add(j, ir.Constant(index, MARCH_LANES)))
+    starts = [start(g) for g in groups]
+    builder.branch(samples)
+    builder.position_at_end(samples)
+    k = builder.phi(index)
+    k.add_incoming(ir.Constant(index, 0), passes)
+    state = [[builder.phi(v.type) for v in values] for values in starts]
+    for phis, values in zip(state, starts):
+        for phi, value in zip(phis, values):
+            phi.add_incoming(value, passes)
+    news = [sample(g, k, phis) for g, phis in zip(groups, state)]
+    following = builder.add(k, ir.Constant(index, 1))
+    k.add_incoming(following, builder.block)
+    for phis, values in zip(state, news):
+        for phi, value in zip(phis, values):
+            phi.add_incoming(value, builder.block)
+    builder.cbranch(builder.icmp_signed("<", following, Ns), samples, passed)
+    builder.position_at_end(passed)
+    for g, values in zip(groups, news):
+        finish(g, values)
+    after = builder.add(j, ir.Constant(index, MARCH_PAIR))
+    j.add_incoming(after, passed)
+    builder.cbranch(builder.icmp_signed("<", after, Jp), passes, done)
+    builder.position_at_end(done)
+
+
+def _row_vector(builder, data, row, width, col):
+    """Pointer to the ``MARCH_LANES`` values from ``data[row * width + col]`` on."""
+    return builder.bitcast(builder.gep(data, [builder.add(builder.mul(row, width), col)]), _MARCH_VECTOR.as_pointer())
+
+
 @intrinsic
 def period_march(typingctx, par, st, rec, t1, t2, n):  # pragma: no cover - compiled
     """One period of the AFT's march on the plane for every element, ``MARCH_PAIR`` elements per pass.
@@ -295,64 +315,96 @@ def period_march(typingctx, par, st, rec, t1, t2, n):  # pragma: no cover - comp
         V = _MARCH_VECTOR
         sqrt_fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(V, [V]),
                                                  "llvm.sqrt.v%df64" % MARCH_LANES)
+        rows = [ir.Constant(index, r) for r in range(6)]
+        pars = {}
 
-        def const(v):
-            return ir.Constant(index, v)
+        def start(g):
+            pars[g] = [builder.load(_row_vector(builder, pa.data, rows[r], Jp, g), align=8) for r in range(5)]
+            return [builder.load(_row_vector(builder, sa.data, rows[r], Jp, g), align=8) for r in range(6)]
 
-        def vec(ptr):
-            return builder.bitcast(ptr, V.as_pointer())
-
-        def splat_at(a, k):
-            return _splat(builder, builder.load(builder.gep(a.data, [k])), V)
-
-        entry = builder.block
-        passes = builder.append_basic_block("period_march.pass")
-        samples = builder.append_basic_block("period_march.samples")
-        passed = builder.append_basic_block("period_march.passed")
-        done = builder.append_basic_block("period_march.done")
-        builder.cbranch(builder.icmp_signed(">", Jp, const(0)), passes, done)
-        # one pass: elements j .. j + MARCH_PAIR
-        builder.position_at_end(passes)
-        j = builder.phi(index)
-        j.add_incoming(const(0), entry)
-        groups = (j, builder.add(j, const(MARCH_LANES)))
-
-        def at(data, row, col):
-            return vec(builder.gep(data, [builder.add(builder.mul(row, Jp), col)]))
-
-        par = [[builder.load(at(pa.data, const(r), g), align=8) for r in range(5)] for g in groups]
-        start = [[builder.load(at(sa.data, const(r), g), align=8) for r in range(6)] for g in groups]
-        builder.branch(samples)
-        # one sample, both vectors
-        builder.position_at_end(samples)
-        k = builder.phi(index)
-        k.add_incoming(const(0), passes)
-        state = [[builder.phi(V) for _ in range(6)] for _ in groups]
-        for phis, values in zip(state, start):
-            for phi, value in zip(phis, values):
-                phi.add_incoming(value, passes)
-        tx, ty, nk0 = splat_at(xa, k), splat_at(ya, k), splat_at(na, k)
-        news = []
-        for g, p, phis in zip(groups, par, state):
-            new, records = _plane_lanes(builder, sqrt_fn, p, phis, tx, ty, nk0)
+        def sample(g, k, state):
+            tx, ty, nk0 = (_splat(builder, builder.load(builder.gep(a.data, [k])), V) for a in (xa, ya, na))
+            new, records = _plane_lanes(builder, sqrt_fn, pars[g], state, tx, ty, nk0)
             for r, value in enumerate(records):
-                builder.store(value, at(ra.data, builder.add(builder.mul(const(r), Ns), k), g), align=8)
-            news.append(new)
-        following = builder.add(k, const(1))
-        k.add_incoming(following, builder.block)
-        for phis, values in zip(state, news):
-            for phi, value in zip(phis, values):
-                phi.add_incoming(value, builder.block)
-        builder.cbranch(builder.icmp_signed("<", following, Ns), samples, passed)
-        # the pass's state, written once
-        builder.position_at_end(passed)
-        for g, values in zip(groups, news):
-            for r, value in enumerate(values):
-                builder.store(value, at(sa.data, const(r), g), align=8)
-        after = builder.add(j, const(MARCH_PAIR))
-        j.add_incoming(after, passed)
-        builder.cbranch(builder.icmp_signed("<", after, Jp), passes, done)
-        builder.position_at_end(done)
+                builder.store(value, _row_vector(builder, ra.data, builder.add(builder.mul(rows[r], Ns), k), Jp, g),
+                              align=8)
+            return new
+
+        def finish(g, state):
+            for r, value in enumerate(state):
+                builder.store(value, _row_vector(builder, sa.data, rows[r], Jp, g), align=8)
+
+        _lane_march(builder, Jp, Ns, "period_march", start, sample, finish)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@intrinsic
+def start_weights(typingctx, rec, nkt, weights, ends):  # pragma: no cover - compiled
+    """Every element's coefficient ``Z = beta (x) I + z (x) w^T`` of its slider at the start of the period, as
+    weights of the basis rows, ``MARCH_PAIR`` elements per pass.
+
+    ``Z = sum_k -kt P[:, k] (x) C_k`` with ``C_k = A_k ... A_0``: the
+    identity up to the first slip, ``c_k l_k w^T`` after it (``w`` the
+    first slip's ``v``, ``l_k`` the last one's), zero from the first opening
+    on. ``rec`` (6, Ns, Jp) are the periodic period's records
+    (:func:`period_march`: condition, ``alpha``, ``v``), ``nkt`` (Jp) the
+    elements' ``-kt``; ``weights`` (Ns, 3 Jp) receives at ``[k, i]`` the
+    weight of ``P[:, k]`` in element ``i``'s ``beta`` and at ``[k, (1 + a) Jp
+    + i]`` in its ``z_a``, so that one matrix product with ``P.T`` gives
+    them all; ``ends`` (5, Jp) receives ``w1, w2, c, l1, l2``: ``w``, and
+    ``Phi_s = C_(Ns-1) = c l w^T`` (``c = 1``, ``l = w = 0`` for an element
+    that sticks throughout, whose ``Phi_s`` is the identity; ``c = 0`` once
+    it opens). All C-contiguous float64.
+    """
+    sig = types.void(rec, nkt, weights, ends)
+
+    def codegen(context, builder, signature, args):
+        ra, ka, wa, ea = (context.make_array(signature.args[j])(context, builder, args[j]) for j in range(4))
+        Ns, width = cgutils.unpack_tuple(builder, wa.shape, 2)
+        Jp = cgutils.unpack_tuple(builder, ka.shape, 1)[0]
+        index = Jp.type
+        V = _MARCH_VECTOR
+        zero = ir.Constant(V, [0.0] * MARCH_LANES)
+        one = ir.Constant(V, [1.0] * MARCH_LANES)
+        two = ir.Constant(V, [2.0] * MARCH_LANES)
+        rows = [ir.Constant(index, r) for r in range(6)]
+        mul, add, select = builder.fmul, builder.fadd, builder.select
+        nkts = {}
+
+        def start(g):
+            nkts[g] = builder.load(_row_vector(builder, ka.data, rows[0], Jp, g), align=8)
+            return [zero, zero, one, zero, zero, one, one]  # w1, w2, c, l1, l2, first, live
+
+        def sample(g, k, state):
+            w1, w2, cc, l1, l2, first, live = state
+            code, al, v1, v2 = (builder.load(_row_vector(builder, ra.data, builder.add(builder.mul(rows[r], Ns), k),
+                                                         Jp, g), align=8) for r in range(4))
+            on = builder.and_(builder.fcmp_ordered("!=", live, zero), builder.fcmp_ordered("!=", code, zero))
+            slip = builder.and_(on, builder.fcmp_ordered("==", code, two))
+            was_first = builder.fcmp_ordered("!=", first, zero)
+            grown = select(was_first, al, mul(cc, mul(al, add(mul(v1, l1), mul(v2, l2)))))
+            cc = select(on, select(slip, grown, cc), zero)
+            first_slip = builder.and_(slip, was_first)
+            w1 = select(first_slip, v1, w1)
+            w2 = select(first_slip, v2, w2)
+            l1 = select(slip, v1, l1)
+            l2 = select(slip, v2, l2)
+            still = builder.and_(was_first, builder.xor(slip, ir.Constant(slip.type, [True] * MARCH_LANES)))
+            f = mul(nkts[g], cc)
+            moved = builder.and_(on, builder.xor(still, ir.Constant(still.type, [True] * MARCH_LANES)))
+            for r, value in enumerate((select(builder.and_(on, still), nkts[g], zero), select(moved, mul(f, l1), zero),
+                                       select(moved, mul(f, l2), zero))):
+                builder.store(value, _row_vector(builder, wa.data, k, width, builder.add(builder.mul(rows[r], Jp), g)),
+                              align=8)
+            return [w1, w2, cc, l1, l2, select(still, one, zero), select(on, one, zero)]
+
+        def finish(g, state):
+            for r, value in enumerate(state[:5]):
+                builder.store(value, _row_vector(builder, ea.data, rows[r], Jp, g), align=8)
+
+        _lane_march(builder, Jp, Ns, "start_weights", start, sample, finish)
         return context.get_dummy_value()
 
     return sig, codegen
