@@ -66,8 +66,8 @@ import numba as nb
 import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
-from ._aft import _aft_contact, _diagonal_jacobian, _project, _synthesise, tables
-from ._simd import MARCH_PAIR, period_march, sample_coefficients, sample_rows, start_weights
+from ._aft import _aft_contact, _dft, _diagonal_jacobian, _synthesise, tables
+from ._simd import MARCH_PAIR, period_march, project_rows, sample_coefficients, sample_rows, start_weights
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -496,9 +496,49 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
             return -1
 
 
+@nb.njit(cache=True, nogil=True, fastmath=True)
+def _sample_sums(kt, kn, mu, rec, local):  # pragma: no cover - compiled
+    """Each sample's sums over the elements of the periodic period (its records ``rec``, :func:`_period`).
+
+    ``local`` (9, Ns) receives the forces ``T1, T2`` (rows 0, 1; row 2 is
+    left for the normal force) and the local derivatives ``d11 = dT1/dt1,
+    d12, d22`` (``kt I`` in stick, ``kt alpha v v^T`` in slip), ``c1 =
+    dT1/dn, c2 = dT2/dn`` (``mu kn u`` in slip, ``u = (v2, -v1)``) and
+    ``dN/dn`` (``kn`` while closed) in rows 3 to 8. Without branches: a
+    slip's records ``alpha, v`` are 0 in stick and when open.
+    """
+    code, alpha, V1, V2, Te1, Te2 = rec[0], rec[1], rec[2], rec[3], rec[4], rec[5]
+    for k in range(code.shape[0]):
+        f1 = f2 = s11 = s12 = s22 = sc1 = sc2 = scl = 0.0
+        for i in range(kt.shape[0]):
+            c = code[k, i]
+            stick = c == STICK
+            f1 += Te1[k, i]
+            f2 += Te2[k, i]
+            scl += kn[i] if c != OPEN else 0.0
+            a = kt[i] * alpha[k, i]
+            v1 = V1[k, i]
+            v2 = V2[k, i]
+            s11 += kt[i] if stick else a * v1 * v1
+            s12 += a * v1 * v2
+            s22 += kt[i] if stick else a * v2 * v2
+            g = mu * kn[i]
+            sc1 += g * v2
+            sc2 -= g * v1
+        local[0, k] = f1
+        local[1, k] = f2
+        local[3, k] = s11
+        local[4, k] = s12
+        local[5, k] = s22
+        local[6, k] = sc1
+        local[7, k] = sc2
+        local[8, k] = scl
+
+
 @nb.njit(cache=True, nogil=True)
-def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
-    """Backward sweep of the active elements together: ``U[m]`` (6, nbp) receives ``sum Y_m G_m`` over them.
+def _sweep(rec, KR, PT, B, Y, w, active, local, U):  # pragma: no cover - compiled
+    """Backward sweep of the active elements together: ``U[m]`` (6, nbp) receives ``sum Y_m G_m`` over them and
+    the sample's local derivatives.
 
     For element ``i``, ``Y = beta (x) I + y (x) w^T`` (``beta = B[i]``
     (nbp), ``y = Y[i]`` (2, nbp), ``w = w[:, i]``, all overwritten) is the
@@ -508,8 +548,9 @@ def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
     column ``m``'s coefficient row for output ``a`` and input ``b``. Each
     sample is two vector loops: the elements' coefficients
     (:func:`._simd.sample_coefficients`, from the records ``rec`` of
-    :func:`_period` and ``KR`` = ``kt, rk`` padded like them), then their
-    contributions to the column and their new ``Y``
+    :func:`_period` and ``KR`` = ``kt, rk`` padded like them), then
+    their contributions to the column, with the sample's local derivatives
+    (``local``, :func:`_sample_sums`) times ``P[:, m]``, and their new ``Y``
     (:func:`._simd.sample_rows`).
     """
     Ns = PT.shape[0]
@@ -517,20 +558,7 @@ def _sweep(rec, KR, PT, B, Y, w, active, U):  # pragma: no cover - compiled
     coefs = np.empty((16, w.shape[1]))
     for m in range(Ns - 1, -1, -1):
         sample_coefficients(coefs, rec, KR, w, m)
-        sample_rows(U, m, B, Y, PT, coefs, order, order.size)
-
-
-@nb.njit(cache=True, nogil=True, fastmath=True)
-def _dft_pair(cos2, sin2, a, b, C, S, r):  # pragma: no cover - compiled
-    """:func:`microslip.frequency._aft._dft` of ``a`` and ``b`` into rows ``r`` and ``r + 1`` of ``C, S``."""
-    for j in range(cos2.shape[0]):
-        ca = cb = sa = sb = 0.0
-        for k in range(a.shape[0]):
-            ca += cos2[j, k] * a[k]
-            cb += cos2[j, k] * b[k]
-            sa += sin2[j, k] * a[k]
-            sb += sin2[j, k] * b[k]
-        C[r, j], C[r + 1, j], S[r, j], S[r + 1, j] = ca, cb, sa, sb
+        sample_rows(U, m, B, Y, PT, coefs, local, order, order.size)
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -548,15 +576,13 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     nbasis = x1.shape[0]
     Ns = E.shape[0]
     J = kt.shape[0]
-    smp = np.zeros((12, Ns))  # per-sample work arrays
+    smp = np.zeros((3, Ns))  # the motion's samples
     t1 = smp[0]
     t2 = smp[1]
     n = smp[2]
     _synthesise(E, x1, t1)
     _synthesise(E, x2, t2)
     _synthesise(E, xn, n)
-    T1s, T2s, Nsum = smp[3], smp[4], smp[5]  # the forces' samples
-    d11, d12, d22, c1, c2, dcl = smp[6], smp[7], smp[8], smp[9], smp[10], smp[11]  # local derivative sums
     rk = np.empty(J)
     ivec = np.empty((3, J), dtype=np.int64)
     count, tried, moving = ivec[0], ivec[1], ivec[2]
@@ -575,63 +601,10 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     corner = np.empty((2, J), dtype=np.int64)
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
                      corner)
-    # -- the periodic period: forces and the local derivatives ---------------------------
-    # (without branches: a slip's records alpha, v are 0 in stick and when open, so its terms add zeros there)
-    for k in range(Ns):
-        f1 = 0.0
-        f2 = 0.0
-        fn = 0.0
-        s11 = 0.0
-        s12 = 0.0
-        s22 = 0.0
-        sc1 = 0.0
-        sc2 = 0.0
-        scl = 0.0
-        for i in range(J):
-            c = code[k, i]
-            closed = c != OPEN
-            stick = c == STICK
-            f1 += Te1[k, i]
-            f2 += Te2[k, i]
-            fn += kn[i] * (n[k] - gaps[i]) if closed else 0.0
-            scl += kn[i] if closed else 0.0
-            a = kt[i] * alpha[k, i]
-            v1 = V1[k, i]
-            v2 = V2[k, i]
-            s11 += kt[i] if stick else a * v1 * v1
-            s12 += a * v1 * v2
-            s22 += kt[i] if stick else a * v2 * v2
-            g = mu * kn[i]
-            sc1 += g * v2
-            sc2 -= g * v1
-        T1s[k] = f1
-        T2s[k] = f2
-        Nsum[k] = fn
-        d11[k] = s11
-        d12[k] = s12
-        d22[k] = s22
-        c1[k] = sc1
-        c2[k] = sc2
-        dcl[k] = scl
-    _project(P, T1s, T2s, F[0], F[1])
-    for p in range(nbasis):
-        acc = 0.0
-        for k in range(Ns):
-            acc += P[p, k] * Nsum[k]
-        F[2, p] = acc
-    CS = np.empty((2, 6, nbasis))
-    for row in range(0, 6, 2):  # the DFTs of d11, d12, d22, c1, c2, dcl, two at a time
-        _dft_pair(cos2, sin2, smp[6 + row], smp[7 + row], CS[0], CS[1], row)
-    for which in range(7):
-        row = (0, 1, 1, 2, 3, 4, 5)[which]
-        a = (0, 0, 1, 1, 0, 1, 2)[which]
-        b = (0, 1, 0, 1, 2, 2, 2)[which]
-        _diagonal_jacobian(CS[0, row], CS[1, row], Ns, Jac[a, b])
-    for b in range(2):
-        Jac[2, b] = 0.0
-    # -- the history parts, element by element -------------------------------------------
+    # -- the tangential outputs' derivatives: local and history parts -----------------------------------
     # column m's coefficients, times E[m] at the end; U[m, 3 a + b, p] for output a, input b
     # (rows of nbp values, padded: the sweep's loops over them vectorise)
+    Jac[:2] = 0.0
     nbp = PT.shape[1]
     U = np.empty((Ns, 6, nbp))
     B = np.empty((J, nbp))
@@ -692,10 +665,23 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
             for p in range(nbasis):
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
-    _sweep(rec, KR, PT, B, Y, w, active, U)
+    local = np.empty((9, Ns))
+    _sample_sums(kt, kn, mu, rec, local)
+    _sweep(rec, KR, PT, B, Y, w, active, local, U)
+    # -- the forces and the normal force's derivative (local only) -------------------------------------
+    for k in range(Ns):
+        fn = 0.0
+        for i in range(J):  # element after element, as along one direction: the same normal force to the bit
+            fn += kn[i] * max(n[k] - gaps[i], 0.0)
+        local[2, k] = fn
+    Fp = np.empty((3, nbp))
+    project_rows(PT, local[:3], Fp)
+    F[:] = Fp[:, :nbasis]
+    CS = np.empty((2, cos2.shape[0]))
+    _dft(cos2, sin2, local[8], CS[0], CS[1])
+    _diagonal_jacobian(CS[0], CS[1], Ns, Jac[2, 2])
+    Jac[2, :2] = 0.0
     # -- the columns times their basis rows: one matrix product ---------------------------------------
-    if not active.any():
-        return periods
     acc = np.dot(U.reshape(Ns, 6 * nbp).T, E)
     for r in range(6):
         a = r // 3
