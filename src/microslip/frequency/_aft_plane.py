@@ -67,7 +67,7 @@ import numpy as np
 
 from .._kernels import OPEN, SLIP, STICK, plane_step
 from ._aft import _aft_contact, _dft, _diagonal_jacobian, _synthesise, tables
-from ._simd import MARCH_PAIR, period_march, project_rows, sample_coefficients, sample_rows, start_weights
+from ._simd import MARCH_PAIR, columns_times_basis, period_march, project_rows, sample_coefficients, sample_rows, start_weights
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -169,12 +169,16 @@ PAD = 16
 
 @lru_cache(maxsize=32)
 def sweep_tables(H: int, Ns: int) -> np.ndarray:
-    """``P.T`` (:func:`~microslip.frequency._aft.tables`), C-contiguous ``(Ns, nbp)`` (read-only), ``nbp`` = ``2H+1``
-    padded to :data:`PAD` with zero columns: the basis rows the history part of the Jacobian is built from."""
-    _, P, _, _, _ = tables(H, Ns)
+    """The history part's tables, C-contiguous ``(2 Ns, nbp)`` (read-only), ``nbp`` = ``2H+1`` padded to :data:`PAD`.
+
+    Rows ``0 .. Ns-1`` hold ``P.T``, rows ``Ns .. 2 Ns - 1`` ``E``
+    (:func:`~microslip.frequency._aft.tables`); the padding columns are zero.
+    """
+    E, P, _, _, _ = tables(H, Ns)
     nbasis = 2 * H + 1
-    out = np.zeros((Ns, -(-nbasis // PAD) * PAD))
-    out[:, :nbasis] = P.T
+    out = np.zeros((2 * Ns, -(-nbasis // PAD) * PAD))
+    out[:Ns, :nbasis] = P.T
+    out[Ns:, :nbasis] = E
     out.setflags(write=False)
     return out
 
@@ -562,13 +566,13 @@ def _sweep(rec, KR, PT, B, Y, w, active, local, U):  # pragma: no cover - compil
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
-def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_periods,
+def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_periods,
                F, Jac):  # pragma: no cover - compiled
     """AFT of one contact on the plane. Writes ``F`` (3, nb) and ``Jac`` (3, 3, nb, nb).
 
     ``F`` holds the coefficients of ``T1, T2, N``; ``Jac[a, b]`` the
     derivative of output ``a`` with respect to the coefficients of input
-    ``b`` (``t1, t2, n``); ``PT`` is :func:`sweep_tables` (``cum`` is not
+    ``b`` (``t1, t2, n``); ``tabs`` is :func:`sweep_tables` (``cum`` is not
     used). Returns
     the number of periods marched until every element was periodic, or
     ``-1`` if some element was not after ``max_periods``.
@@ -605,6 +609,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     # column m's coefficients, times E[m] at the end; U[m, 3 a + b, p] for output a, input b
     # (rows of nbp values, padded: the sweep's loops over them vectorise)
     Jac[:2] = 0.0
+    PT = tabs[:Ns]
     nbp = PT.shape[1]
     U = np.empty((Ns, 6, nbp))
     B = np.empty((J, nbp))
@@ -622,7 +627,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     weights = np.empty((Ns, 3 * Jp))
     ends = np.empty((5, Jp))
     start_weights(rec, nkt, weights, ends)
-    BZ = np.dot(weights.T, PT)  # every element's beta (rows 0 .. Jp-1), z1 (Jp .. 2 Jp-1) and z2
+    BZ = np.empty((3 * Jp, nbp))  # every element's beta (rows 0 .. Jp-1), z1 (Jp .. 2 Jp-1) and z2
+    columns_times_basis(PT, weights, BZ)
     for i in range(J):
         beta = B[i]
         y = Y[i]
@@ -682,18 +688,19 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, PT, max_peri
     _diagonal_jacobian(CS[0], CS[1], Ns, Jac[2, 2])
     Jac[2, :2] = 0.0
     # -- the columns times their basis rows: one matrix product ---------------------------------------
-    acc = np.dot(U.reshape(Ns, 6 * nbp).T, E)
+    acc = np.empty((nbp, 6 * nbp))  # acc[q, r nbp + p]
+    columns_times_basis(U.reshape(Ns, 6 * nbp), tabs[Ns:], acc)
     for r in range(6):
         a = r // 3
         b = r % 3
         for p in range(nbasis):
             for q in range(nbasis):
-                Jac[a, b, p, q] += acc[r * nbp + p, q]
+                Jac[a, b, p, q] += acc[q, r * nbp + p]
     return periods
 
 
 @nb.njit(cache=True, nogil=True)
-def aft_plane_batch(kt, kn, gaps, offsets, mu, X1, X2, XN, E, P, cos2, sin2, cum, PT, max_periods,
+def aft_plane_batch(kt, kn, gaps, offsets, mu, X1, X2, XN, E, P, cos2, sin2, cum, tabs, max_periods,
                     F, Jac, periods):  # pragma: no cover - compiled
     """AFT of many contacts on the plane; contact ``c`` owns elements ``offsets[c]:offsets[c+1]``.
 
@@ -704,12 +711,12 @@ def aft_plane_batch(kt, kn, gaps, offsets, mu, X1, X2, XN, E, P, cos2, sin2, cum
     for c in range(X1.shape[0]):
         a = offsets[c]
         b = offsets[c + 1]
-        periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], X1[c], X2[c], XN[c], E, P, cos2, sin2, cum, PT,
+        periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], X1[c], X2[c], XN[c], E, P, cos2, sin2, cum, tabs,
                                 max_periods, F[c], Jac[c])
 
 
 @nb.njit(cache=True, nogil=True)
-def aft_mixed_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, sin2, cum, PT, max_periods,
+def aft_mixed_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, sin2, cum, tabs, max_periods,
                     FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods):  # pragma: no cover - compiled
     """AFT of contacts along one direction and on their planes (``planar[c]``), in one call.
 
@@ -730,7 +737,7 @@ def aft_mixed_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, 
                                       max_periods, FT[c], FN[c], JTt[c], JTn[c], JNn[c])
             continue
         periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XT2[c], XN[c], E, P, cos2, sin2, cum,
-                                PT, max_periods, F, Jac)
+                                tabs, max_periods, F, Jac)
         FT[c] = F[0]
         FT2[c] = F[1]
         FN[c] = F[2]

@@ -534,3 +534,66 @@ def project_rows(typingctx, PT, X, out):  # pragma: no cover - compiled
         return context.get_dummy_value()
 
     return sig, codegen
+
+
+#: columns of the basis taken together by :func:`columns_times_basis` (its sums in registers: ``BLOCK`` vectors)
+BLOCK = 8
+
+
+@intrinsic
+def columns_times_basis(typingctx, U, E, out):  # pragma: no cover - compiled
+    """``out = E.T @ U``: ``out[q, r] = sum over m of E[m, q] U[m, r]``.
+
+    ``U`` (Ns, R) (``R`` a multiple of ``LANES``), ``E`` (Ns, nq) (``nq`` a
+    multiple of :data:`BLOCK`) and ``out`` (nq, R) C-contiguous float64
+    (the history columns times the basis rows, the start weights times the
+    basis rows). A small matrix product in registers: ``LANES`` columns of
+    ``U`` times ``BLOCK`` columns of ``E`` at a time, with fused
+    multiply-adds (at J = 8, H = 7 1.25x faster than the BLAS call with its
+    set-up).
+    """
+    sig = types.void(U, E, out)
+
+    def codegen(context, builder, signature, args):
+        set.add(builder.function.attributes, '"min-legal-vector-width"="512"')  # see sample_rows
+        ua, ea, oa = (context.make_array(signature.args[j])(context, builder, args[j]) for j in range(3))
+        Ns, R = cgutils.unpack_tuple(builder, ua.shape, 2)
+        nq = cgutils.unpack_tuple(builder, ea.shape, 2)[1]
+        index = R.type
+        zero = ir.Constant(_VECTOR, [0.0] * LANES)
+        fma = _fma(builder)
+
+        def const(v):
+            return ir.Constant(index, v)
+
+        def columns(at):
+            blocks = builder.udiv(nq, const(BLOCK))
+            with cgutils.for_range(builder, blocks) as qb:
+                q0 = builder.mul(qb.index, const(BLOCK))
+                entry = builder.block
+                loop = builder.append_basic_block("columns_times_basis.samples")
+                done = builder.append_basic_block("columns_times_basis.done")
+                builder.branch(loop)
+                builder.position_at_end(loop)
+                m = builder.phi(index)
+                m.add_incoming(const(0), entry)
+                acc = [builder.phi(_VECTOR) for _ in range(BLOCK)]
+                for a in acc:
+                    a.add_incoming(zero, entry)
+                u = builder.load(at(builder.gep(ua.data, [builder.mul(m, R)])), align=8)
+                erow = builder.gep(ea.data, [builder.add(builder.mul(m, nq), q0)])
+                new = [fma(u, _splat(builder, builder.load(builder.gep(erow, [const(j)]))), a)
+                       for j, a in enumerate(acc)]
+                following = builder.add(m, const(1))
+                m.add_incoming(following, builder.block)
+                for a, v in zip(acc, new):
+                    a.add_incoming(v, builder.block)
+                builder.cbranch(builder.icmp_signed("<", following, Ns), loop, done)
+                builder.position_at_end(done)
+                for j, v in enumerate(new):
+                    builder.store(v, at(builder.gep(oa.data, [builder.mul(builder.add(q0, const(j)), R)])), align=8)
+
+        _vector_loop(builder, R, LANES, _VECTOR, "columns_times_basis", columns)
+        return context.get_dummy_value()
+
+    return sig, codegen
