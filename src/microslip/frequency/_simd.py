@@ -22,6 +22,8 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
+from .._kernels import DD2_MIN
+
 #: values per vector operation; the rows' length must be a multiple of it
 LANES = 16
 
@@ -225,7 +227,8 @@ def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
     dy = sub(ty, s2)
     dd2 = add(mul(dx, dx), mul(dy, dy))
     slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
-    q = builder.fdiv(one, builder.call(sqrt_fn, [dd2]))
+    floor = ir.Constant(V, [DD2_MIN] * MARCH_LANES)
+    q = mul(builder.call(sqrt_fn, [dd2]), builder.fdiv(one, select(builder.fcmp_ordered(">", dd2, floor), dd2, floor)))
     al = mul(r, q)
     g = mul(mul(mkn, nk), q)
     T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
