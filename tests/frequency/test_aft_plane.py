@@ -362,6 +362,7 @@ def test_the_normal_force_does_no_work_and_friction_dissipates():
     (lambda: aft_plane(JENKINS, [[0, 1e-6]] * 2, [1e-6, 0]), "t must hold 2H \\+ 1 Fourier coefficients"),
     (lambda: aft_plane(JENKINS, [[0, 1e-6, 0]] * 2, [1e-6, 0, 0, 0, 0]), "n must have shape \\(3,\\)"),
     (lambda: aft_plane(JENKINS, [[0, np.inf, 0]] * 2, [1e-6, 0, 0]), "t must be finite"),
+    (lambda: aft_plane(JENKINS, [[0, 6e99, 6e99], [0, 0, 0]], [1e-6, 0, 0]), "t must stay below 1e\\+100 m"),
     (lambda: aft_plane(JENKINS, [[0, 1e-6, 0]] * 2, [1e-6, 0, 0], samples=2), "samples must be at least"),
     (lambda: aft_plane(JENKINS, [[0, 1e-6, 0]] * 2, [1e-6, 0, 0], max_periods=0), "max_periods must be"),
     (lambda: aft_plane(JENKINS, [[0, 1e-6, 0]] * 2, [1e-6, 0, 0]).dissipation([0, 1e-6, 0]),

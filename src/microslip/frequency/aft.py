@@ -36,7 +36,7 @@ from typing import Sequence
 import numpy as np
 
 from ..common import _checks
-from ..model import MicroslipModel
+from ..model import PLANE_LIMIT, MicroslipModel
 from . import _aft, _aft_plane
 
 MAX_PERIODS = 1000
@@ -332,7 +332,8 @@ def aft_plane(model: MicroslipModel, t, n, *, samples: int | None = None,
         The contact (isotropic: the same ``kt`` in both directions).
     t : array_like, shape (2, 2H+1)
         Fourier coefficients of the two tangential displacement components (m),
-        one row per direction, ``[c0, a1, b1, ..., aH, bH]``.
+        one row per direction, ``[c0, a1, b1, ..., aH, bH]``; the magnitudes of
+        a row must add up to less than 1e100 m (the element squares the stretch).
     n : array_like, shape (2H+1,)
         Fourier coefficients of the normal approach (m).
     samples, max_periods
@@ -370,6 +371,10 @@ def aft_plane(model: MicroslipModel, t, n, *, samples: int | None = None,
                          f"got shape {t.shape}")
     if n.shape != t.shape[1:]:
         raise ValueError(f"n must have shape {t.shape[1:]} (the coefficients of the normal approach), got {n.shape}")
+    reach = float(np.abs(t).sum(axis=1).max())  # the largest |t_a| the coefficients can give over the period
+    if reach >= PLANE_LIMIT:
+        raise ValueError(f"t must stay below {PLANE_LIMIT:g} m in magnitude on the contact plane (the element squares "
+                         f"the stretch): its coefficients add up to {reach:.6g} m")
     Ns = check_samples(samples, H)
     max_periods = _checks.positive_int("max_periods", max_periods)
     nb = n.size
