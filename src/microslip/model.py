@@ -77,6 +77,9 @@ def _below_plane_limit(name: str, a: np.ndarray) -> None:
 
 def _tangential(name: str, value, *, min_steps: int = 1) -> np.ndarray:
     """A tangential history (m): shape ``(steps,)``, or ``(steps, 2)`` on the contact plane; finite."""
+    if (type(value) is np.ndarray and value.dtype == np.float64 and value.ndim == 2 and value.shape[1] == 2
+            and value.shape[0] >= max(min_steps, 1) and -PLANE_LIMIT < value.min() and value.max() < PLANE_LIMIT):
+        return value  # what the checks below accept, in two passes without temporaries (NaN fails both bounds)
     t = _checks.real_array(name, value, min_size=min_steps)
     if not (t.ndim == 1 or (t.ndim == 2 and t.shape[1] == 2)):
         raise ValueError(f"{name} must have shape (steps,) (one tangential direction) or (steps, 2) (its two "
