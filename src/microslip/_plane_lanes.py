@@ -144,7 +144,7 @@ def _elements(builder, par, sl, tx, ty, n, record):
         g1, g2, m1, m2 = (builder.phi(_VECTOR) for _ in slip)
         for phi, v in zip((g1, g2, m1, m2), slip):
             phi.add_incoming(v, slipping)
-            phi.add_incoming(zero, held)  # no element slips: not selected below
+            phi.add_incoming(ir.Constant(_VECTOR, ir.Undefined), held)  # no element slips: never selected below
         T1 = select(closed, select(slipped, g1, mul(kt, dx)), zero)
         T2 = select(closed, select(slipped, g2, mul(kt, dy)), zero)
         n1 = select(closed, select(slipped, m1, s1), tx)
