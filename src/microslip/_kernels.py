@@ -210,7 +210,7 @@ def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cov
     is zero). ``Ti`` and ``cond`` C-contiguous.
 
     Each sample updates every element with :func:`plane_step`'s operations
-    in vector form, four elements at a time, and adds the elements' forces,
+    in vector form, eight elements at a time, and adds the elements' forces,
     normal forces and work in element order
     (:func:`microslip._plane_lanes.step_lanes`): the numbers of a loop over
     the elements calling :func:`plane_step`, bit for bit. ``mu kn / kt`` and

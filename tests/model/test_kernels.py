@@ -224,7 +224,7 @@ def bits(a):
 @settings(max_examples=300, deadline=None)
 @given(case=plane_marches(), per_element=st.booleans())
 def test_plane_march_in_vector_form_equals_the_element_loop_bit_for_bit(case, per_element):
-    """The vector form (four elements at a time, padding elements, square roots skipped where nothing
+    """The vector form (eight elements at a time, padding elements, square roots skipped where nothing
     slips) against the loop over the elements it replaced: every output, exactly."""
     model, t, n, s0 = case
     steps, J = t.shape[0], model.elements
