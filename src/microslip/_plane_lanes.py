@@ -42,10 +42,13 @@ PARAMETERS = ("kt", "rk", "mkn", "kn", "gap")
 #: never positive (open), its normal force ``0 max(-inf, 0)`` is zero, and it never slips (its stick
 #: radius ``0 (-inf)`` is NaN, and ``|d|^2 > NaN`` is false)
 PADDING = (1.0, 0.0, 0.0, 0.0, math.inf)
+#: the conditions recorded, those of :mod:`microslip._kernels` (which imports this module)
+OPEN, STICK, SLIP = 0, 1, 2
 
 _DOUBLE = ir.DoubleType()
 _VECTOR = ir.VectorType(_DOUBLE, LANES)
 _SUMS = ir.VectorType(_DOUBLE, 4)
+_HALF = ir.VectorType(_DOUBLE, HALF)
 _INT32 = ir.IntType(32)
 _BYTE = ir.IntType(8)
 _BYTES = ir.VectorType(_BYTE, LANES)
@@ -64,7 +67,7 @@ def shuffle(builder, a, b, lanes):
 
 
 def _interleaved(h):
-    """The lanes of ``shuffle(a, b, .)`` that interleave ``a`` and ``b`` over elements ``h HALF .. (h + 1) HALF - 1``."""
+    """The lanes of ``shuffle(a, b, .)`` interleaving ``a`` and ``b`` over elements ``h HALF .. (h + 1) HALF - 1``."""
     return [v for i in range(h * HALF, (h + 1) * HALF) for v in (i, LANES + i)]
 
 
@@ -97,6 +100,52 @@ def _if(builder, condition, name, then):
     then()
     builder.branch(done)
     builder.position_at_end(done)
+
+
+def _reciprocal_roots(builder, dd2, slipping, sqrt):
+    """``1 / sqrt(dd2)`` in the lanes whose bit is set in ``slipping`` (an integer of ``LANES`` bits, not 0);
+    undefined in the others.
+
+    The divider takes as long for a half of the vector as for the whole, twice (it works on 256 bits at
+    a time and is not pipelined): when only one half holds slipping elements, only that half is divided.
+    """
+    bits = slipping.type
+    halves = [builder.icmp_unsigned("!=", builder.and_(slipping, ir.Constant(bits, (2**HALF - 1) << (h * HALF))),
+                                    ir.Constant(bits, 0)) for h in range(2)]
+    whole = builder.append_basic_block("roots.whole")
+    split = builder.append_basic_block("roots.split")
+    low = builder.append_basic_block("roots.low")
+    high = builder.append_basic_block("roots.high")
+    done = builder.append_basic_block("roots.done")
+    builder.cbranch(builder.and_(*halves), whole, split)
+    builder.position_at_end(whole)
+    q_whole = builder.fdiv(ir.Constant(_VECTOR, [1.0] * LANES), builder.call(sqrt, [dd2]))
+    builder.branch(done)
+    builder.position_at_end(split)
+    builder.cbranch(halves[0], low, high)
+    half_sqrt = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_HALF, [_HALF]),
+                                               "llvm.sqrt.v%df64" % HALF)
+    results = []
+    for h, block in enumerate((low, high)):
+        builder.position_at_end(block)
+        part = _opaque(builder, shuffle(builder, dd2, dd2, list(range(h * HALF, (h + 1) * HALF))))
+        qh = builder.fdiv(ir.Constant(_HALF, [1.0] * HALF), builder.call(half_sqrt, [part]))
+        undefined = ir.Constant(_HALF, ir.Undefined)
+        results.append(shuffle(builder, *((qh, undefined) if h == 0 else (undefined, qh)), list(range(LANES))))
+        builder.branch(done)
+    builder.position_at_end(done)
+    q = builder.phi(_VECTOR)
+    for v, block in zip((q_whole, *results), (whole, low, high)):
+        q.add_incoming(v, block)
+    return q
+
+
+def _opaque(builder, v):
+    """``v``, through an empty instruction LLVM cannot look into on x86 (so that it neither hoists the half's
+    square root out of its branch nor merges it with the other half's); ``v`` elsewhere."""
+    if not builder.module.triple.startswith(("x86_64", "i686", "i386")):
+        return v
+    return builder.asm(ir.FunctionType(v.type, [v.type]), "", "=v,0", [v], False)
 
 
 def _elements(builder, par, sl, tx, ty, n, record):
@@ -141,13 +190,14 @@ def _elements(builder, par, sl, tx, ty, n, record):
         held = builder.block
         slipping = builder.append_basic_block("step_lanes.slip")
         joined = builder.append_basic_block("step_lanes.joined")
-        builder.cbranch(builder.icmp_unsigned("!=", builder.bitcast(moving, ir.IntType(LANES)),
-                                              ir.Constant(ir.IntType(LANES), 0)), slipping, joined)
+        mask_bits = builder.bitcast(moving, ir.IntType(LANES))
+        builder.cbranch(builder.icmp_unsigned("!=", mask_bits, ir.Constant(ir.IntType(LANES), 0)), slipping, joined)
         builder.position_at_end(slipping)
-        q = builder.fdiv(one, builder.call(sqrt, [dd2]))
+        q = _reciprocal_roots(builder, dd2, mask_bits, sqrt)
         al = mul(r, q)
         g = mul(mul(mkn, nk), q)
         slip = (mul(g, dx), mul(g, dy), sub(tx, mul(al, dx)), sub(ty, mul(al, dy)))
+        slipping = builder.block
         builder.branch(joined)
         builder.position_at_end(joined)
         g1, g2, m1, m2 = (builder.phi(_VECTOR) for _ in slip)
@@ -171,7 +221,8 @@ def _elements(builder, par, sl, tx, ty, n, record):
         total = acc
         for i in range(LANES):
             h, p = divmod(i, HALF)
-            total = add(total, shuffle(builder, pairs[h], work[h], (2 * p, 2 * p + 1, LANES + 2 * p, LANES + 2 * p + 1)))
+            lanes = (2 * p, 2 * p + 1, LANES + 2 * p, LANES + 2 * p + 1)
+            total = add(total, shuffle(builder, pairs[h], work[h], lanes))
         acc.add_incoming(total, builder.block)
         sums.append((total, builder.block))
 
@@ -192,9 +243,11 @@ def _recorder(builder, Ti, cond, k):
     cond_row = builder.gep(cond.data, [builder.mul(k, J)])
 
     def record(j, pairs, T1, T2, N, moving):
-        code = builder.select(builder.fcmp_ordered("==", N, ir.Constant(_VECTOR, [0.0] * LANES)),
-                              ir.Constant(_BYTES, [0] * LANES),
-                              builder.select(moving, ir.Constant(_BYTES, [2] * LANES), ir.Constant(_BYTES, [1] * LANES)))
+        def codes(v):
+            return ir.Constant(_BYTES, [v] * LANES)
+
+        code = builder.select(builder.fcmp_ordered("==", N, ir.Constant(_VECTOR, [0.0] * LANES)), codes(OPEN),
+                              builder.select(moving, codes(SLIP), codes(STICK)))
         ti = builder.gep(ti_row, [builder.add(j, j)])
         at_cond = builder.gep(cond_row, [j])
         whole = builder.icmp_signed("<=", builder.add(j, ir.Constant(index, LANES)), J)
