@@ -12,7 +12,8 @@ Three more things the scalar loop cannot do:
 * ``mu kn / kt`` and ``mu kn`` are read from rows computed once per march (the same operations as
   ``plane_step``'s callers), so a step costs one square root and one division per slipping element;
 * a vector of elements none of which slips (all stick or open) skips the square root and the division
-  (``plane_step``'s result does not use them there: the same numbers);
+  (``plane_step``'s result does not use them there: the same numbers), and when the slipping elements
+  are all in one half of it only that half is divided (:func:`_reciprocal_roots`);
 * each element's force and condition are stored from the vectors, interleaved with shuffles, rather
   than copied one number at a time in a second loop.
 
