@@ -13,14 +13,14 @@ What is measured
 
 * The compiled kernel alone in the first mode, writing into output arrays allocated and touched
   beforehand: ``simulate`` allocates 272 bytes per step at J = 16 (the element forces on the plane
-  and their conditions), and touching that fresh memory the first time costs about as much as the
-  march itself on this machine.
+  and their conditions), and obtaining that fresh memory from the system (the kernel clears every
+  page) costs about three quarters of the march itself on this machine over 10^6 steps.
 
 The load path: the paper's sphere tuned with J elements, an elliptical orbit (semi-axes 1.2 and
 0.72 times the gross-slip displacement at the tuning load) and a normal approach cycling between
 0.3 and 1 times the tuning approach (elements open, close, stick and slide round).
 
-Run ``python benchmarks/bench_plane.py`` (about a minute); ``--steps`` shortens it.
+Run ``python benchmarks/bench_plane.py`` (about half a minute); ``--steps`` shortens it.
 Targets: >= 2e8 element updates/s at J = 16 and >= 100 x the NumPy march.
 """
 

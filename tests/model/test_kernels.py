@@ -12,6 +12,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from _plane_loop import march_plane_elementwise
 from _strategies import UM, lengths_array, models, paths
 from microslip import MicroslipModel, _kernels
 from microslip.model import OPEN, SLIP, STICK
@@ -186,3 +187,57 @@ def test_kernels_are_compiled_and_cached():
     for kernel in (_kernels.march, _kernels.march_plane, _kernels.plane_tangents):
         assert kernel.signatures  # compiled for float64 arrays
         assert type(kernel._cache).__name__ != "NullCache"  # cache=True
+
+
+@st.composite
+def plane_marches(draw):
+    """Arrays of 1..40 elements (any multiple of the vector width or not) on paths of 0..60 samples.
+
+    The displacements lie on a coarse lattice (0.25 µm), so samples repeat and an element may see a
+    zero stretch or a trial force exactly at its friction limit; ``n`` goes from below every gap (all
+    open) to above all of them.
+    """
+    J = draw(st.integers(1, 40))
+    steps = draw(st.integers(0, 60))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    kt, kn = 10 ** rng.uniform(5, 8, J), 10 ** rng.uniform(5, 8, J)
+    gaps = rng.uniform(0, 2 * UM, J)
+    if draw(st.booleans()):
+        gaps = np.sort(gaps)
+    mu = draw(st.floats(0.05, 1.0))
+    if draw(st.booleans()):
+        t = 0.25 * UM * rng.integers(-12, 13, (steps, 2)).astype(float)
+        n = 0.25 * UM * rng.integers(-4, 13, steps).astype(float)
+        s0 = 0.25 * UM * rng.integers(-12, 13, (J, 2)).astype(float)
+    else:
+        t = np.cumsum(rng.normal(0.0, 0.3 * UM, (steps, 2)), axis=0)
+        n = 1 * UM + np.cumsum(rng.normal(0.0, 0.3 * UM, steps))
+        s0 = np.zeros((J, 2))
+    return MicroslipModel(kt=kt, kn=kn, gaps=gaps, mu=mu), t, n, s0
+
+
+def bits(a):
+    """The array's bytes: equal bit for bit (``-0.0`` differs from ``0.0``, a NaN is equal to itself)."""
+    return np.ascontiguousarray(a).view(np.uint8)
+
+
+@settings(max_examples=300, deadline=None)
+@given(case=plane_marches(), per_element=st.booleans())
+def test_plane_march_in_vector_form_equals_the_element_loop_bit_for_bit(case, per_element):
+    """The vector form (eight elements at a time, padding elements, square roots skipped where nothing
+    slips) against the loop over the elements it replaced: every output, exactly."""
+    model, t, n, s0 = case
+    steps, J = t.shape[0], model.elements
+    got, want = [], []
+    for march, out in ((_kernels.march_plane, got), (march_plane_elementwise, want)):
+        s = s0.copy()
+        T, N, W = np.empty((steps, 2)), np.empty(steps), np.empty(steps)
+        if per_element:
+            Ti, cond = np.empty((steps, J, 2)), np.empty((steps, J), dtype=np.int8)
+        else:
+            Ti, cond = _kernels.NO_PLANE_ELEMENTS, _kernels.NO_CONDITIONS
+        march(model.kt, model.kn, model.gaps, model.mu, t, n, s, T, N, W, Ti, cond)
+        out += [T, N, W, Ti, cond, s]
+    for a, b in zip(got, want):
+        assert a.shape == b.shape
+        np.testing.assert_array_equal(bits(a), bits(b))

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from _strategies import UM, models, paths, plane_paths
 from microslip import MicroslipModel, Response, Sphere, State, Step, tune
-from microslip.model import OPEN, SLIP, STICK, BeyondTuningWarning
+from microslip.model import OPEN, SLIP, STICK, BeyondTuningWarning, _fresh
 
 
 @pytest.fixture(scope="module")
@@ -438,3 +438,19 @@ def test_friction_work_can_be_left_out_and_then_dissipation_says_so(paper_model)
     with pytest.raises(ValueError, match=r"computed with work=False: run simulate\(\.\.\., work=True\)"):
         fast.dissipation
     np.testing.assert_array_equal(full.friction_work, paper_model.simulate(t, n).friction_work)
+
+
+@pytest.mark.parametrize("shape, dtype", [((300_000, 16, 2), np.float64), ((300_000, 16), np.int8),
+                                          ((524_289,), np.float64)])
+def test_large_records_start_on_a_huge_page_boundary(shape, dtype):
+    """So that every page of the fresh records is a huge page (one fault per 2 MiB, not per 4 KiB)."""
+    a = _fresh(shape, dtype)
+    assert a.shape == shape and a.dtype == dtype and a.flags.c_contiguous and a.flags.writeable
+    assert a.ctypes.data % 2**21 == 0
+    a[...] = 1  # the whole view lies inside its allocation
+    assert a.base.ctypes.data <= a.ctypes.data and a.ctypes.data + a.nbytes <= a.base.ctypes.data + a.base.nbytes
+
+
+def test_small_records_are_plain_arrays():
+    a = _fresh((100, 16), np.int8)
+    assert a.shape == (100, 16) and a.dtype == np.int8 and a.flags.owndata

@@ -370,6 +370,13 @@ STATE_1D = MicroslipModel(kt=[1.0, 1.0], kn=[1.0, 1.0], gaps=[0.0, 0.0], mu=0.5)
     (dict(t=[[0.0, 0.0], [1e100, 0.0]], n=1e-6), ValueError,
      "t must stay below 1e+100 m in magnitude on the contact plane (the element squares the stretch), got 1e+100 m "
      "at flat index 2"),
+    # float64 arrays of shape (steps, 2) are checked in a faster way first: the same refusals
+    (dict(t=np.array([[0.0, 1e-6], [np.nan, 0.0]]), n=1e-6), ValueError, "t must be finite, got nan at flat index 2"),
+    (dict(t=np.array([[0.0, -np.inf]]), n=1e-6), ValueError, "t must be finite, got -inf at flat index 1"),
+    (dict(t=np.array([[0.0, 0.0], [0.0, -1e100]]), n=1e-6), ValueError,
+     "t must stay below 1e+100 m in magnitude on the contact plane (the element squares the stretch), got -1e+100 m "
+     "at flat index 3"),
+    (dict(t=np.array([[1e100, 0.0]]), n=1e-6), ValueError, "got 1e+100 m at flat index 0"),
     (dict(t=np.zeros((3, 2)), n=[1e-6, 1e-6]), ValueError,
      "n must be a scalar or have one value per sample of t (3,), got (2,)"),
     (dict(t=np.zeros((3, 2)), n=1e-6, state=STATE_1D), ValueError,
