@@ -33,13 +33,11 @@ import math
 import numba as nb
 import numpy as np
 
-from ._plane_lanes import LANES, PADDING, step_lanes, step_lanes_recorded
+from ._plane_lanes import DD2_MIN, LANES, PADDING, step_lanes, step_lanes_recorded
 
 OPEN = 0
 STICK = 1
 SLIP = 2
-#: the smallest ``|d|^2`` (m^2) :func:`plane_step` divides by (``2^-1000``: its reciprocal is finite)
-DD2_MIN = 2.0 ** -1000
 
 
 @nb.njit(cache=True, nogil=True, inline="always")

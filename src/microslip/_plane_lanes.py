@@ -45,6 +45,9 @@ PARAMETERS = ("kt", "rk", "mkn", "kn", "gap")
 PADDING = (1.0, 0.0, 0.0, 0.0, math.inf)
 #: the conditions recorded, those of :mod:`microslip._kernels` (which imports this module)
 OPEN, STICK, SLIP = 0, 1, 2
+#: the smallest ``|d|^2`` (m^2) the element update divides by (``2^-1000``: its reciprocal is finite); see
+#: :func:`microslip._kernels.plane_step`
+DD2_MIN = 2.0 ** -1000
 
 _DOUBLE = ir.DoubleType()
 _VECTOR = ir.VectorType(_DOUBLE, LANES)
@@ -103,9 +106,19 @@ def _if(builder, condition, name, then):
     builder.position_at_end(done)
 
 
+def inverse_root(builder, dd2, sqrt):
+    """``1 / |d|`` as :func:`microslip._kernels.plane_step` computes it, on a vector ``dd2`` of ``|d|^2``:
+    ``sqrt(dd2) (1 / max(dd2, DD2_MIN))``, the square root and the division side by side; ``sqrt`` is
+    LLVM's square root for that vector type."""
+    vector = dd2.type
+    floor = ir.Constant(vector, [DD2_MIN] * vector.count)
+    clamped = builder.select(builder.fcmp_ordered(">", dd2, floor), dd2, floor)
+    return builder.fmul(builder.call(sqrt, [dd2]), builder.fdiv(ir.Constant(vector, [1.0] * vector.count), clamped))
+
+
 def _reciprocal_roots(builder, dd2, slipping, sqrt):
-    """``1 / sqrt(dd2)`` in the lanes whose bit is set in ``slipping`` (an integer of ``LANES`` bits, not 0);
-    undefined in the others.
+    """``1 / |d|`` (:func:`inverse_root`) in the lanes whose bit is set in ``slipping`` (an integer of ``LANES``
+    bits, not 0); undefined in the others.
 
     The divider takes as long for a half of the vector as for the whole, twice (it works on 256 bits at
     a time and is not pipelined): when only one half holds slipping elements, only that half is divided.
@@ -120,7 +133,7 @@ def _reciprocal_roots(builder, dd2, slipping, sqrt):
     done = builder.append_basic_block("roots.done")
     builder.cbranch(builder.and_(*halves), whole, split)
     builder.position_at_end(whole)
-    q_whole = builder.fdiv(ir.Constant(_VECTOR, [1.0] * LANES), builder.call(sqrt, [dd2]))
+    q_whole = inverse_root(builder, dd2, sqrt)
     builder.branch(done)
     builder.position_at_end(split)
     builder.cbranch(halves[0], low, high)
@@ -130,7 +143,7 @@ def _reciprocal_roots(builder, dd2, slipping, sqrt):
     for h, block in enumerate((low, high)):
         builder.position_at_end(block)
         part = _opaque(builder, shuffle(builder, dd2, dd2, list(range(h * HALF, (h + 1) * HALF))))
-        qh = builder.fdiv(ir.Constant(_HALF, [1.0] * HALF), builder.call(half_sqrt, [part]))
+        qh = inverse_root(builder, part, half_sqrt)
         undefined = ir.Constant(_HALF, ir.Undefined)
         results.append(shuffle(builder, *((qh, undefined) if h == 0 else (undefined, qh)), list(range(LANES))))
         builder.branch(done)

@@ -22,7 +22,7 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-from .._kernels import DD2_MIN
+from .._plane_lanes import counted_loop, inverse_root, splat
 
 #: values per vector operation; the rows' length must be a multiple of it
 LANES = 16
@@ -33,13 +33,6 @@ _VECTOR = ir.VectorType(_DOUBLE, LANES)
 #: division, whose latency is shorter on four values than on eight, and two vectors of four overlap)
 MARCH_LANES = 4
 _MARCH_VECTOR = ir.VectorType(_DOUBLE, MARCH_LANES)
-
-
-def _splat(builder, x, vector=_VECTOR):
-    """The scalar ``x`` in every lane."""
-    v = builder.insert_element(ir.Constant(vector, ir.Undefined), x, ir.Constant(ir.IntType(32), 0))
-    return builder.shuffle_vector(v, ir.Constant(vector, ir.Undefined),
-                                  ir.Constant(ir.VectorType(ir.IntType(32), vector.count), [0] * vector.count))
 
 
 def _fma(builder):
@@ -57,19 +50,8 @@ def _vector_loop(builder, count, step, vector, name, body):
     ``at(ptr)`` is the pointer to the ``vector`` of values from ``ptr[j]`` on;
     ``body`` may add blocks of its own. The builder ends after the loop.
     """
-    index = count.type
-    entry = builder.block
-    loop = builder.append_basic_block(name + ".loop")
-    done = builder.append_basic_block(name + ".done")
-    builder.cbranch(builder.icmp_signed(">", count, ir.Constant(index, 0)), loop, done)
-    builder.position_at_end(loop)
-    j = builder.phi(index)
-    j.add_incoming(ir.Constant(index, 0), entry)
-    body(lambda ptr: builder.bitcast(builder.gep(ptr, [j]), vector.as_pointer()))
-    following = builder.add(j, ir.Constant(index, step))
-    j.add_incoming(following, builder.block)
-    builder.cbranch(builder.icmp_signed("<", following, count), loop, done)
-    builder.position_at_end(done)
+    counted_loop(builder, count, step, name,
+                 lambda j: body(lambda ptr: builder.bitcast(builder.gep(ptr, [j]), vector.as_pointer())))
 
 
 #: the rows of the sample sums :func:`sample_rows` reads (``local``, see
@@ -126,8 +108,8 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, local, order, count):  # pragm
         Jp = cgutils.unpack_tuple(builder, ca.shape, 2)[1]
 
         samples = shape[0]
-        local_terms = [_splat(builder, builder.load(builder.gep(la.data, [builder.add(builder.mul(const(j), samples),
-                                                                                      mv)])))
+        local_terms = [splat(builder, builder.load(builder.gep(la.data, [builder.add(builder.mul(const(j), samples),
+                                                                                     mv)])), _VECTOR)
                        for j in LOCAL_ROWS]
 
         def chunk(at):  # LANES columns
@@ -149,7 +131,7 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, local, order, count):  # pragm
             def coefficient(j):
                 return builder.load(builder.gep(ca.data, [builder.add(builder.mul(const(j), Jp), i)]))
 
-            h1, h2, h3, cp, v1, v2, cy = (_splat(builder, coefficient(j)) for j in (5, 6, 7, 9, 10, 11, 12))
+            h1, h2, h3, cp, v1, v2, cy = (splat(builder, coefficient(j), _VECTOR) for j in (5, 6, 7, 9, 10, 11, 12))
             y1 = builder.gep(ya.data, [builder.mul(i, builder.add(nbp, nbp))])
             y2 = builder.gep(y1, [nbp])
             a1, a2 = (builder.load(at(ptr), align=8) for ptr in (y1, y2))
@@ -164,7 +146,7 @@ def sample_rows(typingctx, U, m, B, Y, PT, coefs, local, order, count):  # pragm
                 news = [fma(a1 if r < 3 else a2, h[r], acc[r]) for r in range(6)]
                 q = builder.fmul(pt, cp)
                 if block is full:  # the beta terms
-                    g11, g12, g13, g22, g23, cb, sb, sp = (_splat(builder, coefficient(j))
+                    g11, g12, g13, g22, g23, cb, sb, sp = (splat(builder, coefficient(j), _VECTOR)
                                                            for j in (0, 1, 2, 3, 4, 8, 13, 14))
                     brow = builder.gep(ba.data, [builder.mul(i, nbp)])
                     bp = builder.load(at(brow), align=8)
@@ -227,8 +209,7 @@ def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
     dy = sub(ty, s2)
     dd2 = add(mul(dx, dx), mul(dy, dy))
     slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
-    floor = ir.Constant(V, [DD2_MIN] * MARCH_LANES)
-    q = mul(builder.call(sqrt_fn, [dd2]), builder.fdiv(one, select(builder.fcmp_ordered(">", dd2, floor), dd2, floor)))
+    q = inverse_root(builder, dd2, sqrt_fn)
     al = mul(r, q)
     g = mul(mul(mkn, nk), q)
     T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
@@ -339,7 +320,7 @@ def period_march(typingctx, par, st, rec, t1, t2, n):  # pragma: no cover - comp
             return [builder.load(_row_vector(builder, sa.data, rows[r], Jp, g), align=8) for r in range(6)]
 
         def sample(g, k, state):
-            tx, ty, nk0 = (_splat(builder, builder.load(builder.gep(a.data, [k])), V) for a in (xa, ya, na))
+            tx, ty, nk0 = (splat(builder, builder.load(builder.gep(a.data, [k])), V) for a in (xa, ya, na))
             new, records = _plane_lanes(builder, sqrt_fn, pars[g], state, tx, ty, nk0)
             for r, value in enumerate(records):
                 builder.store(value, _row_vector(builder, ra.data, builder.add(builder.mul(rows[r], Ns), k), Jp, g),
@@ -524,7 +505,7 @@ def project_rows(typingctx, PT, X, out):  # pragma: no cover - compiled
                 acc = builder.phi(_VECTOR)
                 acc.add_incoming(zero, entry)
                 pt = builder.load(at(builder.gep(pa.data, [builder.mul(k, nbp)])), align=8)
-                x = _splat(builder, builder.load(builder.gep(xrow, [k])))
+                x = splat(builder, builder.load(builder.gep(xrow, [k])), _VECTOR)
                 new = builder.fadd(acc, builder.fmul(pt, x))
                 following = builder.add(k, ir.Constant(index, 1))
                 k.add_incoming(following, builder.block)
@@ -585,7 +566,7 @@ def columns_times_basis(typingctx, U, E, out):  # pragma: no cover - compiled
                     a.add_incoming(zero, entry)
                 u = builder.load(at(builder.gep(ua.data, [builder.mul(m, R)])), align=8)
                 erow = builder.gep(ea.data, [builder.add(builder.mul(m, nq), q0)])
-                new = [fma(u, _splat(builder, builder.load(builder.gep(erow, [const(j)]))), a)
+                new = [fma(u, splat(builder, builder.load(builder.gep(erow, [const(j)])), _VECTOR), a)
                        for j, a in enumerate(acc)]
                 following = builder.add(m, const(1))
                 m.add_incoming(following, builder.block)
