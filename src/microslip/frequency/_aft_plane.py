@@ -106,7 +106,8 @@ def _static(rk, nk, t1, t2):  # pragma: no cover - compiled
 def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # pragma: no cover - compiled
     """Derivative ``D`` (2, 3, nb) of the slider after the static step and ``periods`` plain periods.
 
-    Forward mode: ``D <- G_k (x) E[k] + A_k D`` (rank-one ``A_k``). Returns the slider.
+    Forward mode: ``D <- G_k (x) E[k] + A_k D`` (rank-one ``A_k``). Returns
+    the slider and whether it ever slipped or opened (if not, ``D`` is zero).
     """
     nbasis = E.shape[1]
     Ns = E.shape[0]
@@ -115,6 +116,7 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
             for q in range(nbasis):
                 D[a, b, q] = 0.0
     code, s1, s2, al, qq = _static(rk, xn_0 - gi, x1_0, x2_0)
+    moved = code != STICK
     u1 = x1_0 * qq
     u2 = x2_0 * qq
     if code == OPEN:
@@ -138,6 +140,7 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
             u2 *= qq
             if code == STICK:
                 continue
+            moved = True
             if code == OPEN:
                 for b in range(3):
                     for q in range(nbasis):
@@ -159,7 +162,7 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
                 D[1, 1, q] += (1.0 - al * v2 * v2) * e
                 D[0, 2, q] -= rk * u1 * e
                 D[1, 2, q] -= rk * u2 * e
-    return s1, s2
+    return s1, s2, moved
 
 
 #: the sweep's coefficient rows are padded to a multiple of this many values (a multiple of ``_simd.LANES``): its loops
@@ -646,13 +649,14 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
             # stick region, fixed by the two samples whose circles meet there; or stuck through the period, or
             # slipping so little that its state is the one its history gave it: the plain march from the
             # static step is repeated with the slider's derivative carried along.
+            moved = True
             if tried[i] == 2:
                 _corner_derivative(t1, t2, rk[i], s1[i], s2[i], corner[0, i], corner[1, i], E, D)
             else:
                 # (the periods after the last in which it slipped or opened leave the derivative as it is)
-                _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E, min(count[i] - 1, moving[i]),
-                                    D)
-            for b in range(3):
+                _, _, moved = _history_derivative(rk[i], gaps[i], t1, t2, n, x1[0], x2[0], xn[0], E,
+                                                  min(count[i] - 1, moving[i]), D)
+            for b in range(3 if moved else 0):  # (a slider that never moved has no derivative)
                 for q in range(nbasis):
                     wD[q] = w1 * D[0, b, q] + w2 * D[1, b, q]
                 for a in range(2):
