@@ -40,10 +40,12 @@ derivative with respect to the sample's ``(t, n)`` (0 in stick,
 
 ``ds_k = A_k ds_(k-1) + G_k dx_k`` and ``dT_k = kt A_k (dt_k - ds_(k-1)) + mu kn u dn_k`` (slip only).
 
-The local parts ``kt A_k dt_k`` and ``mu kn u dn_k`` give diagonal Jacobian
-blocks ``P diag(d) E`` (as in one direction, by product-to-sum identities).
+The local parts ``kt A_k dt_k`` and ``mu kn u dn_k`` give Jacobian blocks
+``P diag(d) E``: each sample's sums ``d`` over the elements join the history
+part's columns below (``d P[:, m]`` in column ``m``), and the normal force's
+``dN/dn`` is taken as in one direction (product-to-sum identities).
 The history part ``-kt A_k ds_(k-1)`` is gathered by one backward sweep per
-element: ``Y_(m-1) = (Y_m - kt P[:, m] (x) I) A_m`` is the coefficient of
+element (all elements side by side): ``Y_(m-1) = (Y_m - kt P[:, m] (x) I) A_m`` is the coefficient of
 ``ds_m`` in the period's force coefficients, and each slip or open sample
 adds ``Y_m G_m`` to its column ``m``; the columns are multiplied by the
 basis rows at the end (one matrix product for the whole contact). The

@@ -1,4 +1,4 @@
-"""Explicit vector loops for the AFT on the contact plane: its periods and its backward sweep (private).
+"""Explicit vector loops for the AFT on the contact plane: its periods, its derivatives' passes (private).
 
 The sweep (:func:`microslip.frequency._aft_plane._sweep`) adds, at each sample, every element's
 contribution to six coefficient rows of ``nbp`` values (16 at H = 7) and updates its three state rows.
@@ -12,7 +12,11 @@ wide LLVM splits each operation into narrower ones: the results are the same eve
 The period (:func:`microslip.frequency._aft_plane._period`) updates every element at every sample; a
 compiled loop over the elements calling :func:`microslip._kernels.plane_step` vectorises likewise only
 behind run-time checks between its dozen rows, repeated at every sample (at J = 8 slower than one
-element at a time). :func:`period_march` is that loop in vector form, without the checks, a whole period per call.
+element at a time). :func:`period_march` is that loop in vector form, without the checks, a whole period per
+call, its elements' sliders held in registers from sample to sample; :func:`start_weights` runs the elements'
+forward products through the periodic period the same way. :func:`project_rows` and
+:func:`columns_times_basis` are the small products with the basis rows (the forces' coefficients, the
+columns of the Jacobian), their sums in registers.
 """
 
 from __future__ import annotations
