@@ -116,6 +116,19 @@ def inverse_root(builder, dd2, sqrt):
     return builder.fmul(builder.call(sqrt, [dd2]), builder.fdiv(ir.Constant(vector, [1.0] * vector.count), clamped))
 
 
+def stretch(builder, rk, gap, n, tx, ty, s1, s2):
+    """The start of :func:`microslip._kernels.plane_step` on vectors, operation for operation: ``(nk, closed,
+    r, dx, dy, dd2, slipped)``, the depth ``n - gap``, whether it is positive, the stick radius ``rk nk``,
+    the stretch ``d = t - s``, ``|d|^2`` and whether ``|d|^2 > r^2``."""
+    nk = builder.fsub(n, gap)
+    closed = builder.fcmp_ordered(">", nk, ir.Constant(nk.type, [0.0] * nk.type.count))
+    r = builder.fmul(rk, nk)
+    dx = builder.fsub(tx, s1)
+    dy = builder.fsub(ty, s2)
+    dd2 = builder.fadd(builder.fmul(dx, dx), builder.fmul(dy, dy))
+    return nk, closed, r, dx, dy, dd2, builder.fcmp_ordered(">", dd2, builder.fmul(r, r))
+
+
 def _reciprocal_roots(builder, dd2, slipping, sqrt):
     """``1 / |d|`` (:func:`inverse_root`) in the lanes whose bit is set in ``slipping`` (an integer of ``LANES``
     bits, not 0); undefined in the others.
@@ -173,7 +186,6 @@ def _elements(builder, par, sl, tx, ty, n, record):
     tx, ty, n0 = (splat(builder, v) for v in (tx, ty, n))
     zero = ir.Constant(_VECTOR, [0.0] * LANES)
     zeros = ir.Constant(_SUMS, [0.0] * 4)
-    one = ir.Constant(_VECTOR, [1.0] * LANES)
     sqrt = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_VECTOR, [_VECTOR]),
                                           "llvm.sqrt.v%df64" % LANES)
     mul, sub, add, select = builder.fmul, builder.fsub, builder.fadd, builder.select
@@ -192,14 +204,7 @@ def _elements(builder, par, sl, tx, ty, n, record):
         acc.add_incoming(zeros, entry)
         kt, rk, mkn, kn, gap = (builder.load(at(p), align=8) for p in prow)
         s1, s2 = (builder.load(at(p), align=8) for p in srow)
-        # plane_step
-        nk = sub(n0, gap)
-        closed = builder.fcmp_ordered(">", nk, zero)
-        r = mul(rk, nk)
-        dx = sub(tx, s1)
-        dy = sub(ty, s2)
-        dd2 = add(mul(dx, dx), mul(dy, dy))
-        slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
+        nk, closed, r, dx, dy, dd2, slipped = stretch(builder, rk, gap, n0, tx, ty, s1, s2)
         moving = builder.and_(closed, slipped)  # the elements that slip: code == SLIP
         held = builder.block
         slipping = builder.append_basic_block("step_lanes.slip")

@@ -597,7 +597,6 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     count, tried, moving = ivec[0], ivec[1], ivec[2]
     st, rec = march_work(J, Ns)
     s1, s2 = st[0], st[1]
-    code, alpha, V1, V2, Te1, Te2 = rec[0], rec[1], rec[2], rec[3], rec[4], rec[5]
     size = 0.0
     for k in range(Ns):
         size = max(size, abs(t1[k]) + abs(t2[k]))

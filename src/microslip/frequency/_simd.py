@@ -26,7 +26,7 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-from .._plane_lanes import counted_loop, inverse_root, splat
+from .._plane_lanes import counted_loop, inverse_root, splat, stretch
 
 #: values per vector operation; the rows' length must be a multiple of it
 LANES = 16
@@ -206,13 +206,7 @@ def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
     kt, rk, mkn, _, gap = par
     s1, s2, c0, c1, c2, c3 = state
     # plane_step, operation for operation
-    nk = sub(nk0, gap)
-    closed = builder.fcmp_ordered(">", nk, zero)
-    r = mul(rk, nk)
-    dx = sub(tx, s1)
-    dy = sub(ty, s2)
-    dd2 = add(mul(dx, dx), mul(dy, dy))
-    slipped = builder.fcmp_ordered(">", dd2, mul(r, r))
+    nk, closed, r, dx, dy, dd2, slipped = stretch(builder, rk, gap, nk0, tx, ty, s1, s2)
     q = inverse_root(builder, dd2, sqrt_fn)
     al = mul(r, q)
     g = mul(mul(mkn, nk), q)
@@ -234,6 +228,35 @@ def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
     return [n1, n2, *C], records
 
 
+def _carry_over_samples(builder, Ns, name, initial, step):
+    """Emit ``for k in range(Ns): values = step(k, values)`` (``Ns >= 1``), the values (a list) held in
+    registers from ``initial`` on; returns them after the last sample. The builder ends after the loop."""
+    index = Ns.type
+    entry = builder.block
+    loop = builder.append_basic_block(name + ".samples")
+    done = builder.append_basic_block(name + ".done")
+    builder.branch(loop)
+    builder.position_at_end(loop)
+    k = builder.phi(index)
+    k.add_incoming(ir.Constant(index, 0), entry)
+    values = [builder.phi(v.type) for v in initial]
+    for phi, v in zip(values, initial):
+        phi.add_incoming(v, entry)
+    new = step(k, values)
+    following = builder.add(k, ir.Constant(index, 1))
+    k.add_incoming(following, builder.block)
+    for phi, v in zip(values, new):
+        phi.add_incoming(v, builder.block)
+    builder.cbranch(builder.icmp_signed("<", following, Ns), loop, done)
+    builder.position_at_end(done)
+    return new
+
+
+def _sum_over_samples(builder, Ns, name, count, add):
+    """``count`` vector sums from zero over the samples: :func:`_carry_over_samples` with ``add(k, sums)``."""
+    return _carry_over_samples(builder, Ns, name, [ir.Constant(_VECTOR, [0.0] * LANES)] * count, add)
+
+
 def _lane_march(builder, Jp, Ns, name, start, sample, finish):
     """Emit a march over ``Ns`` samples (``Ns >= 1``) of ``Jp`` elements (a multiple of ``MARCH_PAIR``).
 
@@ -244,40 +267,19 @@ def _lane_march(builder, Jp, Ns, name, start, sample, finish):
     gives the new state, ``finish(g, state)`` stores the state after the
     last sample. The builder ends after the march.
     """
-    index = Jp.type
-    entry = builder.block
-    passes = builder.append_basic_block(name + ".pass")
-    samples = builder.append_basic_block(name + ".samples")
-    passed = builder.append_basic_block(name + ".passed")
-    done = builder.append_basic_block(name + ".done")
-    builder.cbranch(builder.icmp_signed(">", Jp, ir.Constant(index, 0)), passes, done)
-    builder.position_at_end(passes)
-    j = builder.phi(index)
-    j.add_incoming(ir.Constant(index, 0), entry)
-    groups = (j, builder.add(j, ir.Constant(index, MARCH_LANES)))
-    starts = [start(g) for g in groups]
-    builder.branch(samples)
-    builder.position_at_end(samples)
-    k = builder.phi(index)
-    k.add_incoming(ir.Constant(index, 0), passes)
-    state = [[builder.phi(v.type) for v in values] for values in starts]
-    for phis, values in zip(state, starts):
-        for phi, value in zip(phis, values):
-            phi.add_incoming(value, passes)
-    news = [sample(g, k, phis) for g, phis in zip(groups, state)]
-    following = builder.add(k, ir.Constant(index, 1))
-    k.add_incoming(following, builder.block)
-    for phis, values in zip(state, news):
-        for phi, value in zip(phis, values):
-            phi.add_incoming(value, builder.block)
-    builder.cbranch(builder.icmp_signed("<", following, Ns), samples, passed)
-    builder.position_at_end(passed)
-    for g, values in zip(groups, news):
-        finish(g, values)
-    after = builder.add(j, ir.Constant(index, MARCH_PAIR))
-    j.add_incoming(after, passed)
-    builder.cbranch(builder.icmp_signed("<", after, Jp), passes, done)
-    builder.position_at_end(done)
+    def one_pass(j):
+        groups = (j, builder.add(j, ir.Constant(j.type, MARCH_LANES)))
+        first = start(groups[0])
+        size = len(first)
+
+        def step(k, values):
+            return [v for i, g in enumerate(groups) for v in sample(g, k, values[i * size:(i + 1) * size])]
+
+        last = _carry_over_samples(builder, Ns, name, first + start(groups[1]), step)
+        for i, g in enumerate(groups):
+            finish(g, last[i * size:(i + 1) * size])
+
+    counted_loop(builder, Jp, MARCH_PAIR, name, one_pass)
 
 
 def _row_vector(builder, data, row, width, col):
@@ -475,6 +477,12 @@ def sample_coefficients(typingctx, coefs, rec, KR, w, m):  # pragma: no cover - 
     return sig, codegen
 
 
+def _wide_arrays(context, builder, signature, args):
+    """The array arguments of an intrinsic whose function may use 512-bit vectors (see :func:`sample_rows`)."""
+    set.add(builder.function.attributes, '"min-legal-vector-width"="512"')
+    return [context.make_array(t)(context, builder, a) for t, a in zip(signature.args, args)]
+
+
 @intrinsic
 def project_rows(typingctx, PT, X, out):  # pragma: no cover - compiled
     """``out[r] = X[r] @ PT`` for every row ``r``: each of the ``nbp`` sums in sample order, a product and then a
@@ -487,36 +495,21 @@ def project_rows(typingctx, PT, X, out):  # pragma: no cover - compiled
     sig = types.void(PT, X, out)
 
     def codegen(context, builder, signature, args):
-        set.add(builder.function.attributes, '"min-legal-vector-width"="512"')  # see sample_rows
-        pa, xa, oa = (context.make_array(signature.args[j])(context, builder, args[j]) for j in range(3))
+        pa, xa, oa = _wide_arrays(context, builder, signature, args)
         Ns, nbp = cgutils.unpack_tuple(builder, pa.shape, 2)
         R = cgutils.unpack_tuple(builder, xa.shape, 2)[0]
-        index = nbp.type
-        zero = ir.Constant(_VECTOR, [0.0] * LANES)
         with cgutils.for_range(builder, R) as rows:
             r = rows.index
             xrow = builder.gep(xa.data, [builder.mul(r, Ns)])
             orow = builder.gep(oa.data, [builder.mul(r, nbp)])
 
             def chunk(at):
-                entry = builder.block
-                loop = builder.append_basic_block("project_rows.samples")
-                done = builder.append_basic_block("project_rows.done")
-                builder.branch(loop)
-                builder.position_at_end(loop)
-                k = builder.phi(index)
-                k.add_incoming(ir.Constant(index, 0), entry)
-                acc = builder.phi(_VECTOR)
-                acc.add_incoming(zero, entry)
-                pt = builder.load(at(builder.gep(pa.data, [builder.mul(k, nbp)])), align=8)
-                x = splat(builder, builder.load(builder.gep(xrow, [k])), _VECTOR)
-                new = builder.fadd(acc, builder.fmul(pt, x))
-                following = builder.add(k, ir.Constant(index, 1))
-                k.add_incoming(following, builder.block)
-                acc.add_incoming(new, builder.block)
-                builder.cbranch(builder.icmp_signed("<", following, Ns), loop, done)
-                builder.position_at_end(done)
-                builder.store(new, at(orow), align=8)
+                def add(k, sums):
+                    pt = builder.load(at(builder.gep(pa.data, [builder.mul(k, nbp)])), align=8)
+                    return [builder.fadd(sums[0], builder.fmul(pt, splat(builder, builder.load(builder.gep(xrow, [k])),
+                                                                         _VECTOR)))]
+
+                builder.store(_sum_over_samples(builder, Ns, "project_rows", 1, add)[0], at(orow), align=8)
 
             _vector_loop(builder, nbp, LANES, _VECTOR, "project_rows", chunk)
         return context.get_dummy_value()
@@ -543,12 +536,10 @@ def columns_times_basis(typingctx, U, E, out):  # pragma: no cover - compiled
     sig = types.void(U, E, out)
 
     def codegen(context, builder, signature, args):
-        set.add(builder.function.attributes, '"min-legal-vector-width"="512"')  # see sample_rows
-        ua, ea, oa = (context.make_array(signature.args[j])(context, builder, args[j]) for j in range(3))
+        ua, ea, oa = _wide_arrays(context, builder, signature, args)
         Ns, R = cgutils.unpack_tuple(builder, ua.shape, 2)
         nq = cgutils.unpack_tuple(builder, ea.shape, 2)[1]
         index = R.type
-        zero = ir.Constant(_VECTOR, [0.0] * LANES)
         fma = _fma(builder)
 
         def const(v):
@@ -558,27 +549,14 @@ def columns_times_basis(typingctx, U, E, out):  # pragma: no cover - compiled
             blocks = builder.udiv(nq, const(BLOCK))
             with cgutils.for_range(builder, blocks) as qb:
                 q0 = builder.mul(qb.index, const(BLOCK))
-                entry = builder.block
-                loop = builder.append_basic_block("columns_times_basis.samples")
-                done = builder.append_basic_block("columns_times_basis.done")
-                builder.branch(loop)
-                builder.position_at_end(loop)
-                m = builder.phi(index)
-                m.add_incoming(const(0), entry)
-                acc = [builder.phi(_VECTOR) for _ in range(BLOCK)]
-                for a in acc:
-                    a.add_incoming(zero, entry)
-                u = builder.load(at(builder.gep(ua.data, [builder.mul(m, R)])), align=8)
-                erow = builder.gep(ea.data, [builder.add(builder.mul(m, nq), q0)])
-                new = [fma(u, splat(builder, builder.load(builder.gep(erow, [const(j)])), _VECTOR), a)
-                       for j, a in enumerate(acc)]
-                following = builder.add(m, const(1))
-                m.add_incoming(following, builder.block)
-                for a, v in zip(acc, new):
-                    a.add_incoming(v, builder.block)
-                builder.cbranch(builder.icmp_signed("<", following, Ns), loop, done)
-                builder.position_at_end(done)
-                for j, v in enumerate(new):
+
+                def add(m, sums):
+                    u = builder.load(at(builder.gep(ua.data, [builder.mul(m, R)])), align=8)
+                    erow = builder.gep(ea.data, [builder.add(builder.mul(m, nq), q0)])
+                    return [fma(u, splat(builder, builder.load(builder.gep(erow, [const(j)])), _VECTOR), v)
+                            for j, v in enumerate(sums)]
+
+                for j, v in enumerate(_sum_over_samples(builder, Ns, "columns_times_basis", BLOCK, add)):
                     builder.store(v, at(builder.gep(oa.data, [builder.mul(builder.add(q0, const(j)), R)])), align=8)
 
         _vector_loop(builder, R, LANES, _VECTOR, "columns_times_basis", columns)
