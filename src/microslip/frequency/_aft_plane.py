@@ -598,13 +598,14 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     st, rec = march_work(J, Ns)
     s1, s2 = st[0], st[1]
     size = 0.0
+    nmax = -np.inf
     for k in range(Ns):
         size = max(size, abs(t1[k]) + abs(t2[k]))
+        nmax = max(nmax, n[k])
     rmax = 0.0
     for i in range(J):
         rk[i] = mu * kn[i] / kt[i]
-        for k in range(Ns):
-            rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
+        rmax = max(rmax, rk[i] * (nmax - gaps[i]))  # the largest stick radius (rk >= 0: at the largest n)
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
     corner = np.empty((2, J), dtype=np.int64)
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
