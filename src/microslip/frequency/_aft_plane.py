@@ -113,10 +113,9 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
     """
     nbasis = E.shape[1]
     Ns = E.shape[0]
-    for a in range(2):
-        for b in range(3):
-            for q in range(nbasis):
-                D[a, b, q] = 0.0
+    D[:] = 0.0
+    d0 = D[0].reshape(3 * nbasis)  # each component's derivative as one row
+    d1 = D[1].reshape(3 * nbasis)
     code, s1, s2, al, qq = _static(rk, xn_0 - gi, x1_0, x2_0)
     moved = code != STICK
     u1 = x1_0 * qq
@@ -151,19 +150,24 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
                 continue
             v1 = -u2
             v2 = u1
-            for b in range(3):
-                for q in range(nbasis):
-                    w = al * (v1 * D[0, b, q] + v2 * D[1, b, q])
-                    D[0, b, q] = w * v1
-                    D[1, b, q] = w * v2
-            for q in range(nbasis):
+            for j in range(3 * nbasis):  # D <- alpha v v^T D: rows of both components at once (they vectorise)
+                w = al * (v1 * d0[j] + v2 * d1[j])
+                d0[j] = w * v1
+                d1[j] = w * v2
+            c00 = 1.0 - al * v1 * v1
+            c01 = al * v1 * v2
+            c10 = al * v2 * v1
+            c11 = 1.0 - al * v2 * v2
+            r1 = rk * u1
+            r2 = rk * u2
+            for q in range(nbasis):  # + G_k (x) E[k]
                 e = E[k, q]
-                D[0, 0, q] += (1.0 - al * v1 * v1) * e
-                D[0, 1, q] -= al * v1 * v2 * e
-                D[1, 0, q] -= al * v2 * v1 * e
-                D[1, 1, q] += (1.0 - al * v2 * v2) * e
-                D[0, 2, q] -= rk * u1 * e
-                D[1, 2, q] -= rk * u2 * e
+                D[0, 0, q] += c00 * e
+                D[0, 1, q] -= c01 * e
+                D[1, 0, q] -= c10 * e
+                D[1, 1, q] += c11 * e
+                D[0, 2, q] -= r1 * e
+                D[1, 2, q] -= r2 * e
     return s1, s2, moved
 
 
