@@ -120,8 +120,8 @@ def plane_step(kt, rk, mkn, kn, nk, tx, ty, sx, sy):  # pragma: no cover - compi
     sticks for ``|d|^2 <= r^2`` (``T = kt d``) and slips otherwise:
     ``q = sqrt(|d|^2) (1 / |d|^2)`` (``1 / |d|``: a square root and a
     division side by side, not one after the other, which shortens the
-    wait of a march on its slider by a third), ``s = t - (r q) d``, ``T =
-    (mkn nk q) d``. ``|d|^2`` is ``dx^2 + dy^2``: the callers keep
+    wait of a march on its slider by a third), ``s = t - (r d) q`` (``r d``
+    is ready before ``q``), ``T = (mkn nk q) d``. ``|d|^2`` is ``dx^2 + dy^2``: the callers keep
     displacements below 1e100 m, so it never overflows; a stretch whose
     square underflows sticks, and below ``sqrt(DD2_MIN)`` (3e-151 m) the
     division takes ``DD2_MIN`` for ``|d|^2`` (a slip there moves the slider
@@ -145,8 +145,8 @@ def plane_step(kt, rk, mkn, kn, nk, tx, ty, sx, sy):  # pragma: no cover - compi
     g = mkn * nk * q
     Tx = (g * dx if slipped else kt * dx) if closed else 0.0
     Ty = (g * dy if slipped else kt * dy) if closed else 0.0
-    new_sx = (tx - al * dx if slipped else sx) if closed else tx
-    new_sy = (ty - al * dy if slipped else sy) if closed else ty
+    new_sx = (tx - (r * dx) * q if slipped else sx) if closed else tx  # r dx while q is computed: a shorter wait
+    new_sy = (ty - (r * dy) * q if slipped else sy) if closed else ty
     code = (SLIP if slipped else STICK) if closed else OPEN
     return Tx, Ty, kn * max(nk, 0.0), code, new_sx, new_sy, al, q
 
@@ -320,7 +320,7 @@ def march_plane_reference(kt, kn, gaps, mu, t, n, s):
             elif d2 > r * r:  # the trial force kt d leaves the disc: back onto its edge along d
                 q = math.sqrt(d2) * (1.0 / max(d2, DD2_MIN))  # 1 / |d|, as plane_step computes it
                 g = mu * kn[i] * depth * q  # mu N_i / |d|
-                Tx, Ty, new, c = g * dx, g * dy, [tx - r * q * dx, ty - r * q * dy], SLIP
+                Tx, Ty, new, c = g * dx, g * dy, [tx - r * dx * q, ty - r * dy * q], SLIP
             else:
                 Tx, Ty, new, c = kt[i] * dx, kt[i] * dy, s[i], STICK
             row_W.append(max(Tx * (new[0] - s[i][0]) + Ty * (new[1] - s[i][1]), 0.0))

@@ -213,9 +213,8 @@ def _elements(builder, par, sl, tx, ty, n, record):
         builder.cbranch(builder.icmp_unsigned("!=", mask_bits, ir.Constant(ir.IntType(LANES), 0)), slipping, joined)
         builder.position_at_end(slipping)
         q = _reciprocal_roots(builder, dd2, mask_bits, sqrt)
-        al = mul(r, q)
         g = mul(mul(mkn, nk), q)
-        slip = (mul(g, dx), mul(g, dy), sub(tx, mul(al, dx)), sub(ty, mul(al, dy)))
+        slip = (mul(g, dx), mul(g, dy), sub(tx, mul(mul(r, dx), q)), sub(ty, mul(mul(r, dy), q)))
         slipping = builder.block
         builder.branch(joined)
         builder.position_at_end(joined)

@@ -212,8 +212,8 @@ def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
     g = mul(mul(mkn, nk), q)
     T1 = select(closed, select(slipped, mul(g, dx), mul(kt, dx)), zero)
     T2 = select(closed, select(slipped, mul(g, dy), mul(kt, dy)), zero)
-    n1 = select(closed, select(slipped, sub(tx, mul(al, dx)), s1), tx)
-    n2 = select(closed, select(slipped, sub(ty, mul(al, dy)), s2), ty)
+    n1 = select(closed, select(slipped, sub(tx, mul(mul(r, dx), q)), s1), tx)
+    n2 = select(closed, select(slipped, sub(ty, mul(mul(r, dy), q)), s2), ty)
     code = select(closed, select(slipped, two, one), zero)
     # the period map's derivative: C <- alpha v v^T C in slip, kept in stick, 0 when open
     slip = builder.and_(closed, slipped)
