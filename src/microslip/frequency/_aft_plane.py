@@ -207,6 +207,33 @@ def march_work(J, Ns):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
+def _march_parameters(kt, kn, gaps, mu, rk, Jp):  # pragma: no cover - compiled
+    """The rows :func:`._simd.period_march` reads, ``(5, Jp)``: ``kt, rk, mu kn, kn, gap``, the elements past
+    ``J`` (padding) open at every sample."""
+    J = kt.shape[0]
+    par = np.empty((5, Jp))
+    for i in range(Jp):
+        real = i < J
+        par[0, i] = kt[i] if real else 1.0
+        par[1, i] = rk[i] if real else 0.0
+        par[2, i] = mu * kn[i] if real else 0.0
+        par[3, i] = kn[i] if real else 0.0
+        par[4, i] = gaps[i] if real else np.inf  # never closed
+    return par
+
+
+@nb.njit(cache=True, nogil=True)
+def _period_of(par, t1, t2, n, st, rec):  # pragma: no cover - compiled
+    """:func:`_period` with the parameter rows of :func:`_march_parameters`."""
+    for i in range(st.shape[1]):
+        st[2, i] = 1.0
+        st[3, i] = 0.0
+        st[4, i] = 0.0
+        st[5, i] = 1.0
+    period_march(par, st, rec, t1, t2, n)
+
+
+@nb.njit(cache=True, nogil=True)
 def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - compiled
     """March every element over one period from the sliders ``st[0], st[1]`` (updated in place).
 
@@ -219,21 +246,7 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - com
     element update is :func:`microslip._kernels.plane_step`'s arithmetic,
     ``MARCH_PAIR`` elements at a time (:func:`._simd.period_march`).
     """
-    J = kt.shape[0]
-    Jp = st.shape[1]
-    par = np.empty((5, Jp))
-    for i in range(Jp):
-        real = i < J
-        par[0, i] = kt[i] if real else 1.0
-        par[1, i] = rk[i] if real else 0.0
-        par[2, i] = mu * kn[i] if real else 0.0
-        par[3, i] = kn[i] if real else 0.0
-        par[4, i] = gaps[i] if real else np.inf  # never closed
-        st[2, i] = 1.0
-        st[3, i] = 0.0
-        st[4, i] = 0.0
-        st[5, i] = 1.0
-    period_march(par, st, rec, t1, t2, n)
+    _period_of(_march_parameters(kt, kn, gaps, mu, rk, st.shape[1]), t1, t2, n, st, rec)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -416,6 +429,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
     lam = el[7]  # the Newton steps' length, halved each time one does not reduce the residual
     newton = np.ones(J, dtype=np.int64)
     stepped = np.zeros(J, dtype=np.int64)  # 1: this period started from a Newton step
+    par = _march_parameters(kt, kn, gaps, mu, rk, st.shape[1])
     for i in range(J):
         _, a1, a2, _, _ = _step(rk[i], xn[0] - gaps[i], x1[0], x2[0], 0.0, 0.0)
         st1[i] = a1
@@ -432,7 +446,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
         for i in range(J):
             b1[i] = s1[i]
             b2[i] = s2[i]
-        _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec)
+        _period_of(par, t1, t2, n, st, rec)
         periods += 1
         done = True
         for i in range(J):
