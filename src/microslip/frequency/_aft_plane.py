@@ -206,6 +206,15 @@ def march_work(J, Ns):  # pragma: no cover - compiled
     return np.empty((6, Jp)), np.empty((6, Ns, Jp))
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _take(block, at, shape):  # pragma: no cover - compiled
+    """The array of ``shape`` at ``block[at:]`` (a view) and the position after it."""
+    size = 1
+    for extent in shape:
+        size *= extent
+    return block[at:at + size].reshape(shape), at + size
+
+
 @nb.njit(cache=True, nogil=True)
 def _march_parameters(kt, kn, gaps, mu, rk, Jp):  # pragma: no cover - compiled
     """The rows :func:`._simd.period_march` reads, ``(5, Jp)``: ``kt, rk, mu kn, kn, gap``, the elements past
@@ -603,16 +612,36 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     nbasis = x1.shape[0]
     Ns = E.shape[0]
     J = kt.shape[0]
-    smp = np.zeros((3, Ns))  # the motion's samples
+    nbp = tabs.shape[1]
+    Jp = -(-J // MARCH_PAIR) * MARCH_PAIR
+    # the work arrays, views of one block of memory (two dozen allocations cost about a microsecond a call)
+    block = np.empty(12 * Ns + J + Ns * 6 * nbp + 3 * J * nbp + 11 * Jp + 7 * nbasis + 3 * Ns * Jp + 3 * Jp * nbp
+                     + 3 * nbp + 2 * cos2.shape[0] + 6 * nbp * nbp)
+    smp, at = _take(block, 0, (3, Ns))  # the motion's samples
+    rk, at = _take(block, at, (J,))
+    U, at = _take(block, at, (Ns, 6, nbp))
+    B, at = _take(block, at, (J, nbp))
+    Y, at = _take(block, at, (J, 2, nbp))
+    w, at = _take(block, at, (3, Jp))
+    KR, at = _take(block, at, (2, Jp))
+    D, at = _take(block, at, (2, 3, nbasis))
+    wD, at = _take(block, at, (nbasis,))
+    nkt, at = _take(block, at, (Jp,))
+    weights, at = _take(block, at, (Ns, 3 * Jp))
+    ends, at = _take(block, at, (5, Jp))
+    BZ, at = _take(block, at, (3 * Jp, nbp))  # every element's beta (rows 0 .. Jp-1), z1 (Jp .. 2 Jp-1) and z2
+    local, at = _take(block, at, (9, Ns))
+    Fp, at = _take(block, at, (3, nbp))
+    CS, at = _take(block, at, (2, cos2.shape[0]))
+    acc, at = _take(block, at, (nbp, 6 * nbp))  # acc[q, r nbp + p]
+    ivec = np.empty((6, J), dtype=np.int64)
+    count, tried, moving, corner, active = ivec[0], ivec[1], ivec[2], ivec[3:5], ivec[5]
     t1 = smp[0]
     t2 = smp[1]
     n = smp[2]
     _synthesise(E, x1, t1)
     _synthesise(E, x2, t2)
     _synthesise(E, xn, n)
-    rk = np.empty(J)
-    ivec = np.empty((3, J), dtype=np.int64)
-    count, tried, moving = ivec[0], ivec[1], ivec[2]
     st, rec = march_work(J, Ns)
     s1, s2 = st[0], st[1]
     size = 0.0
@@ -625,7 +654,6 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
         rk[i] = mu * kn[i] / kt[i]
         rmax = max(rmax, rk[i] * (nmax - gaps[i]))  # the largest stick radius (rk >= 0: at the largest n)
     tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
-    corner = np.empty((2, J), dtype=np.int64)
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
                      corner)
     # -- the tangential outputs' derivatives: local and history parts -----------------------------------
@@ -633,24 +661,13 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     # (rows of nbp values, padded: the sweep's loops over them vectorise)
     Jac[:2] = 0.0
     PT = tabs[:Ns]
-    nbp = PT.shape[1]
-    U = np.empty((Ns, 6, nbp))
-    B = np.empty((J, nbp))
-    Y = np.empty((J, 2, nbp))
-    Jp = st.shape[1]
-    w = np.zeros((3, Jp))  # w, and whether beta is known to be zero (not yet)
-    KR = np.zeros((2, Jp))
+    w[:] = 0.0  # w, and whether beta is known to be zero (not yet)
+    KR[:] = 0.0
     KR[0, :J] = kt
     KR[1, :J] = rk
-    active = np.empty(J, dtype=np.bool_)
-    D = np.empty((2, 3, nbasis))
-    wD = np.empty(nbasis)
-    nkt = np.zeros(Jp)
+    nkt[:] = 0.0
     nkt[:J] = -kt
-    weights = np.empty((Ns, 3 * Jp))
-    ends = np.empty((5, Jp))
     start_weights(rec, nkt, weights, ends)
-    BZ = np.empty((3 * Jp, nbp))  # every element's beta (rows 0 .. Jp-1), z1 (Jp .. 2 Jp-1) and z2
     columns_times_basis(PT, weights, BZ)
     for i in range(J):
         beta = B[i]
@@ -662,7 +679,7 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
         w[0, i] = w1
         w[1, i] = w2
         stuck = w1 == 0.0 and w2 == 0.0 and cc == 1.0
-        active[i] = not stuck
+        active[i] = 0 if stuck else 1
         rho = 1.0 if stuck else cc * (l1 * w1 + l2 * w2)  # the eigenvalue of Phi_s = c l w^T
         if tried[i] == 2 or (not tried[i] and 1.0 - rho < FIXED_POINT_MARGIN):
             # the slider at the start of the period is (nearly) neutral to the period map: at a corner of its
@@ -695,7 +712,6 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
             for p in range(nbasis):
                 y[0, p] += f * (beta[p] * l1 + lw * y[0, p])
                 y[1, p] += f * (beta[p] * l2 + lw * y[1, p])
-    local = np.empty((9, Ns))
     _sample_sums(kt, kn, mu, rec, local)
     _sweep(rec, KR, PT, B, Y, w, active, local, U)
     # -- the forces and the normal force's derivative (local only) -------------------------------------
@@ -704,15 +720,12 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
         for i in range(J):  # element after element, as along one direction: the same normal force to the bit
             fn += kn[i] * max(n[k] - gaps[i], 0.0)
         local[2, k] = fn
-    Fp = np.empty((3, nbp))
     project_rows(PT, local[:3], Fp)
     F[:] = Fp[:, :nbasis]
-    CS = np.empty((2, cos2.shape[0]))
     _dft(cos2, sin2, local[8], CS[0], CS[1])
     _diagonal_jacobian(CS[0], CS[1], Ns, Jac[2, 2])
     Jac[2, :2] = 0.0
     # -- the columns times their basis rows: one matrix product ---------------------------------------
-    acc = np.empty((nbp, 6 * nbp))  # acc[q, r nbp + p]
     columns_times_basis(U.reshape(Ns, 6 * nbp), tabs[Ns:], acc)
     for r in range(6):
         a = r // 3
