@@ -171,6 +171,9 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
     return s1, s2, moved
 
 
+#: float64 values per 64 bytes: the work arrays start on 64-byte boundaries (a 512-bit vector's load or store that
+#: straddles two cache lines is slower; the allocator's 32-byte alignment gave runs 10 % apart at random)
+ALIGN = 8
 #: the sweep's coefficient rows are padded to a multiple of this many values (a multiple of ``_simd.LANES``): its loops
 #: over them then run a whole number of vector steps, never one value at a time
 PAD = 16
@@ -178,14 +181,18 @@ PAD = 16
 
 @lru_cache(maxsize=32)
 def sweep_tables(H: int, Ns: int) -> np.ndarray:
-    """The history part's tables, C-contiguous ``(2 Ns, nbp)`` (read-only), ``nbp`` = ``2H+1`` padded to :data:`PAD`.
+    """The history part's tables, C-contiguous ``(2 Ns, nbp)`` (read-only, on a 64-byte boundary), ``nbp`` = ``2H+1``
+    padded to :data:`PAD`.
 
     Rows ``0 .. Ns-1`` hold ``P.T``, rows ``Ns .. 2 Ns - 1`` ``E``
     (:func:`~microslip.frequency._aft.tables`); the padding columns are zero.
     """
     E, P, _, _, _ = tables(H, Ns)
     nbasis = 2 * H + 1
-    out = np.zeros((2 * Ns, -(-nbasis // PAD) * PAD))
+    shape = (2 * Ns, -(-nbasis // PAD) * PAD)
+    raw = np.zeros(shape[0] * shape[1] + ALIGN)
+    start = (-raw.ctypes.data % (8 * ALIGN)) // 8  # on a 64-byte boundary, as the work arrays (ALIGN)
+    out = raw[start:start + shape[0] * shape[1]].reshape(shape)
     out[:Ns, :nbasis] = P.T
     out[Ns:, :nbasis] = E
     out.setflags(write=False)
@@ -208,11 +215,19 @@ def march_work(J, Ns):  # pragma: no cover - compiled
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def _take(block, at, shape):  # pragma: no cover - compiled
-    """The array of ``shape`` at ``block[at:]`` (a view) and the position after it."""
+    """The array of ``shape`` at ``block[at:]`` (a view) and the position of the next one, at the next
+    :data:`ALIGN` boundary."""
     size = 1
     for extent in shape:
         size *= extent
-    return block[at:at + size].reshape(shape), at + size
+    return block[at:at + size].reshape(shape), at + -(-size // ALIGN) * ALIGN
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _aligned_block(size):  # pragma: no cover - compiled
+    """A float64 array of at least ``size`` values and the index of its first value on a 64-byte boundary."""
+    block = np.empty(size + ALIGN)
+    return block, (ALIGN - (block.ctypes.data // 8) % ALIGN) % ALIGN
 
 
 @nb.njit(cache=True, nogil=True)
@@ -615,9 +630,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     nbp = tabs.shape[1]
     Jp = -(-J // MARCH_PAIR) * MARCH_PAIR
     # the work arrays, views of one block of memory (two dozen allocations cost about a microsecond a call)
-    block = np.empty(12 * Ns + J + Ns * 6 * nbp + 3 * J * nbp + 11 * Jp + 7 * nbasis + 3 * Ns * Jp + 3 * Jp * nbp
-                     + 3 * nbp + 2 * cos2.shape[0] + 6 * nbp * nbp)
-    smp, at = _take(block, 0, (3, Ns))  # the motion's samples
+    block, at = _aligned_block(12 * Ns + J + Ns * 6 * nbp + 3 * J * nbp + 17 * Jp + 7 * nbasis + 9 * Ns * Jp
+                               + 3 * Jp * nbp + 3 * nbp + 2 * cos2.shape[0] + 6 * nbp * nbp + 20 * ALIGN)
+    smp, at = _take(block, at, (3, Ns))  # the motion's samples
     rk, at = _take(block, at, (J,))
     U, at = _take(block, at, (Ns, 6, nbp))
     B, at = _take(block, at, (J, nbp))
@@ -634,6 +649,8 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     Fp, at = _take(block, at, (3, nbp))
     CS, at = _take(block, at, (2, cos2.shape[0]))
     acc, at = _take(block, at, (nbp, 6 * nbp))  # acc[q, r nbp + p]
+    st, at = _take(block, at, (6, Jp))  # the march's rows (march_work)
+    rec, at = _take(block, at, (6, Ns, Jp))
     ivec = np.empty((6, J), dtype=np.int64)
     count, tried, moving, corner, active = ivec[0], ivec[1], ivec[2], ivec[3:5], ivec[5]
     t1 = smp[0]
@@ -642,7 +659,6 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     _synthesise(E, x1, t1)
     _synthesise(E, x2, t2)
     _synthesise(E, xn, n)
-    st, rec = march_work(J, Ns)
     s1, s2 = st[0], st[1]
     size = 0.0
     nmax = -np.inf
