@@ -213,6 +213,21 @@ def march_work(J, Ns):  # pragma: no cover - compiled
     return np.empty((6, Jp)), np.empty((6, Ns, Jp))
 
 
+@nb.njit(cache=True, nogil=True)
+def periodic_tolerance(rk, gaps, t1, t2, n):  # pragma: no cover - compiled
+    """The march's periodicity tolerance (m): :data:`PERIODIC_ULPS` ulps of the largest tangential motion plus
+    the largest stick radius over the period (``rk = mu kn / kt``; the samples ``t1, t2, n``)."""
+    size = 0.0
+    nmax = -np.inf
+    for k in range(t1.shape[0]):
+        size = max(size, abs(t1[k]) + abs(t2[k]))
+        nmax = max(nmax, n[k])
+    rmax = 0.0
+    for i in range(rk.shape[0]):
+        rmax = max(rmax, rk[i] * (nmax - gaps[i]))  # the largest stick radius (rk >= 0: at the largest n)
+    return PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
+
+
 @nb.njit(cache=True, nogil=True, inline="always")
 def _take(block, at, shape):  # pragma: no cover - compiled
     """The array of ``shape`` at ``block[at:]`` (a view) and the position of the next one, at the next
@@ -660,16 +675,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     _synthesise(E, x2, t2)
     _synthesise(E, xn, n)
     s1, s2 = st[0], st[1]
-    size = 0.0
-    nmax = -np.inf
-    for k in range(Ns):
-        size = max(size, abs(t1[k]) + abs(t2[k]))
-        nmax = max(nmax, n[k])
-    rmax = 0.0
     for i in range(J):
         rk[i] = mu * kn[i] / kt[i]
-        rmax = max(rmax, rk[i] * (nmax - gaps[i]))  # the largest stick radius (rk >= 0: at the largest n)
-    tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
+    tol = periodic_tolerance(rk, gaps, t1, t2, n)
     periods = _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, rec, count, tried, moving,
                      corner)
     # -- the tangential outputs' derivatives: local and history parts -----------------------------------

@@ -21,7 +21,7 @@ import numpy as np
 
 from .._kernels import plane_step
 from ._aft import _synthesise
-from ._aft_plane import PERIODIC_ULPS, _march, march_work
+from ._aft_plane import _march, march_work, periodic_tolerance
 
 #: an empty array for the per-element records a caller does not want
 NO_ELEMENTS = np.empty((0, 0, 2))
@@ -74,13 +74,7 @@ def periodic_state_of_samples(kt, kn, gaps, mu, m1, m2, mn, t1, t2, n, max_perio
     Ns = t1.shape[0]
     J = kt.shape[0]
     rk = mu * kn / kt
-    size = 0.0
-    rmax = 0.0
-    for k in range(Ns):
-        size = max(size, abs(t1[k]) + abs(t2[k]))
-        for i in range(J):
-            rmax = max(rmax, rk[i] * (n[k] - gaps[i]))
-    tol = PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
+    tol = periodic_tolerance(rk, gaps, t1, t2, n)
     ivec = np.empty((3, J), dtype=np.int64)
     st, rec = march_work(J, Ns)
     x1 = np.array([m1])
