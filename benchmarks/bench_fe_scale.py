@@ -102,7 +102,7 @@ def warm_up():
 def timed_curve(structure, force, tip, H: int, reduction: str, keep: bool = False, stability: bool = True):
     """One curve with the time of its reduction and of its continuation (wrapped, then restored)."""
     from microslip import frequency_response
-    from microslip.frequency import response
+    from microslip.frequency.analyses import response
 
     spent = {"reduction": 0.0, "continuation": 0.0}
 
@@ -155,8 +155,8 @@ def tip_amplitudes(structure, force, tip, H: int, reduction: str, omegas, guesse
     not converge this close to the peak. Uses the solver's internals (``_equations``, ``newton``).
     """
     from microslip.frequency.aft import MAX_PERIODS
-    from microslip.frequency.continuation import newton
-    from microslip.frequency.response import _equations
+    from microslip.frequency.numerics.continuation import newton
+    from microslip.frequency.analyses.response import _equations
 
     _, hb, _ = _equations(structure, force, H, None, MAX_PERIODS, reduction, None)
     dofs = getattr(hb, "retained", np.arange(structure.ndof))

@@ -193,7 +193,7 @@ def reduced_fe_stability():
 def whole_structure_hill(run, modal):
     """An exact reduction's stability from the modal model (``modal``: the curve with the default, on that
     model here) against the whole structure's."""
-    from microslip.frequency import stability
+    from microslip.frequency.analyses import stability
 
     saved = stability.WHOLE_LIMIT
     stability.WHOLE_LIMIT = 10 ** 9

@@ -276,7 +276,7 @@ def compare_mode(peer, dofs: int, contacts: int, modes: int, repeat: int, ds_max
           f"{worst_z:.1e} (relative; target {AGREEMENT:.0e}: "
           f"{'met' if max(worst_w, worst_z) <= AGREEMENT else 'MISSED'})")
     # how well each curve's points resolve the mode: straight lines between them against a curve 4x finer
-    from microslip.frequency.nonlinear_modes import default_control
+    from microslip.frequency.analyses.nonlinear_modes import default_control
 
     fine = default_control(*AMPLITUDE).ds_max / 4
     ref = nonlinear_modes(structure, 1, AMPLITUDE, harmonics=MODE_H, samples=MODE_SAMPLES,

@@ -23,7 +23,7 @@ import numpy as np
 
 from microslip import Sphere, Structure, frequency_response, tune
 from microslip.frequency import frequency_point
-from microslip.frequency.transient import steady_state
+from microslip.frequency.analyses.transient import steady_state
 
 FORCE = [0.6, 0.0]  # N along x: partial slip, varying normal load, the contact never opens
 RANGE = (12000.0, 16500.0)  # rad/s, around the first resonance

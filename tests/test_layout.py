@@ -20,7 +20,7 @@ ROOT = PACKAGE.parent
 #: the allowed direction of the arrows: a module may import from its own top-level package or from
 #: one of lower rank, never from one of higher rank (``_plane_lanes``: LLVM vector code the kernels build on)
 RANKS = {"_plane_lanes": -1, "common": 0, "_kernels": 0, "model": 1, "reference": 2, "fe": 2, "accuracy": 3,
-         "frequency": 3, "tuning": 4, "measured": 5, "figures": 6, "study": 6, "cli": 7, "": 8}
+         "frequency": 3, "tuning": 4, "config": 4, "measured": 5, "figures": 6, "study": 6, "cli": 7, "": 8}
 
 
 def _module_name(path: Path) -> str:
@@ -119,7 +119,7 @@ def test_the_top_level_holds_packages_and_a_handful_of_modules():
     modules = sorted(p.stem for p in PACKAGE.glob("*.py"))
     assert modules == ["__init__", "_kernels", "_plane_lanes", "model"]
     packages = sorted(p.parent.name for p in PACKAGE.glob("*/__init__.py"))
-    assert packages == ["accuracy", "cli", "common", "fe", "figures", "frequency", "measured", "reference",
+    assert packages == ["accuracy", "cli", "common", "config", "fe", "figures", "frequency", "measured", "reference",
                         "study", "tuning"]
 
 

@@ -25,6 +25,7 @@ from .measured import (FittedBackbone, LoopTuning, MeasuredContact, Validation, 
                        validate)
 from .frequency import FrequencyResponse, NonlinearModes, Structure, frequency_response, nonlinear_modes
 from .study import SweepResult, sweep
+from . import config
 
 from .common._version import __version__
 
@@ -34,6 +35,7 @@ for _alias, _module in (("loops", loops), ("paths", paths)):
 for _name, _module in list(_sys.modules.items()):
     if _name.startswith(f"{loops.__name__}."):
         _sys.modules[f"{__name__}.loops.{_name.rsplit('.', 1)[1]}"] = _module
+_sys.modules.setdefault(f"{__name__}.frequency.config", config.frf)  # its former path
 del _alias, _module, _name, _sys
 
 __all__ = [

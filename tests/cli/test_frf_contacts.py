@@ -9,7 +9,7 @@ import pytest
 from _paths import REPO
 from microslip.cli import main
 from microslip.frequency import contact_cycle, frequency_response
-from microslip.frequency.contact_cycle import SLIP_STATES
+from microslip.frequency.analyses.contact_cycle import SLIP_STATES
 
 sys.path.insert(0, str(REPO / "tests" / "frequency"))
 from test_damper import blade_pair, damper  # noqa: E402  (the blade pair and damper of the configuration)
@@ -78,7 +78,7 @@ def cycle_at_the_peak(run, api):
 
 
 def test_a_sector_configuration_takes_a_modal_reduction_and_refuses_none(config):  # noqa: F811
-    from microslip.frequency.config import ConfigError, load_config
+    from microslip.config.frf import ConfigError, load_config
 
     text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = [0]\nright = [3]\n'
                                       'engine_order = 2\n\n[excitation]')

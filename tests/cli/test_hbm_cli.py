@@ -8,7 +8,7 @@ import pytest
 
 from microslip.common._table import read_table
 from microslip.cli import main
-from microslip.frequency.config import ConfigError, load_config
+from microslip.config.frf import ConfigError, load_config
 from _paths import EXAMPLES
 
 
@@ -214,5 +214,5 @@ def test_frf_help_documents_every_option(capsys):
     with pytest.raises(SystemExit):
         main(["frf", "--help"])
     text = capsys.readouterr().out
-    for option in ("config", "--out", "--quiet", "microslip.frequency.config"):
+    for option in ("config", "--out", "--quiet", "microslip.config.frf"):
         assert option in text

@@ -8,8 +8,9 @@ from threadpoolctl import threadpool_info, threadpool_limits
 from microslip import MicroslipModel
 from microslip.frequency import Structure, frequency_response, nonlinear_modes
 
-response_module = importlib.import_module("microslip.frequency.response")
-nonlinear_modes_module = importlib.import_module("microslip.frequency.nonlinear_modes")  # the function shadows it
+response_module = importlib.import_module("microslip.frequency.analyses.response")
+# the function shadows the module's name
+nonlinear_modes_module = importlib.import_module("microslip.frequency.analyses.nonlinear_modes")
 
 
 def _blas_threads() -> list[int]:

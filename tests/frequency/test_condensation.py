@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from microslip.frequency.condensation import Condensation, _rayleigh
+from microslip.frequency.reduction.condensation import Condensation, _rayleigh
 
 NDOF = 520  # interior above DENSE_INTERIOR: the sparse factorisation on the aligned pattern
 RETAINED = np.array([3, 50, 51, 200, 333, 517])
@@ -189,7 +189,7 @@ def test_non_classical_damping_keeps_the_factorisation():
 
 
 def test_the_modal_condensation_with_diagonal_damping_equals_its_general_path():
-    from microslip.frequency.modal import ModalCondensation
+    from microslip.frequency.reduction.modal import ModalCondensation
 
     M, C, K = chain(NDOF, seed=9)
     fast = ModalCondensation(M, C, K, RETAINED, 30)

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from microslip.frequency.condensation import Condensation
-from microslip.frequency.modal import ModalCondensation
+from microslip.frequency.reduction.condensation import Condensation
+from microslip.frequency.reduction.modal import ModalCondensation
 
 RETAINED = np.array([3, 10, 20])
 XI = 40.0  # 1/s: a damping ratio of 2 % at 1000 rad/s

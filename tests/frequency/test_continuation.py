@@ -5,7 +5,7 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from microslip.frequency.continuation import continuation
+from microslip.frequency.numerics.continuation import continuation
 
 SLOPE = 3.0  # the curve's slope in (x, omega) on each piece: it turns by 2 atan(3) = 143 degrees at a corner
 
@@ -64,7 +64,7 @@ def test_the_continuation_turns_back_at_a_corner_and_forward_at_the_next(sparse)
 def test_the_factored_bordered_system_gives_the_determinants_sign_with_any_last_row():
     """The orientation of a new point comes from the corrector's last factors with the last row replaced
     (matrix determinant lemma): the sign equals the determinant's of the replaced matrix, the solve NumPy's."""
-    from microslip.frequency.continuation import _Factored
+    from microslip.frequency.numerics.continuation import _Factored
 
     rng = np.random.default_rng(7)
     for _ in range(50):

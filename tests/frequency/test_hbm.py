@@ -275,7 +275,7 @@ def test_amplitude_input_errors(inclined_curve):
 
 def test_large_sparse_structure_matches_dense_solution(monkeypatch):
     """A 60-DOF chain (915 unknowns at H = 7: the sparse path) with a contact at its free end."""
-    import microslip.frequency.hbm as hbm
+    import microslip.frequency.equations.hbm as hbm
 
     n = 60
     k = 2e7 * (np.eye(n) * 2 - np.eye(n, k=1) - np.eye(n, k=-1))

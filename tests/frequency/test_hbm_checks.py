@@ -182,7 +182,7 @@ def test_a_dof_held_only_by_friction_is_named_with_the_fix():
 def test_a_large_sparse_structure_is_checked_by_a_sparse_factorisation_and_still_named():
     import scipy.sparse as sp
 
-    from microslip.frequency import response
+    from microslip.frequency.analyses import response
 
     n = 400  # above SPARSE_CHECK: the shift-invert check runs first
     chain = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1], format="lil") * 1e6

@@ -5,8 +5,8 @@ import pytest
 
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import CyclicStructure, frequency_point, frequency_response
-from microslip.frequency.mistuning import (MAX_STD, amplification_factor, blade_peaks, blade_scatter,
-                                           mistuned_disk)
+from microslip.frequency.structures.mistuning import (MAX_STD, amplification_factor, blade_peaks, blade_scatter,
+                                                      mistuned_disk)
 from test_cyclic import springs_matrix  # the same spring assembly
 
 SPHERE = Sphere.paper()
@@ -102,7 +102,7 @@ def test_one_scaled_blade_equals_the_disk_assembled_by_hand_and_its_linear_solut
 
 def test_the_damper_dofs_can_be_kept_out_of_the_blade():
     from microslip.frequency import UnderPlatformDamper
-    from microslip.frequency.structure import Structure
+    from microslip.frequency.structures.structure import Structure
 
     d, f = rubbing_sector()
     damper = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=300.0, retention=1e3)

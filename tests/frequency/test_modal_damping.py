@@ -8,8 +8,8 @@ residual flexibility must carry it (the series in i Omega of ``modal.DAMPING_ORD
 import numpy as np
 import scipy.sparse as sp
 
-from microslip.frequency.condensation import Condensation
-from microslip.frequency.modal import ModalCondensation
+from microslip.frequency.reduction.condensation import Condensation
+from microslip.frequency.reduction.modal import ModalCondensation
 
 N = 60
 K = sp.diags([-2e6 * np.ones(N - 1), 4e6 * np.ones(N), -2e6 * np.ones(N - 1)], [-1, 0, 1]).tocsr()  # N/m

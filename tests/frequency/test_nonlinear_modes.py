@@ -19,7 +19,7 @@ import scipy.linalg as sla
 
 from microslip import MicroslipModel, Sphere, Structure, tune
 from microslip.frequency import StepControl, frequency_response
-from microslip.frequency.nonlinear_modes import nonlinear_modes
+from microslip.frequency.analyses.nonlinear_modes import nonlinear_modes
 
 from _paths import EXAMPLES
 
@@ -282,7 +282,7 @@ def test_the_stuck_mode_of_a_large_sparse_structure_is_found_by_the_sparse_eigen
     """Above 500 sparse DOFs the linear mode comes from shift-invert Lanczos: the same mode as a dense solution."""
     import scipy.sparse as sp
 
-    from microslip.frequency.epmc import SPARSE_EIGEN, stuck_mode
+    from microslip.frequency.equations.epmc import SPARSE_EIGEN, stuck_mode
 
     n = SPARSE_EIGEN + 100
     K = sp.diags([np.full(n, 2e6), np.full(n - 1, -1e6), np.full(n - 1, -1e6)], [0, 1, -1], format="csr")
@@ -320,7 +320,7 @@ def test_a_sector_mode_equals_the_assembled_disks(diameter):
     """In diameters 0 and N/2 the sector's mode is a mode of the whole disk (every sector in phase, or in
     opposition); the disk's mass-normalised mode is the sector's over sqrt(N), so its modal amplitude is
     sqrt(N) times the sector's."""
-    from microslip.frequency.epmc import stuck_mode
+    from microslip.frequency.equations.epmc import stuck_mode
 
     disk = bladed_disk()
     whole = disk.assembled()
@@ -343,7 +343,7 @@ def test_a_travelling_wave_mode_peaks_under_its_engine_order():
     """Diameter 1: the sector's mode is a travelling wave (its stuck mode complex); at small amplitude its
     frequency is the disk's double eigenvalue of that diameter, and the sector's forced responses under engine
     order 1 peak on its backbone, the synthesis matching their peaks."""
-    from microslip.frequency.epmc import stuck_mode
+    from microslip.frequency.equations.epmc import stuck_mode
 
     disk = bladed_disk(C=2.0 * np.diag([0.1, 0.2, 0.1]))  # mass-proportional: the linear mode stays undamped
     whole = disk.assembled()
@@ -373,7 +373,7 @@ def test_a_contact_on_its_plane_sticks_along_both_directions_in_the_linear_mode(
     """The stuck mode adds the closed elements' kt along the second tangential direction too: with x alone
     stiffened the second mode would be y's 5e4 N/m instead of 5e4 + 2e4."""
     from microslip import MicroslipModel, Structure
-    from microslip.frequency.epmc import stuck_mode
+    from microslip.frequency.equations.epmc import stuck_mode
 
     s = Structure(np.eye(2), np.zeros((2, 2)), np.diag([1e4, 5e4]))
     s.add_contact(MicroslipModel(kt=[2e4], kn=[1e6], gaps=[0.0], mu=0.3), tangential=[{0: 1.0}, {1: 1.0}], normal=None,
@@ -388,7 +388,7 @@ def test_the_compiled_damped_balance_equals_the_reference_with_its_damping_subtr
     """The compiled evaluation adds ``-xi M`` to the damping inside the kernel; the reference evaluation
     of the same equations and the subtraction of ``omega xi M D x`` agree to rounding (1e-12 of the
     largest entry: a few operations per entry)."""
-    from microslip.frequency.epmc import DampedBalance
+    from microslip.frequency.equations.epmc import DampedBalance
 
     hb = DampedBalance(chain(), 3, samples=64)
     assert hb.compiled

@@ -7,7 +7,7 @@ from _plane_twin import integrate_plane_reference, march_plane_reference
 from microslip import MicroslipModel
 from microslip.frequency import Structure
 from microslip.frequency._plane_march import march_plane
-from microslip.frequency.transient import PeriodMap
+from microslip.frequency.analyses.transient import PeriodMap
 
 
 def _path(seed, steps=300, J=5):

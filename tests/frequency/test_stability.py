@@ -16,9 +16,9 @@ from microslip import MicroslipModel
 from microslip._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from microslip.frequency import (HarmonicBalance, Structure, frequency_point, frequency_response, steady_state,
                                  synthesise)
-from microslip.frequency.response import _equations
-from microslip.frequency.stability import Bifurcation, floquet_exponents
-from microslip.frequency.transient import PeriodMap
+from microslip.frequency.analyses.response import _equations
+from microslip.frequency.analyses.stability import Bifurcation, floquet_exponents
+from microslip.frequency.analyses.transient import PeriodMap
 
 from _paths import EXAMPLES
 
@@ -122,7 +122,7 @@ def test_modes_above_the_harmonics_give_no_spurious_instability(chain):
 @pytest.mark.parametrize("dense_limit", [None, 10])  # 10: the reduced problem by shift-invert Arnoldi, sparse
 def test_reduced_equations_give_the_exponents_of_the_whole_structure(chain, reduction, modes, tolerance,
                                                                     dense_limit, monkeypatch):
-    import microslip.frequency.stability as stability
+    import microslip.frequency.analyses.stability as stability
 
     s, f = chain
     w = 8000.0  # the first mode (10781 rad/s) is within the strip of the kept harmonics (below 2.5 omega)
@@ -157,7 +157,7 @@ def fe_blade(force: float):
 def test_a_finite_element_model_gets_the_same_exponents_from_every_reduction():
     """384 DOFs, H = 3: Hill problems of 2688 unknowns (every DOF, or the whole structure behind an exact
     reduction), solved by sparse shift-invert Arnoldi, and of 140 (a modal reduction with 20 modes)."""
-    from microslip.frequency.stability import one_blas_thread
+    from microslip.frequency.analyses.stability import one_blas_thread
 
     s, f = fe_blade(12.0)
     w = 9800.0  # below the first resonance of the blade held by its stuck contacts
@@ -181,7 +181,7 @@ def test_a_finite_element_model_gets_the_same_exponents_from_every_reduction():
 def test_a_large_exact_reduction_gets_its_exponents_from_a_modal_model_of_the_structure(w, monkeypatch):
     """Above WHOLE_LIMIT unknowns an exact reduction's Hill problem is that of a 60-mode modal model (the
     whole one costs a sparse factorisation per point); here the limit is lowered so both can be compared."""
-    from microslip.frequency import stability
+    from microslip.frequency.analyses import stability
 
     s, f = fe_blade(12.0)
     with stability.one_blas_thread():
@@ -200,8 +200,8 @@ def test_a_singular_hill_problem_is_solved_off_its_singular_point(monkeypatch):
     ``J0`` is exactly zero (a pair of exponents at 0, as at a fold), so shift-invert at 0 has no factorisation."""
     import scipy.sparse as sp
 
-    import microslip.frequency.stability as stability
-    from microslip.frequency.hbm import harmonic_operators
+    import microslip.frequency.analyses.stability as stability
+    from microslip.frequency.equations.hbm import harmonic_operators
 
     w, H = 100.0, 3
     D, W = harmonic_operators(H)
@@ -381,7 +381,7 @@ def test_a_reduced_curve_has_the_folds_of_the_full_one(fold_curve):
 def test_iterative_and_sparse_eigensolvers_agree_with_the_dense_one(fold_curve, monkeypatch):
     import scipy.sparse as sp
 
-    import microslip.frequency.stability as stability
+    import microslip.frequency.analyses.stability as stability
 
     r = fold_curve
     p = int(r.bifurcations[0].point) + 5  # an unstable point: a real exponent > 0
@@ -439,7 +439,7 @@ def test_bifurcation_interpolation():
 
 
 def test_a_hill_problem_too_large_is_not_assessed(chain, monkeypatch):
-    import microslip.frequency.stability as stability
+    import microslip.frequency.analyses.stability as stability
 
     s, f = chain
     monkeypatch.setattr(stability, "HILL_LIMIT", 10)  # the whole chain's Hill problem has 6 x 5 = 30 unknowns

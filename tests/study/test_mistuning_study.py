@@ -5,7 +5,7 @@ import pytest
 
 from microslip import Sphere, tune
 from microslip.frequency import frequency_response
-from microslip.frequency.mistuning import blade_peaks, blade_scatter, mistuned_disk
+from microslip.frequency.structures.mistuning import blade_peaks, blade_scatter, mistuned_disk
 from microslip.study import load_study, sweep
 
 distributed = pytest.importorskip("dask.distributed")

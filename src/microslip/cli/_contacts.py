@@ -62,7 +62,7 @@ def cycle_columns(cycles_at_peak) -> dict:
     """The cycles as CSV columns: time and phase, then each contact's N, T and slip state."""
     first = cycles_at_peak[0]
     cols = {"time [s]": first.time, "phase [-]": np.arange(first.time.size) / first.time.size}
-    from ..frequency.contact_cycle import SLIP_STATES
+    from ..frequency.analyses.contact_cycle import SLIP_STATES
 
     for cy in cycles_at_peak:
         cols[f"{cy.name} N [N]"] = cy.N

@@ -15,7 +15,7 @@ def add_parser(sub) -> None:
                     "(low load: the damper slides and damps little; high load: it sticks and the system "
                     "stiffens; the optimum lies between). The TOML configuration is that of 'microslip frf' "
                     "with one [[damper]] table and a [design] table giving the loads and the DOF whose peak is "
-                    "read (format: python -c 'import microslip.frequency.config as c; print(c.__doc__)'). "
+                    "read (format: python -c 'import microslip.config.frf as c; print(c.__doc__)'). "
                     "Writes design.csv, design.png, report.html and report.md. Exit status: 0 on success, 1 when "
                     "a forced response fails, 2 for an invalid configuration.")
     p.add_argument("config", help="TOML configuration file with a [[damper]] and a [design] table")
@@ -30,7 +30,7 @@ def run(args) -> int:
 
     from ..common.report import Report
     from ..frequency import ConvergenceError, NotPeriodicError, damper_design_curve
-    from ..frequency.config import ConfigError, load_config
+    from ..config.frf import ConfigError, load_config
 
     cfg = load_config(args.config)
     if cfg.design_loads is None:

@@ -19,7 +19,7 @@ def add_parser(sub) -> None:
                     "Newton's method with the exact Jacobian, pseudo-arclength continuation. The TOML "
                     "configuration gives the matrices (inline or .npz), the contacts (model JSON files from "
                     "'microslip tune'), the excitation and the sweep; its format is documented in "
-                    "microslip.frequency.config (python -c 'import microslip.frequency.config as c; "
+                    "microslip.config.frf (python -c 'import microslip.config.frf as c; "
                     "print(c.__doc__)'). Writes frf.csv, frf.png, contacts.png, report.html and report.md, and, with "
                     "contacts, contact_cycle.png and contact_cycle.csv (each contact's normal and tangential force "
                     "over one period at the peak, with its slip state: stuck, microslip, gross slip, lift-off); "
@@ -77,8 +77,8 @@ def run(args) -> int:
 
     from ..frequency import (ConvergenceError, IncompleteCurveWarning, NotPeriodicError, UnderResolvedWarning,
                              frequency_response)
-    from ..frequency.response import incomplete_message
-    from ..frequency.config import load_config
+    from ..frequency.analyses.response import incomplete_message
+    from ..config.frf import load_config
     from ..common.report import Report, plural
     from ._contacts import add_section
 
@@ -166,7 +166,7 @@ def run(args) -> int:
 def _stability_text(result, cfg) -> str:
     """Which stretches of the curve are unstable (Hill's method), in the configured frequency unit, and its folds."""
     if result.stable is None:
-        from ..frequency.stability import HILL_LIMIT
+        from ..frequency.analyses.stability import HILL_LIMIT
 
         return (f"Stability was not computed: Hill's eigenproblem would have more than {HILL_LIMIT} unknowns "
                 "(the whole structure's with reduction = \"exact\"; use reduction = \"modal\"), or the "

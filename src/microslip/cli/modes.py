@@ -23,7 +23,7 @@ def add_parser(sub) -> None:
                     "that of 'microslip frf' with a [modes] table (mode, amplitude range, the DOF shown, compare; "
                     "for a [cyclic] sector the nodal diameter, by default its engine_order); "
                     "[excitation] and the [sweep] range are optional (format: python -c 'import "
-                    "microslip.frequency.config as c; print(c.__doc__)'). Writes modes.csv (the mode at every "
+                    "microslip.config.frf as c; print(c.__doc__)'). Writes modes.csv (the mode at every "
                     "amplitude: frequency, damping ratio and its viscous and contact shares, every DOF's harmonics "
                     "up to 20 DOFs), modes.png (frequency and damping ratio against the modal amplitude and "
                     "against the chosen DOF's), report.html and report.md. With an [excitation], the forced "
@@ -74,7 +74,7 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
 
     from ..common._io import write_csv
     from ..frequency import frequency_response
-    from ..frequency.synthesis import resonance_band
+    from ..frequency.analyses.synthesis import resonance_band
 
     synthesis = mode.synthesize(force)
     name = cfg.dof_names[dof]
@@ -129,7 +129,7 @@ def run(args) -> int:
 
     from ..common.report import Report, plural
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, StepControl, nonlinear_modes
-    from ..frequency.config import load_config
+    from ..config.frf import load_config
     from .frf import _static_text
 
     cfg = load_config(args.config, nonlinear=True)

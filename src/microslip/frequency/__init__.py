@@ -34,22 +34,40 @@
   to the periodic steady state (an independent check).
 """
 
+import importlib as _importlib
+import sys as _sys
+
 from .aft import (AFTResult, NotPeriodicError, PlaneAFTResult, UnderResolvedWarning, aft, aft_batch, aft_plane, cycle_work,
                   default_samples, synthesise)
-from .continuation import BranchPointWarning, ConvergenceError, StepControl
-from .craig_bampton import CraigBampton, craig_bampton
-from .cyclic import CyclicStructure
-from .damper import DamperContact, UnderPlatformDamper
-from .design import DesignCurve, damper_design_curve
-from .condensation import SingularInteriorError
-from .contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
-from .hbm import HarmonicBalance
-from .mistuning import amplification_factor, blade_peaks, blade_scatter, mistuned_disk
-from .nonlinear_modes import NonlinearModes, nonlinear_modes
-from .response import FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response, static_solution
-from .structure import Contact, Structure
-from .synthesis import SynthesizedResponse
-from .transient import SteadyState, steady_state
+from .numerics.continuation import BranchPointWarning, ConvergenceError, StepControl
+from .reduction.craig_bampton import CraigBampton, craig_bampton
+from .structures.cyclic import CyclicStructure
+from .structures.damper import DamperContact, UnderPlatformDamper
+from .analyses.design import DesignCurve, damper_design_curve
+from .reduction.condensation import SingularInteriorError
+from .analyses.contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
+from .equations.hbm import HarmonicBalance
+from .structures.mistuning import amplification_factor, blade_peaks, blade_scatter, mistuned_disk
+from .analyses.nonlinear_modes import NonlinearModes, nonlinear_modes
+from .analyses.response import (FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response,
+                                static_solution)
+from .structures.structure import Contact, Structure
+from .analyses.synthesis import SynthesizedResponse
+from .analyses.transient import SteadyState, steady_state
+
+# The modules' paths before the package was laid out by role keep working (the same module objects).
+_MOVED = {"continuation": "numerics.continuation", "structure": "structures.structure", "cyclic": "structures.cyclic",
+          "damper": "structures.damper", "mistuning": "structures.mistuning",
+          "condensation": "reduction.condensation", "modal": "reduction.modal",
+          "cyclic_modal": "reduction.cyclic_modal",
+          "craig_bampton": "reduction.craig_bampton", "hbm": "equations.hbm", "reduced": "equations.reduced",
+          "cyclic_balance": "equations.cyclic_balance", "epmc": "equations.epmc", "response": "analyses.response",
+          "stability": "analyses.stability", "nonlinear_modes": "analyses.nonlinear_modes",
+          "synthesis": "analyses.synthesis", "transient": "analyses.transient",
+          "contact_cycle": "analyses.contact_cycle", "design": "analyses.design"}
+for _old, _new in _MOVED.items():
+    _sys.modules.setdefault(f"{__name__}.{_old}", _importlib.import_module(f"{__name__}.{_new}"))
+del _old, _new
 
 __all__ = [
     "AFTResult",

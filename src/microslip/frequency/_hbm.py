@@ -1,6 +1,6 @@
 """Compiled residual and Jacobian of the dense harmonic balance equations (private).
 
-The same equations as :meth:`microslip.frequency.hbm.HarmonicBalance.evaluate_reference`
+The same equations as :meth:`microslip.frequency.equations.hbm.HarmonicBalance.evaluate_reference`
 (the NumPy twin used by the tests and by sparse structures), in one call:
 no temporaries, no Python overhead, which matters for small structures
 where a Newton iteration costs a few microseconds.

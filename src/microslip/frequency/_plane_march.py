@@ -3,9 +3,9 @@
 The element update is :func:`microslip._kernels.plane_step`, the AFT's and
 ``MicroslipModel.simulate``'s own, so that a period marched here from the AFT's periodic state
 (:func:`periodic_state`) repeats the forces harmonic balance used. Used for a
-contact's cycle at a point (:mod:`~microslip.frequency.contact_cycle`), its
+contact's cycle at a point (:mod:`~microslip.frequency.analyses.contact_cycle`), its
 friction work per cycle and the time integration of structures with contacts
-on their planes (:mod:`~microslip.frequency.transient`).
+on their planes (:mod:`~microslip.frequency.analyses.transient`).
 
 Its loop is kept apart from :func:`microslip._kernels.march_plane` (the same
 step, the same order of the sums, so the same numbers bit for bit): the time

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import copy
 
-from ..frequency.config import EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, _close, _harmonic_key
+from ..config.frf import EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, _close, _harmonic_key
 
 #: tables that are arrays of tables, and the name their items' paths start with
 _ARRAYS = {"contact": "[[contact]]", "damper": "[[damper]]", "interface": "[[damper.interface]]"}
-#: plain tables: the table name in a path and its name in :data:`~microslip.frequency.config.KEYS`
+#: plain tables: the table name in a path and its name in :data:`~microslip.config.frf.KEYS`
 _TABLES = {name: f"[{name}]" for name in ("structure", "cyclic", "sweep", "continuation", "output", "modes", "design")}
 #: a table whose keys are not listed in KEYS (harmonics)
 _EXCITATION = "excitation"
@@ -28,7 +28,7 @@ def set_key(data: dict, path: str, value, *, where: str) -> dict:
     Parameters
     ----------
     data : dict
-        A configuration's tables (:func:`~microslip.frequency.config.read_toml`).
+        A configuration's tables (:func:`~microslip.config.frf.read_toml`).
     path : str
         The key's path, e.g. ``"contact.sphere.preload"``.
     value

@@ -75,8 +75,8 @@ def _frf(cfg):
 def _mistuned(study: Study, cfg, sample: int):
     """The assembled disk with the sample's blade stiffness scatter, excited by the travelling wave."""
     from ..frequency import frequency_response
-    from ..frequency.mistuning import blade_amplitudes, blade_scatter, mistuned_disk
-    from ..frequency.response import curve_peak
+    from ..frequency.structures.mistuning import blade_amplitudes, blade_scatter, mistuned_disk
+    from ..frequency.analyses.response import curve_peak
 
     m = study.mistuning
     sector = cfg.structure
@@ -99,7 +99,7 @@ def _mistuned(study: Study, cfg, sample: int):
 
 
 def _frf_row(cfg, result, amplitude) -> dict:
-    from ..frequency.response import curve_peak
+    from ..frequency.analyses.response import curve_peak
 
     row = {}
     for j, d in enumerate(cfg.plot_dofs):

@@ -48,8 +48,8 @@ from pathlib import Path
 import numpy as np
 
 from ..common import _checks
-from ..frequency import config
-from ..frequency.config import ConfigError, ConfigFiles, _checked, _close, config_from_data, read_toml
+from ..config import frf as config
+from ..config.frf import ConfigError, ConfigFiles, _checked, _close, config_from_data, read_toml
 from .key_paths import set_key, set_key_in_place
 
 #: the study file's top-level keys and the keys of its tables
@@ -168,7 +168,7 @@ class Study:
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
     def configuration(self, case: Case):
-        """The case's configuration (:class:`~microslip.frequency.config.FrfConfig`)."""
+        """The case's configuration (:class:`~microslip.config.frf.FrfConfig`)."""
         if not isinstance(case, Case):
             raise TypeError(f"case must be a Case of this study (from Study.cases()), got {type(case).__name__}")
         data = copy.deepcopy(self.data)
@@ -337,7 +337,7 @@ def _mistuning(table, study: Study, path) -> Mistuning:
         if key not in table:
             raise ConfigError(f"{path}: [mistuning] needs {key}")
     std = _checked(path, "", _checks.positive_scalar, "[mistuning] std", table["std"], allow_zero=True)
-    from ..frequency.mistuning import MAX_STD
+    from ..frequency.structures.mistuning import MAX_STD
 
     if std > MAX_STD:
         raise ConfigError(f"{path}: [mistuning] std is a relative stiffness deviation and must be at most {MAX_STD} "

@@ -4,7 +4,7 @@ Works on any problem ``R(x, omega) = 0`` that provides
 ``_evaluate(x, omega, jacobian=True) -> (R, dR/dx, dR/domega)`` (``R`` alone
 without the Jacobian; unchecked: the solvers build ``x`` themselves),
 ``solve(A, b)`` and ``augmented(Jx, R_omega, row)`` (see
-:class:`~microslip.frequency.hbm.HarmonicBalance`).
+:class:`~microslip.frequency.equations.hbm.HarmonicBalance`).
 All arclength geometry is done in scaled variables ``(x / x_scale, omega / omega_scale)``
 so that displacements (µm) and frequencies (rad/s) weigh alike.
 
@@ -50,7 +50,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..common import _checks
+from ...common import _checks
 
 
 @dataclass

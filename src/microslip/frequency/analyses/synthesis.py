@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from ..common import _checks
+from ...common import _checks
 
 #: modal amplitudes of the mode's range sampled for the curve, per point asked for
 _REFINE = 60
@@ -99,7 +99,7 @@ class SynthesizedResponse:
         """
         import matplotlib.pyplot as plt
 
-        from ..common.units import plot_factor
+        from ...common.units import plot_factor
 
         frequency_unit = _checks.one_of("frequency_unit", frequency_unit, ("Hz", "rad/s"))
         to_unit = 1.0 if frequency_unit == "rad/s" else 1 / (2 * np.pi)

@@ -14,12 +14,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..common import _checks
-from ..common._io import write_csv
-from ..common._progress import Progress
-from .damper import UnderPlatformDamper
+from ...common import _checks
+from ...common._io import write_csv
+from ...common._progress import Progress
+from ..structures.damper import UnderPlatformDamper
 from .response import FrequencyResponse, frequency_response
-from .structure import Structure
+from ..structures.structure import Structure
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,7 +68,7 @@ class DesignCurve:
         """Plot the peak response against the centrifugal load, the optimum marked; returns the Axes."""
         import matplotlib.pyplot as plt
 
-        from ..common.units import plot_factor
+        from ...common.units import plot_factor
 
         factor = plot_factor(unit)
         if ax is None:

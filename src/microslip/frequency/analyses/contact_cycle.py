@@ -21,9 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..common import _checks
-from . import _aft, _plane_march
-from .aft import MAX_PERIODS, NotPeriodicError, synthesise
+from ...common import _checks
+from .. import _aft, _plane_march
+from ..aft import MAX_PERIODS, NotPeriodicError, synthesise
 from .response import FrequencyResponse
 
 #: the slip states, in the order of :attr:`ContactCycle.state`'s codes

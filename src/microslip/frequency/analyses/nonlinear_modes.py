@@ -1,6 +1,6 @@
 """Damped nonlinear modes of structures with microslip contacts: :func:`nonlinear_modes`, :class:`NonlinearModes`.
 
-The extended periodic motion concept (:mod:`~microslip.frequency.epmc`): the
+The extended periodic motion concept (:mod:`~microslip.frequency.equations.epmc`): the
 mode's natural frequency and damping ratio as functions of its amplitude,
 followed by pseudo-arclength continuation in the logarithm of the modal
 amplitude from the linear mode (contacts stuck) to gross slip. The result
@@ -19,20 +19,20 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import scipy.sparse as sp
 
-from ..common import _checks
-from ..common._progress import Progress
-from .aft import MAX_PERIODS, check_harmonics
-from ._blas import small_dense
-from .continuation import BranchPointWarning, StepControl, continuation, newton
-from .cyclic import CyclicStructure
-from .epmc import (DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedCyclicBalance, DampedReducedBalance, EpmcEquations,
-                   stuck_mode)
-from .hbm import HarmonicBalance, excitation
-from .cyclic_balance import CyclicHarmonicBalance, cyclic_linear_part, cyclic_reduction
-from .reduced import ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs
-from .response import (FrequencyResponse, IncompleteCurveWarning, _check_determined, _check_resolution,
-                       _static_state, tenths)
-from .structure import Structure
+from ...common import _checks
+from ...common._progress import Progress
+from ..aft import MAX_PERIODS, check_harmonics
+from ..numerics.blas import small_dense
+from ..numerics.continuation import BranchPointWarning, StepControl, continuation, newton
+from ..structures.cyclic import CyclicStructure
+from ..equations.epmc import (DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedCyclicBalance, DampedReducedBalance,
+                              EpmcEquations, stuck_mode)
+from ..equations.hbm import HarmonicBalance, excitation
+from ..equations.cyclic_balance import CyclicHarmonicBalance, cyclic_linear_part, cyclic_reduction
+from ..equations.reduced import ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs
+from .response import (FrequencyResponse, IncompleteCurveWarning, _check_determined, _check_resolution, _static_state,
+                       tenths)
+from ..structures.structure import Structure
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -140,7 +140,7 @@ class NonlinearModes(FrequencyResponse):
         """
         import matplotlib.pyplot as plt
 
-        from ..common.units import plot_factor
+        from ...common.units import plot_factor
 
         frequency_unit = _checks.one_of("frequency_unit", frequency_unit, ("Hz", "rad/s"))
         if axes is None:
@@ -183,7 +183,7 @@ class NonlinearModes(FrequencyResponse):
     def synthesize(self, force, omega=None, *, points: int = 400):
         """The forced response near this mode from the mode alone (single nonlinear mode synthesis).
 
-        See :func:`~microslip.frequency.synthesis.synthesize`.
+        See :func:`~microslip.frequency.analyses.synthesis.synthesize`.
         """
         from .synthesis import synthesize
 
@@ -275,7 +275,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     ``a = phi^T M z_1`` of the linear mode ``phi`` (structure with its contacts
     stuck at the static state, mass-normalised) and the phase condition
     ``Im(phi^T M z_1) = 0``, and followed in ``ln a`` by pseudo-arclength
-    continuation (:mod:`~microslip.frequency.epmc`). Krack, "Nonlinear modal
+    continuation (:mod:`~microslip.frequency.equations.epmc`). Krack, "Nonlinear modal
     analysis of nonconservative systems: extension of the periodic motion
     concept", Computers & Structures 154 (2015).
 

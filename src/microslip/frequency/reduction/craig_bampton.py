@@ -19,11 +19,11 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..common import _checks
-from ..common._io import atomic_write
-from ..model import MicroslipModel
-from .cyclic import CyclicStructure, add_contact_terms, contact_terms
-from .structure import Structure
+from ...common import _checks
+from ...common._io import atomic_write
+from ...model import MicroslipModel
+from ..structures.cyclic import CyclicStructure, add_contact_terms, contact_terms
+from ..structures.structure import Structure
 
 #: interior DOFs up to which the fixed-interface eigenproblem is solved densely
 DENSE_EIGEN = 600

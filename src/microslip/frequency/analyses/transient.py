@@ -32,14 +32,14 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 
-from ..common import _checks
-from .._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
-from ..common._progress import Progress
-from . import _aft, _plane_march, _transient, _transient_plane
-from .aft import MAX_HARMONICS, MAX_PERIODS, MAX_TABLE, check_periodic, check_table
-from .hbm import excitation
+from ...common import _checks
+from ..._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
+from ...common._progress import Progress
+from .. import _aft, _plane_march, _transient, _transient_plane
+from ..aft import MAX_HARMONICS, MAX_PERIODS, MAX_TABLE, check_periodic, check_table
+from ..equations.hbm import excitation
 from .response import FrequencyResponse, static_solution
-from .structure import Structure, direction
+from ..structures.structure import Structure, direction
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,4 +1,4 @@
-"""Harmonic balance equations of a :class:`~microslip.frequency.structure.Structure`.
+"""Harmonic balance equations of a :class:`~microslip.frequency.structures.structure.Structure`.
 
 Unknowns: the Fourier coefficients of every DOF, ``X`` of shape
 ``(2H+1, ndof)`` (harmonic-major, layout ``[c0, a1, b1, ..., aH, bH]``),
@@ -25,11 +25,11 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..common import _checks
-from . import _aft, _aft_plane, _hbm
-from .aft import (MAX_PERIODS, check_harmonics, check_periodic, check_samples, cycle_work, friction_work,
-                  friction_work_plane)
-from .structure import Structure
+from ...common import _checks
+from .. import _aft, _aft_plane, _hbm
+from ..aft import (MAX_PERIODS, check_harmonics, check_periodic, check_samples, cycle_work, friction_work,
+                   friction_work_plane)
+from ..structures.structure import Structure
 
 DENSE_LIMIT = 600  # unknowns up to which dense linear algebra is used
 
@@ -409,7 +409,7 @@ class HarmonicBalance:
 
     def stuck_stiffness(self):
         """Stiffness of the unknowns with every contact element closed and stuck (N/m): see
-        :meth:`Structure.stuck_stiffness <microslip.frequency.structure.Structure.stuck_stiffness>`."""
+        :meth:`Structure.stuck_stiffness <microslip.frequency.structures.structure.Structure.stuck_stiffness>`."""
         return self.structure.stuck_stiffness()
 
     def _full(self, x, omega: float) -> np.ndarray:

@@ -28,11 +28,11 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..common import _checks
-from ..fe.dof_map import DofMap
-from ..fe.files import read_matrices
-from ..model import MicroslipModel
-from .aft import pack_models
+from ...common import _checks
+from ...fe.dof_map import DofMap
+from ...fe.files import read_matrices
+from ...model import MicroslipModel
+from ..aft import pack_models
 
 
 def _matrix(name: str, value, ndof: int | None):

@@ -20,11 +20,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..common import _checks
-from .aft import MAX_PERIODS
-from .condensation import Condensation
-from .cyclic import CyclicStructure
-from .cyclic_modal import CyclicModalCondensation
+from ...common import _checks
+from ..aft import MAX_PERIODS
+from ..reduction.condensation import Condensation
+from ..structures.cyclic import CyclicStructure
+from ..reduction.cyclic_modal import CyclicModalCondensation
 from .hbm import excitation
 from .reduced import DEFAULT_MODES, EXACT_LIMIT, ReducedHarmonicBalance
 
@@ -122,7 +122,7 @@ class CyclicHarmonicBalance(ReducedHarmonicBalance):
     linear : Condensation or CyclicModalCondensation
         From :func:`cyclic_linear_part` (shared by the static and dynamic problems).
     samples, max_periods
-        As for :class:`~microslip.frequency.hbm.HarmonicBalance`.
+        As for :class:`~microslip.frequency.equations.hbm.HarmonicBalance`.
     """
 
     def __init__(self, disk: CyclicStructure, force, harmonics: int, engine_order: int, linear: Condensation, *,

@@ -789,7 +789,7 @@ class Condensation:
         """Real block-diagonal ``Z(omega)`` and ``dZ/domega``, shape ``((2H+1) m, (2H+1) m)`` (N/m, N s/m).
 
         Harmonic-major layout ``[c0 (m), a1 (m), b1 (m), ..., bH (m)]``, the
-        layout of :class:`~microslip.frequency.hbm.HarmonicBalance`. Both are
+        layout of :class:`~microslip.frequency.equations.hbm.HarmonicBalance`. Both are
         computed together and cached for the last ``(omega, H)`` (a Newton
         step asks for the one, then the other); the static block, which does
         not depend on ``omega``, is computed once. With ``xi`` (1/s) the

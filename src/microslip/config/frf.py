@@ -99,9 +99,9 @@ import numpy as np
 from ..common import _checks
 from ..model import MicroslipModel
 from ..common.units import parse_quantity
-from .aft import check_harmonics, check_samples
-from .continuation import StepControl
-from .structure import Structure
+from ..frequency.aft import check_harmonics, check_samples
+from ..frequency.numerics.continuation import StepControl
+from ..frequency.structures.structure import Structure
 
 try:  # Python >= 3.11
     import tomllib as _toml
@@ -542,9 +542,9 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         if h > harmonics:
             raise ConfigError(f"{path}: [excitation] h{h} is a harmonic above [sweep] harmonics = {harmonics}; "
                               f"raise harmonics to {h} or more, or remove h{h}")
-    from .cyclic import CyclicStructure
-    from .cyclic_balance import cyclic_reduction
-    from .reduced import choose_reduction
+    from ..frequency.structures.cyclic import CyclicStructure
+    from ..frequency.equations.cyclic_balance import cyclic_reduction
+    from ..frequency.equations.reduced import choose_reduction
 
     if "engine_order" in sw:
         if not isinstance(structure, CyclicStructure):
@@ -635,7 +635,7 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
 
 def _cyclic(table: dict, structure: Structure, path):
     """The sector as a :class:`CyclicStructure`, and the engine order."""
-    from .cyclic import CyclicStructure
+    from ..frequency.structures.cyclic import CyclicStructure
 
     def dofs(key):
         value = _get(table, key, "[cyclic]", path)
@@ -672,7 +672,7 @@ def _next_keys(spec, structure: Structure, what: str, path):
 
 def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path, files: ConfigFiles):
     """An :class:`UnderPlatformDamper` from a ``[[damper]]`` table and its ``[[damper.interface]]`` tables."""
-    from .damper import UnderPlatformDamper
+    from ..frequency.structures.damper import UnderPlatformDamper
 
     where = f"[[damper]] {k + 1}"
     _table(table, "[[damper]]", path, where)

@@ -12,7 +12,7 @@ import contextlib
 from contextlib import contextmanager
 from functools import cache
 
-from .hbm import DENSE_LIMIT
+from ..equations.hbm import DENSE_LIMIT
 
 
 @cache

@@ -27,8 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..common import _checks
-from ..model import MicroslipModel
+from ...common import _checks
+from ...model import MicroslipModel
 from .structure import Contact, Structure, direction, lists_two_directions
 
 
@@ -238,7 +238,7 @@ class CyclicStructure(Structure):
         stiffness_scale : array_like, shape (sectors,), optional
             A factor ``> 0`` on sector ``s``'s stiffness entries ``K[i, j]``
             with ``i`` and ``j`` both in ``scaled_dofs`` (a mistuned disk,
-            :func:`~microslip.frequency.mistuning.mistuned_disk`); None: every
+            :func:`~microslip.frequency.structures.mistuning.mistuned_disk`); None: every
             sector as given (the tuned disk).
         scaled_dofs : array_like of int, optional
             The sector's DOFs (indices into its ``ndof``) whose stiffness

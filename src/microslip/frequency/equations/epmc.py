@@ -8,11 +8,11 @@ has periodic solutions of frequency ``omega``; ``xi`` (1/s) is the negative
 damping that makes up for what the viscous damping and the contacts dissipate,
 so ``omega`` is the mode's natural frequency and ``xi / (2 omega)`` its
 damping ratio at that amplitude. Harmonic balance as in
-:class:`~microslip.frequency.hbm.HarmonicBalance` (the contacts by AFT, the
+:class:`~microslip.frequency.equations.hbm.HarmonicBalance` (the contacts by AFT, the
 static term an unknown), on every DOF or on the contact DOFs with the rest of
 the structure condensed with the damping ``C - xi M``
-(:class:`~microslip.frequency.condensation.Condensation`,
-:class:`~microslip.frequency.modal.ModalCondensation`).
+(:class:`~microslip.frequency.reduction.condensation.Condensation`,
+:class:`~microslip.frequency.reduction.modal.ModalCondensation`).
 
 Normalisation: the modal amplitude ``a`` is the first harmonic of the
 coordinate of the linear mode ``phi`` (the structure with its contacts stuck
@@ -37,11 +37,11 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .cyclic import CyclicStructure
+from ..structures.cyclic import CyclicStructure
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
-from .structure import Structure
+from ..structures.structure import Structure
 
 #: DOFs up to which the linear mode is found by a dense eigensolution (sparse matrices: a sparse one above
 #: :data:`SPARSE_EIGEN`)
@@ -210,7 +210,7 @@ class EpmcEquations:
 
     Notes
     -----
-    The problem interface of :func:`~microslip.frequency.continuation.continuation`:
+    The problem interface of :func:`~microslip.frequency.numerics.continuation.continuation`:
     ``_evaluate(y, s)`` returns the residual, ``dr/dy`` and ``dr/ds`` (``s = ln a``).
     """
 

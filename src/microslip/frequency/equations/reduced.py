@@ -21,12 +21,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..common import _checks
-from .aft import MAX_PERIODS
-from .condensation import Condensation
+from ...common import _checks
+from ..aft import MAX_PERIODS
+from ..reduction.condensation import Condensation
 from .hbm import DENSE_LIMIT, HarmonicBalance
-from .modal import ModalCondensation
-from .structure import Structure
+from ..reduction.modal import ModalCondensation
+from ..structures.structure import Structure
 
 REDUCTIONS = ("auto", "none", "exact", "modal")
 #: DOFs up to which ``"auto"`` condenses exactly (above: modal)
@@ -99,14 +99,14 @@ class ReducedHarmonicBalance(HarmonicBalance):
     structure : Structure
         The structure with its contacts.
     force : array_like or mapping
-        Excitation (N), see :func:`~microslip.frequency.hbm.excitation`.
+        Excitation (N), see :func:`~microslip.frequency.equations.hbm.excitation`.
     harmonics : int
         ``H`` (0: the static problem).
     linear : Condensation or ModalCondensation
         The condensed linear structure (from :func:`linear_part`); shared
         between the static and the dynamic problem.
     samples, max_periods
-        As for :class:`~microslip.frequency.hbm.HarmonicBalance`.
+        As for :class:`~microslip.frequency.equations.hbm.HarmonicBalance`.
 
     Notes
     -----

@@ -24,9 +24,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..common import _checks
+from ...common import _checks
 from .cyclic import CyclicStructure, _dof_list
-from .response import FrequencyResponse, curve_peak
+from ..analyses.response import FrequencyResponse, curve_peak
 from .structure import Structure, direction
 
 #: the largest standard deviation :func:`blade_scatter` accepts: a blade stiffness scatter is a few percent;

@@ -31,8 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..common import _checks
-from ..model import MicroslipModel
+from ...common import _checks
+from ...model import MicroslipModel
 from .cyclic import CyclicStructure, NextDof, add_contact_terms, contact_terms
 from .structure import Structure
 

@@ -1,8 +1,8 @@
 """Forced response of a structure with microslip contacts: :func:`frequency_response`.
 
-Harmonic balance (:mod:`~microslip.frequency.hbm`) solved with Newton's
+Harmonic balance (:mod:`~microslip.frequency.equations.hbm`) solved with Newton's
 method and the exact Jacobian, followed over a frequency range by
-pseudo-arclength continuation (:mod:`~microslip.frequency.continuation`).
+pseudo-arclength continuation (:mod:`~microslip.frequency.numerics.continuation`).
 """
 
 from __future__ import annotations
@@ -16,19 +16,19 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..common import _checks
-from ..common._io import write_csv
-from ..common._progress import Progress
-from ..common.units import plot_factor
-from .aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, synthesise
-from ._blas import small_dense
-from .continuation import StepControl, continuation, newton
-from .hbm import HarmonicBalance, excitation
-from .cyclic import CyclicStructure
-from .cyclic_balance import check_engine_order, cyclic_equations, phase_operator
-from .reduced import (ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs)
+from ...common import _checks
+from ...common._io import write_csv
+from ...common._progress import Progress
+from ...common.units import plot_factor
+from ..aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, synthesise
+from ..numerics.blas import small_dense
+from ..numerics.continuation import StepControl, continuation, newton
+from ..equations.hbm import HarmonicBalance, excitation
+from ..structures.cyclic import CyclicStructure
+from ..equations.cyclic_balance import check_engine_order, cyclic_equations, phase_operator
+from ..equations.reduced import ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs
 from .stability import assess
-from .structure import Structure, direction
+from ..structures.structure import Structure, direction
 
 _CURVE_SAMPLES = 256  # samples per period when reporting the maximum of a time signal
 
@@ -105,7 +105,7 @@ class FrequencyResponse:
         For a cyclic structure: the engine order solved; the DOFs are this
         sector's (:meth:`sector_coefficients` gives any other sector).
     stable : ndarray of bool, shape (points,), or None
-        Stability of each point by Hill's method (:mod:`~microslip.frequency.stability`):
+        Stability of each point by Hill's method (:mod:`~microslip.frequency.analyses.stability`):
         True when every Floquet exponent the harmonics resolve has a negative
         real part. None when it was not computed (``stability=False``, a cyclic
         sector, or a Hill problem of more than ``stability.HILL_LIMIT`` unknowns).
@@ -116,7 +116,7 @@ class FrequencyResponse:
     bifurcations : list of Bifurcation
         Folds, branch points, Neimark--Sacker and period-doubling points found
         between the points, in the order of the curve
-        (:class:`~microslip.frequency.stability.Bifurcation`: kind, frequency,
+        (:class:`~microslip.frequency.analyses.stability.Bifurcation`: kind, frequency,
         fractional point index; ``b.interpolate(r.amplitude(dof))`` gives an
         amplitude there).
     contact_t2, contact_T2 : ndarray, shape (points, nc, nb)
@@ -583,7 +583,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         Mark each point stable or unstable (Hill's method on the harmonic
         balance Jacobian: the whole structure's with ``"exact"``, or a 60-mode
         modal model of it above ``stability.WHOLE_LIMIT`` (4000) unknowns, the
-        modal model's with ``"modal"``; :mod:`~microslip.frequency.stability`) and
+        modal model's with ``"modal"``; :mod:`~microslip.frequency.analyses.stability`) and
         locate the folds and other bifurcations between points, while the Hill
         problem has at most ``stability.HILL_LIMIT`` (20000) unknowns (else, and
         for a cyclic sector, :attr:`FrequencyResponse.stable` is None).

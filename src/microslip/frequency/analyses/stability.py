@@ -3,8 +3,8 @@
 A periodic solution ``q*(time)`` is perturbed by ``y = exp(lambda time) p(time)``
 with ``p`` periodic (period ``2 pi / omega``), expanded on the same harmonics as
 ``q*`` (harmonic-major coefficients ``[c0, a1, b1, ..., aH, bH]``, see
-:mod:`~microslip.frequency.hbm`). With ``d/dtime = omega D`` on the coefficients
-(``D``: the harmonic derivative of :func:`~microslip.frequency.hbm.harmonic_operators`),
+:mod:`~microslip.frequency.equations.hbm`). With ``d/dtime = omega D`` on the coefficients
+(``D``: the harmonic derivative of :func:`~microslip.frequency.equations.hbm.harmonic_operators`),
 ``y' = exp(lambda time) (lambda + omega D) p`` and ``y'' = exp(lambda time)
 (lambda + omega D)^2 p``, so ``M y'' + C y' + K y + (dF/dq) y = 0`` becomes the
 quadratic eigenproblem of Hill's method
@@ -37,7 +37,7 @@ per period).
 
 Forms of the equations:
 
-* every DOF an unknown (:class:`~microslip.frequency.hbm.HarmonicBalance`): the
+* every DOF an unknown (:class:`~microslip.frequency.equations.hbm.HarmonicBalance`): the
   problem above;
 * ``reduction="exact"``: the condensation is exact, so the Hill problem is that of
   the whole structure with the contact Jacobian of the retained DOFs (``Jc`` of the
@@ -45,7 +45,7 @@ Forms of the equations:
   it has at most :data:`WHOLE_LIMIT` unknowns. Above, one sparse factorisation of
   that problem per point would cost far more than the curve (a 1024-DOF blade,
   H = 5: 0.4-0.8 s per point against 5 ms), and the exponents are those of a modal
-  model of the structure (:data:`~microslip.frequency.reduced.DEFAULT_MODES` modes
+  model of the structure (:data:`~microslip.frequency.equations.reduced.DEFAULT_MODES` modes
   plus the residual flexibility, the next form) with the same contact Jacobian;
   on a 384-DOF scikit-fem blade its leading exponents equal the whole structure's
   to 1.1e-5 of ``omega`` (the real part to 0.11 %: the modal model leaves out the
@@ -79,7 +79,7 @@ samples fall. The verdict there can change with the samples and ``H``: on a blad
 with platform contacts near the onset of slip, the leading exponent moved between
 +45 and -55 1/s with 128, 512 and 2048 samples and H = 5 or 9, while time
 integration from the solution showed no growth over 400 periods. Check such
-stretches by time integration (:class:`~microslip.frequency.transient.PeriodMap`).
+stretches by time integration (:class:`~microslip.frequency.analyses.transient.PeriodMap`).
 """
 
 from __future__ import annotations
@@ -92,10 +92,10 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ._blas import one_blas_thread
-from .hbm import HarmonicBalance, harmonic_operators
-from .modal import ModalCondensation
-from .reduced import DEFAULT_MODES
+from ..numerics.blas import one_blas_thread
+from ..equations.hbm import HarmonicBalance, harmonic_operators
+from ..reduction.modal import ModalCondensation
+from ..equations.reduced import DEFAULT_MODES
 
 #: unknowns of the quadratic eigenproblem up to which it is solved densely (every eigenvalue); above, the
 #: iterative solver is faster (a 40-mode blade model, H = 3, 280 unknowns: 194 ms dense, 6 ms iterative)
@@ -284,8 +284,8 @@ def _dense(A) -> np.ndarray:
 class _Builder:
     """The parts of the Hill problems of one set of equations that do not change along a curve.
 
-    ``hb`` is a :class:`~microslip.frequency.hbm.HarmonicBalance` or a
-    :class:`~microslip.frequency.reduced.ReducedHarmonicBalance` (exact or modal).
+    ``hb`` is a :class:`~microslip.frequency.equations.hbm.HarmonicBalance` or a
+    :class:`~microslip.frequency.equations.reduced.ReducedHarmonicBalance` (exact or modal).
     :attr:`assessed` is False when the Hill problem has more than :data:`HILL_LIMIT` unknowns.
     """
 
@@ -367,8 +367,8 @@ class _Builder:
 def hill_problem(hb: HarmonicBalance, x, omega: float) -> HillProblem | None:
     """The Hill problem of a harmonic balance solution ``x`` (m) at ``omega`` (rad/s).
 
-    ``hb`` is a :class:`~microslip.frequency.hbm.HarmonicBalance` or a
-    :class:`~microslip.frequency.reduced.ReducedHarmonicBalance`. None when
+    ``hb`` is a :class:`~microslip.frequency.equations.hbm.HarmonicBalance` or a
+    :class:`~microslip.frequency.equations.reduced.ReducedHarmonicBalance`. None when
     stability is not computed: more than :data:`HILL_LIMIT` unknowns.
     """
     x, omega = hb._point(x, omega)

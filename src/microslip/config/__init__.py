@@ -1,0 +1,1 @@
+"""microslip.config."""
