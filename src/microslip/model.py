@@ -62,7 +62,7 @@ class BeyondTuningWarning(UserWarning):
     """
 
 
-def _frozen(a: np.ndarray) -> np.ndarray:
+def frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=np.float64, copy=True)
     a.setflags(write=False)
     return a
@@ -105,7 +105,7 @@ def _fresh(shape: tuple, dtype=np.float64) -> np.ndarray:
     return raw[start:start + size].view(dtype).reshape(shape)
 
 
-def _tangential(name: str, value, *, min_steps: int = 1) -> np.ndarray:
+def tangential_history(name: str, value, *, min_steps: int = 1) -> np.ndarray:
     """A tangential history (m): shape ``(steps,)``, or ``(steps, 2)`` on the contact plane; finite."""
     if (type(value) is np.ndarray and value.dtype == np.float64 and value.ndim == 2 and value.shape[1] == 2
             and value.shape[0] >= max(min_steps, 1) and -PLANE_LIMIT < value.min() and value.max() < PLANE_LIMIT):
@@ -150,7 +150,7 @@ class State:
         if not (sliders.ndim == 1 or (sliders.ndim == 2 and sliders.shape[1] == 2)):
             raise ValueError(f"sliders must have shape (J,) (one tangential direction) or (J, 2) (the contact "
                              f"plane), got shape {sliders.shape}")
-        object.__setattr__(self, "sliders", _frozen(sliders))
+        object.__setattr__(self, "sliders", frozen(sliders))
 
     @property
     def plane(self) -> bool:
@@ -552,9 +552,9 @@ class MicroslipModel:
             if arr.size != J:
                 raise ValueError(f"{name} must have the same length as kt ({J}), got {arr.size}")
         mu = _checks.positive_scalar("mu", self.mu)
-        object.__setattr__(self, "kt", _frozen(kt))
-        object.__setattr__(self, "kn", _frozen(kn))
-        object.__setattr__(self, "gaps", _frozen(gaps))
+        object.__setattr__(self, "kt", frozen(kt))
+        object.__setattr__(self, "kn", frozen(kn))
+        object.__setattr__(self, "gaps", frozen(gaps))
         object.__setattr__(self, "mu", mu)
         if self.provenance is not None and not isinstance(self.provenance, Provenance):
             raise TypeError(f"provenance must be a microslip Provenance or None, got {type(self.provenance).__name__}")
@@ -719,7 +719,7 @@ class MicroslipModel:
             Once per call, when a model with a :class:`Provenance` is driven
             beyond the approach of the load it was tuned for.
         """
-        t = _tangential("t", t)
+        t = tangential_history("t", t)
         plane = t.ndim == 2
         n = _checks.real_array("n", n)
         per_element, work = _checks.flag("per_element", per_element), _checks.flag("work", work)

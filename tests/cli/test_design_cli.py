@@ -8,7 +8,7 @@ import pytest
 from microslip import Sphere, tune
 from microslip.cli import main
 from microslip.frequency import CyclicStructure, damper_design_curve
-from microslip.config.frf import ConfigError, load_config
+from microslip.config import ConfigError, load_config
 
 import sys
 from _paths import REPO

@@ -78,7 +78,7 @@ def cycle_at_the_peak(run, api):
 
 
 def test_a_sector_configuration_takes_a_modal_reduction_and_refuses_none(config):  # noqa: F811
-    from microslip.config.frf import ConfigError, load_config
+    from microslip.config import ConfigError, load_config
 
     text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = [0]\nright = [3]\n'
                                       'engine_order = 2\n\n[excitation]')

@@ -8,7 +8,7 @@ import pytest
 
 from microslip.common._table import read_table
 from microslip.cli import main
-from microslip.config.frf import ConfigError, load_config
+from microslip.config import ConfigError, load_config
 from _paths import EXAMPLES
 
 

@@ -5,7 +5,7 @@ import pytest
 
 from microslip.cli import main
 from microslip.common._table import read_table
-from microslip.config.frf import ConfigError, load_config
+from microslip.config import ConfigError, load_config
 from test_hbm_cli import _edit, config_dir  # noqa: F401  (the example block's configuration, as frf's tests)
 
 

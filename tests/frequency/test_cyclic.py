@@ -214,7 +214,7 @@ def test_a_modal_sector_converges_to_the_exact_cyclic_condensation(engine_order)
 
 
 def test_non_proportional_damping_couples_the_modes_and_still_converges():
-    from microslip.frequency.equations.cyclic_balance import cyclic_linear_part
+    from microslip.frequency.reduction.choice import cyclic_linear_part
     from microslip.frequency.equations.hbm import excitation
 
     # a dashpot halfway up the chain: 20 % damping of the highest mode, coupling every mode to the others
@@ -242,7 +242,7 @@ def test_the_frequency_derivative_of_the_modal_stiffness_is_exact():
 
 
 def test_a_large_modal_sector_uses_the_sparse_eigensolver_and_its_modes_are_exact():
-    from microslip.frequency.equations.cyclic_balance import cyclic_linear_part
+    from microslip.frequency.reduction.choice import cyclic_linear_part
     from microslip.frequency.equations.hbm import excitation
     from microslip.frequency.reduction.modal import DENSE_EIGEN
     import scipy.linalg as sla
@@ -279,7 +279,7 @@ def test_a_modal_sector_with_a_damper_equals_the_exact_one():
 
 
 def test_auto_chooses_modal_for_a_large_sector(monkeypatch):
-    import microslip.frequency.equations.cyclic_balance as cb
+    import microslip.frequency.reduction.choice as cb
 
     d, f = chain_sector(40)
     monkeypatch.setattr(cb, "EXACT_LIMIT", 30)

@@ -5,8 +5,8 @@ import pytest
 
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import CyclicStructure, frequency_point, frequency_response
-from microslip.frequency.structures.mistuning import (MAX_STD, amplification_factor, blade_peaks, blade_scatter,
-                                                      mistuned_disk)
+from microslip.frequency.analyses.blade_peaks import amplification_factor, blade_peaks
+from microslip.frequency.structures.mistuning import MAX_STD, blade_scatter, mistuned_disk
 from test_cyclic import springs_matrix  # the same spring assembly
 
 SPHERE = Sphere.paper()

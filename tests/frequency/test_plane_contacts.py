@@ -196,7 +196,7 @@ def test_craig_bampton_keeps_the_contact_on_its_plane(tmp_path):
 
 
 def test_the_configuration_file_takes_two_tangential_directions(tmp_path):
-    from microslip.config.frf import ConfigError, load_config
+    from microslip.config import ConfigError, load_config
 
     MODEL.save(tmp_path / "contact.json")
     text = """

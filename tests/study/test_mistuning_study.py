@@ -5,7 +5,8 @@ import pytest
 
 from microslip import Sphere, tune
 from microslip.frequency import frequency_response
-from microslip.frequency.structures.mistuning import blade_peaks, blade_scatter, mistuned_disk
+from microslip.frequency.analyses.blade_peaks import blade_peaks
+from microslip.frequency.structures.mistuning import blade_scatter, mistuned_disk
 from microslip.study import load_study, sweep
 
 distributed = pytest.importorskip("dask.distributed")

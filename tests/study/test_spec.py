@@ -5,7 +5,7 @@ import re
 import numpy as np
 import pytest
 
-from microslip.config.frf import ConfigError, read_toml
+from microslip.config import ConfigError, read_toml
 from microslip.study import load_study
 from microslip.study.key_paths import set_key
 from microslip.study.spec import Study

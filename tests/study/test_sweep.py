@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from microslip.frequency import frequency_response
-from microslip.config.frf import load_config
+from microslip.config import load_config
 from microslip.study import load_study, sweep
 
 distributed = pytest.importorskip("dask.distributed")

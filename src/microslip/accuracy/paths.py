@@ -38,7 +38,7 @@ from functools import cached_property
 import numpy as np
 
 from ..common import _checks
-from ..model import PLANE_LIMIT, MicroslipModel, _frozen, _tangential
+from ..model import PLANE_LIMIT, MicroslipModel, frozen, tangential_history
 
 __all__ = ["AMPLITUDES", "LEVELS", "PHASES_DEG", "Path", "RATIOS", "circle", "default_family", "ellipse",
            "figure_eight", "from_arrays", "line", "loop", "paper_fig4", "variable_load_cycles"]
@@ -78,7 +78,7 @@ class Path:
     params: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        t = _tangential("t", self.t, min_steps=2)
+        t = tangential_history("t", self.t, min_steps=2)
         n = _checks.real_array("n", self.n, ndim=1, min_size=2)
         if n.shape != t.shape[:1]:
             raise ValueError(_not_per_sample("n", t, n))
@@ -89,13 +89,13 @@ class Path:
             raise ValueError(f"steady must select at least 2 consecutive samples of the {t.shape[0]}, "
                              f"got {self.steady}")
         object.__setattr__(self, "steady", slice(start, stop))
-        object.__setattr__(self, "t", _frozen(t))
-        object.__setattr__(self, "n", _frozen(n))
+        object.__setattr__(self, "t", frozen(t))
+        object.__setattr__(self, "n", frozen(n))
         if self.N is not None:
             N = _checks.real_array("N", self.N, ndim=1)
             if N.shape != t.shape[:1]:
                 raise ValueError(_not_per_sample("N", t, N))
-            object.__setattr__(self, "N", _frozen(N))
+            object.__setattr__(self, "N", frozen(N))
         object.__setattr__(self, "params", _checks.mapping("params", self.params))
         object.__setattr__(self, "periodic", _checks.flag("periodic", self.periodic))
         object.__setattr__(self, "label", _checks.text("label", self.label, allow_empty=True))
@@ -361,7 +361,7 @@ def from_arrays(t, n=None, *, N=None, reference=None, steady=None, periodic: boo
     label : str
         Description.
     """
-    t = _tangential("t", t, min_steps=2)
+    t = tangential_history("t", t, min_steps=2)
     steps = t.shape[:1]
     if (n is None) == (N is None):
         raise ValueError("give exactly one of n= (approaches, m) or N= (loads, N)")

@@ -30,7 +30,7 @@ def run(args) -> int:
 
     from ..common.report import Report
     from ..frequency import ConvergenceError, NotPeriodicError, damper_design_curve
-    from ..config.frf import ConfigError, load_config
+    from ..config import ConfigError, load_config
 
     cfg = load_config(args.config)
     if cfg.design_loads is None:

@@ -78,7 +78,7 @@ def run(args) -> int:
     from ..frequency import (ConvergenceError, IncompleteCurveWarning, NotPeriodicError, UnderResolvedWarning,
                              frequency_response)
     from ..frequency.analyses.response import incomplete_message
-    from ..config.frf import load_config
+    from ..config import load_config
     from ..common.report import Report, plural
     from ._contacts import add_section
 

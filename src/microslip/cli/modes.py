@@ -129,7 +129,7 @@ def run(args) -> int:
 
     from ..common.report import Report, plural
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, StepControl, nonlinear_modes
-    from ..config.frf import load_config
+    from ..config import load_config
     from .frf import _static_text
 
     cfg = load_config(args.config, nonlinear=True)

@@ -182,6 +182,15 @@ def finite_result(name: str, value, result):
     return result
 
 
+def close_spelling(key, accepted) -> str:
+    """``"; did you mean 'x'?"`` for the accepted key closest to ``key`` (case ignored), else ``""``."""
+    import difflib
+
+    lowered = {str(a).lower(): a for a in accepted}
+    close = difflib.get_close_matches(str(key).lower(), list(lowered), n=1, cutoff=0.6)
+    return f"; did you mean {lowered[close[0]]!r}?" if close else ""
+
+
 def known_keys(where: str, keys, accepted) -> None:
     """Refuse any key not in ``accepted``, naming ``where``, the key, a close spelling and the accepted keys.
 

@@ -97,6 +97,7 @@ from pathlib import Path
 import numpy as np
 
 from ..common import _checks
+from ..common._checks import close_spelling
 from ..model import MicroslipModel
 from ..common.units import parse_quantity
 from ..frequency.aft import check_harmonics, check_samples
@@ -173,25 +174,16 @@ class ModesTable:
     nodal_diameter: int | None = None
 
 
-def _known(table: dict, where: str, path, keys: dict = KEYS) -> None:
+def refuse_unknown(table: dict, where: str, path, keys: dict = KEYS) -> None:
     """Refuse a key ``where`` does not accept, naming it, the table and the accepted keys (the closest first)."""
     accepted = keys[where]
     for key in table:
         if key not in accepted:
-            raise ConfigError(f"{path}: {where} has an unknown key {key!r}{_close(key, accepted)} (it accepts "
+            raise ConfigError(f"{path}: {where} has an unknown key {key!r}{close_spelling(key, accepted)} (it accepts "
                               f"{', '.join(accepted)})")
 
 
-def _close(key: str, accepted) -> str:
-    """``"; did you mean 'x'?"`` for the accepted key closest to ``key`` (case ignored), else ``""``."""
-    import difflib
-
-    lowered = {a.lower(): a for a in accepted}
-    close = difflib.get_close_matches(str(key).lower(), list(lowered), n=1, cutoff=0.6)
-    return f"; did you mean {lowered[close[0]]!r}?" if close else ""
-
-
-def _harmonic_key(key: str) -> int | None:
+def harmonic_key(key: str) -> int | None:
     """The harmonic an ``[excitation]`` key names: 0 for ``static``, ``h`` for ``h<h>`` (h >= 1), else None."""
     if key == "static":
         return 0
@@ -239,13 +231,13 @@ def _plot_dofs(value, names: list[str], path, where: str = "[output] plot") -> l
         elif isinstance(d, int) and not isinstance(d, bool):
             raise ConfigError(f"{path}: {where} names DOF {d}; the structure has {len(names)}")
         else:
-            raise ConfigError(f"{path}: {where}: {d!r} is not a DOF{_close(str(d), names)} (an index "
+            raise ConfigError(f"{path}: {where}: {d!r} is not a DOF{close_spelling(str(d), names)} (an index "
                               f"from 0 to {len(names) - 1}, or one of the names {', '.join(names[:8])}"
                               f"{', ...' if len(names) > 8 else ''})")
     return out
 
 
-def _checked(path, where: str, check, *args, **kwargs):
+def checked(path, where: str, check, *args, **kwargs):
     """``check(*args, **kwargs)``, its error raised as a :class:`ConfigError` prefixed with ``where``."""
     try:
         return check(*args, **kwargs)
@@ -423,7 +415,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     if not isinstance(data, dict):
         raise ConfigError(f"{path}: the configuration must be a table of tables, got {type(data).__name__}")
     base = path.parent
-    _known(data, "the file", path)
+    refuse_unknown(data, "the file", path)
 
     # -- structure -------------------------------------------------------------------
     st = _table(_get(data, "structure", "the file", path), "[structure]", path)
@@ -500,7 +492,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     force = {}
     scale = 1.0
     if "scale" in ex:
-        scale = _checked(path, "", _checks.positive_scalar, "[excitation] scale",
+        scale = checked(path, "", _checks.positive_scalar, "[excitation] scale",
                          _quantity(ex["scale"], "dimensionless", "[excitation] scale", path), allow_zero=True)
     for key, value in ex.items():
         if key == "scale":
@@ -508,11 +500,12 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         if key == "phase_static":
             raise ConfigError(f"{path}: [excitation] phase_static: a static force has no phase (give a signed "
                               f"static force instead)")
-        if key.startswith("phase_") and _harmonic_key(key[6:]) is not None:
+        if key.startswith("phase_") and harmonic_key(key[6:]) is not None:
             continue
-        h = _harmonic_key(key)
+        h = harmonic_key(key)
         if h is None:
-            raise ConfigError(f"{path}: [excitation] has an unknown key {key!r}{_close(key, EXCITATION_EXAMPLES)} "
+            raise ConfigError(f"{path}: [excitation] has an unknown key "
+                              f"{key!r}{close_spelling(key, EXCITATION_EXAMPLES)} "
                               f"(it accepts {EXCITATION_ACCEPTS})")
         amp = _array(value, f"[excitation] {key}", path).astype(complex)
         if amp.size != ndof:
@@ -537,39 +530,38 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         omega = _frequency_range(sw["frequency"], "[sweep] frequency", path, "Hz")
     else:
         omega = None
-    harmonics = _checked(path, "", check_harmonics, sw.get("harmonics", 5), name="[sweep] harmonics")
+    harmonics = checked(path, "", check_harmonics, sw.get("harmonics", 5), name="[sweep] harmonics")
     for h in force:
         if h > harmonics:
             raise ConfigError(f"{path}: [excitation] h{h} is a harmonic above [sweep] harmonics = {harmonics}; "
                               f"raise harmonics to {h} or more, or remove h{h}")
     from ..frequency.structures.cyclic import CyclicStructure
-    from ..frequency.equations.cyclic_balance import cyclic_reduction
-    from ..frequency.equations.reduced import choose_reduction
+    from ..frequency.reduction.choice import choose_reduction, cyclic_reduction
 
     if "engine_order" in sw:
         if not isinstance(structure, CyclicStructure):
             raise ConfigError(f"{path}: [sweep] engine_order needs a [cyclic] table (one sector of a bladed disk)")
         if engine_order is not None:
             raise ConfigError(f"{path}: the engine order is given twice, in [cyclic] and in [sweep]: keep one")
-        engine_order = _checked(path, "", _checks.positive_int, "[sweep] engine_order", sw["engine_order"],
+        engine_order = checked(path, "", _checks.positive_int, "[sweep] engine_order", sw["engine_order"],
                                 minimum=0)
     elif isinstance(structure, CyclicStructure) and engine_order is None:
         raise ConfigError(f"{path}: a [cyclic] sector needs its engine order: engine_order in [cyclic] or [sweep]")
     samples = sw.get("samples")
     if samples is not None:
-        samples = _checked(path, "[sweep] ", check_samples, samples, harmonics)
+        samples = checked(path, "[sweep] ", check_samples, samples, harmonics)
 
     reduction = sw.get("reduction", "auto")
     modes = sw.get("modes")
 
     if isinstance(structure, CyclicStructure):  # a sector is always condensed, in each harmonic's diameter
-        _checked(path, "[sweep] ", cyclic_reduction, structure, reduction, modes)
+        checked(path, "[sweep] ", cyclic_reduction, structure, reduction, modes)
     else:
-        _checked(path, "[sweep] ", choose_reduction, structure, harmonics, reduction, modes)
+        checked(path, "[sweep] ", choose_reduction, structure, harmonics, reduction, modes)
 
     # -- continuation and output -----------------------------------------------------------
     cont = _table(data.get("continuation", {}), "[continuation]", path)
-    control = _checked(path, "[continuation] ", StepControl, **cont)
+    control = checked(path, "[continuation] ", StepControl, **cont)
     out = _table(data.get("output", {}), "[output]", path)
     frequency_unit = out.get("frequency_unit", "Hz")
     if frequency_unit not in FREQUENCY_UNITS:
@@ -578,7 +570,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     plot_dofs = _plot_dofs(out["plot"], names[:ndof], path) if "plot" in out else list(range(min(ndof, 6)))
     harmonic = out.get("harmonic")
     if harmonic is not None:
-        harmonic = _checked(path, "", _checks.positive_int, "[output] harmonic", harmonic, minimum=0)
+        harmonic = checked(path, "", _checks.positive_int, "[output] harmonic", harmonic, minimum=0)
         if harmonic > harmonics:
             raise ConfigError(f"{path}: [output] harmonic must be at most [sweep] harmonics = {harmonics} "
                               f"(or omitted for max |q - q0|), got {harmonic}")
@@ -588,7 +580,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         if len(dampers) != 1:
             raise ConfigError(f"{path}: [design] needs exactly one [[damper]] (its load is varied), got {len(dampers)}")
         design_loads = _array(_get(design, "loads", "[design]", path), "[design] loads", path)
-        design_dof = _checked(path, "", _checks.positive_int, "[design] dof", _get(design, "dof", "[design]", path),
+        design_dof = checked(path, "", _checks.positive_int, "[design] dof", _get(design, "dof", "[design]", path),
                               minimum=0)
         if design_dof >= ndof:
             raise ConfigError(f"{path}: [design] dof names DOF {design_dof}; the structure has {ndof}")
@@ -609,7 +601,7 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
     """``[modes]`` checked: the mode, its amplitude range, the DOF shown, whether to compare."""
     out = ModesTable(dof=plot_dofs[0] if plot_dofs else 0)
     if "mode" in table:
-        out.mode = _checked(path, "", _checks.positive_int, "[modes] mode", table["mode"])
+        out.mode = checked(path, "", _checks.positive_int, "[modes] mode", table["mode"])
         if out.mode > len(names):
             raise ConfigError(f"{path}: [modes] mode must be at most the number of DOFs ({len(names)}), got "
                               f"{out.mode}")
@@ -618,7 +610,7 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
         if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
             raise ConfigError(f"{path}: [modes] amplitude must be a list [start, end] of modal amplitudes "
                               f"(kg^1/2 m), got {value!r}")
-        lo, hi = (_checked(path, "", _checks.positive_scalar, f"[modes] amplitude[{i}]", v)
+        lo, hi = (checked(path, "", _checks.positive_scalar, f"[modes] amplitude[{i}]", v)
                   for i, v in enumerate(value))
         if not lo < hi:
             raise ConfigError(f"{path}: [modes] amplitude must rise from start to end, got {lo!r} >= {hi!r}")
@@ -626,9 +618,9 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
     if "dof" in table:
         out.dof = _plot_dofs([table["dof"]], names, path, "[modes] dof")[0]
     if "compare" in table:
-        out.compare = _checked(path, "", _checks.flag, "[modes] compare", table["compare"])
+        out.compare = checked(path, "", _checks.flag, "[modes] compare", table["compare"])
     if "nodal_diameter" in table:
-        out.nodal_diameter = _checked(path, "", _checks.positive_int, "[modes] nodal_diameter",
+        out.nodal_diameter = checked(path, "", _checks.positive_int, "[modes] nodal_diameter",
                                       table["nodal_diameter"], minimum=0)
     return out
 
@@ -641,15 +633,15 @@ def _cyclic(table: dict, structure: Structure, path):
         value = _get(table, key, "[cyclic]", path)
         if isinstance(value, (str, int)):
             value = [value]
-        return [_checked(path, f"[cyclic] {key}: ", structure.dof_index, v) for v in value]
+        return [checked(path, f"[cyclic] {key}: ", structure.dof_index, v) for v in value]
 
-    sectors = _checked(path, "", _checks.positive_int, "[cyclic] sectors", _get(table, "sectors", "[cyclic]", path),
+    sectors = checked(path, "", _checks.positive_int, "[cyclic] sectors", _get(table, "sectors", "[cyclic]", path),
                        minimum=3)
     engine_order = None
     if "engine_order" in table:
-        engine_order = _checked(path, "", _checks.positive_int, "[cyclic] engine_order", table["engine_order"],
+        engine_order = checked(path, "", _checks.positive_int, "[cyclic] engine_order", table["engine_order"],
                                 minimum=0)
-    disk = _checked(path, "[cyclic] ", CyclicStructure, structure.M, structure.C, structure.K, sectors=sectors,
+    disk = checked(path, "[cyclic] ", CyclicStructure, structure.M, structure.C, structure.K, sectors=sectors,
                     left=dofs("left"), right=dofs("right"), dof_map=structure.dof_map)
     return disk, engine_order
 
@@ -665,7 +657,7 @@ def _next_keys(spec, structure: Structure, what: str, path):
         if isinstance(key, str) and key.startswith("next:"):
             rest = key[5:]
             rest = int(rest) if rest.strip().isdigit() else rest
-            key = _checked(path, f"{what}: ", lambda r: structure.next(structure.dof_index(r)), rest)
+            key = checked(path, f"{what}: ", lambda r: structure.next(structure.dof_index(r)), rest)
         out[key] = value
     return out
 
@@ -690,7 +682,7 @@ def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path, 
         kwargs["retention"] = number("retention", "stiffness")
     mass = _quantity(_get(table, "mass", where, path), "dimensionless", f"{where} mass", path)
     inertia = _quantity(_get(table, "inertia", where, path), "dimensionless", f"{where} inertia", path)
-    d = _checked(path, f"{where}: ", UnderPlatformDamper, mass, inertia, **kwargs)
+    d = checked(path, f"{where}: ", UnderPlatformDamper, mass, inertia, **kwargs)
     for i, face in enumerate(_get(table, "interface", where, path)):
         here = f"{where} interface {i + 1}"
         _table(face, "[[damper.interface]]", path, here)
@@ -707,7 +699,7 @@ def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path, 
         platform = [platform] if isinstance(platform, dict) else platform
         plats = [{axis: _platform_dof(p.get(axis) if isinstance(p, dict) else None, structure, f"{here} platform",
                                       path) for axis in ("x", "y")} for p in platform]
-        _checked(path, f"{here}: ", d.add_interface, models if len(models) > 1 else models[0], points=points,
+        checked(path, f"{here}: ", d.add_interface, models if len(models) > 1 else models[0], points=points,
                  angle=angle, platform=plats if len(plats) > 1 else plats[0], name=face.get("name"))
     return d
 
@@ -718,14 +710,14 @@ def _platform_dof(value, structure: Structure, what: str, path):
         raise ConfigError(f"{path}: {what} must give the DOFs x and y of the platform, e.g. {{x = 0, y = 1}}")
     if isinstance(value, str) and value.startswith("next:"):
         return _next_keys({value: 1.0}, structure, what, path).popitem()[0]
-    return _checked(path, f"{what}: ", structure.dof_index, value)
+    return checked(path, f"{what}: ", structure.dof_index, value)
 
 
 def _table(value, where: str, path, label: str | None = None) -> dict:
     """A TOML table checked: a table, with known keys only."""
     if not isinstance(value, dict):
         raise ConfigError(f"{path}: {label or where} must be a table, got {value!r}")
-    _known(value, where, path)
+    refuse_unknown(value, where, path)
     return value
 
 

@@ -47,7 +47,8 @@ from .analyses.design import DesignCurve, damper_design_curve
 from .reduction.condensation import SingularInteriorError
 from .analyses.contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
 from .equations.hbm import HarmonicBalance
-from .structures.mistuning import amplification_factor, blade_peaks, blade_scatter, mistuned_disk
+from .structures.mistuning import blade_scatter, mistuned_disk
+from .analyses.blade_peaks import amplification_factor, blade_peaks
 from .analyses.nonlinear_modes import NonlinearModes, nonlinear_modes
 from .analyses.response import (FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response,
                                 static_solution)

@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import copy
 
-from ..config.frf import EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, _close, _harmonic_key
+from ..common._checks import close_spelling
+from ..config import EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, harmonic_key
 
 #: tables that are arrays of tables, and the name their items' paths start with
 _ARRAYS = {"contact": "[[contact]]", "damper": "[[damper]]", "interface": "[[damper.interface]]"}
@@ -107,7 +108,8 @@ def _locate(data: dict, parts: list[str], path: str, where: str):
         return item, rest
     known = ["title", "excitation", *_TABLES, *_ARRAYS]
     raise ConfigError(f"{where}: {path!r} starts with {head!r}, which is no table of the configuration"
-                      f"{_close(head, known)} (tables: {', '.join(k for k in known if k not in ('title', 'interface'))})")
+                      f"{close_spelling(head, known)} (tables: "
+                      f"{', '.join(k for k in known if k not in ('title', 'interface'))})")
 
 
 def _item(parent: dict, name: str, label: str, rest: list[str], path: str, where: str):
@@ -131,7 +133,7 @@ def _item(parent: dict, name: str, label: str, rest: list[str], path: str, where
     if len(items) == 1 and selector in KEYS[label]:
         return items[0], rest  # the only table: its number may be left out
     hint = f" (named: {', '.join(names)})" if names else ""
-    raise ConfigError(f"{where}: {path!r}: no {label} table named {selector!r}{_close(selector, names)} in the "
+    raise ConfigError(f"{where}: {path!r}: no {label} table named {selector!r}{close_spelling(selector, names)} in the "
                       f"base configuration{hint}; name it by its name or its number from 1, e.g. "
                       f"\"{name}.1.{rest[-1] if len(rest) > 1 else 'key'}\"")
 
@@ -139,13 +141,13 @@ def _item(parent: dict, name: str, label: str, rest: list[str], path: str, where
 def _accepted(key: str, label: str, path: str, where: str) -> None:
     accepted = KEYS[label]
     if key not in accepted:
-        raise ConfigError(f"{where}: {path!r}: {label} has no key {key!r}{_close(key, accepted)} (it accepts "
+        raise ConfigError(f"{where}: {path!r}: {label} has no key {key!r}{close_spelling(key, accepted)} (it accepts "
                           f"{', '.join(accepted)})")
 
 
 def _excitation_key(key: str, path: str, where: str) -> None:
     name = key[6:] if key.startswith("phase_") else key
-    if key == "scale" or _harmonic_key(name) is not None and key != "phase_static":
+    if key == "scale" or harmonic_key(name) is not None and key != "phase_static":
         return
-    raise ConfigError(f"{where}: {path!r}: [excitation] has no key {key!r}{_close(key, EXCITATION_EXAMPLES)} "
+    raise ConfigError(f"{where}: {path!r}: [excitation] has no key {key!r}{close_spelling(key, EXCITATION_EXAMPLES)} "
                       f"(it accepts {EXCITATION_ACCEPTS})")

@@ -75,7 +75,8 @@ def _frf(cfg):
 def _mistuned(study: Study, cfg, sample: int):
     """The assembled disk with the sample's blade stiffness scatter, excited by the travelling wave."""
     from ..frequency import frequency_response
-    from ..frequency.structures.mistuning import blade_amplitudes, blade_scatter, mistuned_disk
+    from ..frequency.analyses.blade_peaks import blade_amplitudes
+    from ..frequency.structures.mistuning import blade_scatter, mistuned_disk
     from ..frequency.analyses.response import curve_peak
 
     m = study.mistuning

@@ -48,8 +48,9 @@ from pathlib import Path
 import numpy as np
 
 from ..common import _checks
-from ..config import frf as config
-from ..config.frf import ConfigError, ConfigFiles, _checked, _close, config_from_data, read_toml
+from ..common._checks import close_spelling
+from .. import config
+from ..config import ConfigError, ConfigFiles, checked, config_from_data, read_toml
 from .key_paths import set_key, set_key_in_place
 
 #: the study file's top-level keys and the keys of its tables
@@ -229,7 +230,7 @@ def load_study(path) -> Study:
 
 
 def _known(table: dict, where: str, path) -> None:
-    config._known(table, where, path, STUDY_KEYS)
+    config.refuse_unknown(table, where, path, STUDY_KEYS)
 
 
 def _checked_text(value, name: str, path) -> str:
@@ -263,8 +264,8 @@ def _random(table, path):
         raise ConfigError(f"{path}: [random] must be a table, got {table!r}")
     if "samples" not in table:
         raise ConfigError(f"{path}: [random] needs samples (the number of random cases)")
-    samples = _checked(path, "", _checks.positive_int, "[random] samples", table["samples"])
-    seed = _checked(path, "", _checks.positive_int, "[random] seed", table.get("seed", 0), minimum=0)
+    samples = checked(path, "", _checks.positive_int, "[random] samples", table["samples"])
+    seed = checked(path, "", _checks.positive_int, "[random] seed", table.get("seed", 0), minimum=0)
     dists = {}
     for key, spec in table.items():
         if key in STUDY_KEYS["[random]"]:
@@ -276,7 +277,8 @@ def _random(table, path):
                               f"({', '.join(DISTRIBUTIONS)}), got {spec!r}")
         (kind, args), = spec.items()
         if kind not in DISTRIBUTIONS:
-            raise ConfigError(f"{path}: [random] {key!r}: unknown distribution {kind!r}{_close(kind, DISTRIBUTIONS)} "
+            raise ConfigError(f"{path}: [random] {key!r}: unknown distribution "
+                              f"{kind!r}{close_spelling(kind, DISTRIBUTIONS)} "
                               f"(one of {', '.join(DISTRIBUTIONS)})")
         dists[key] = (kind, _distribution_args(kind, args, f"[random] {key!r}", path))
     if not dists:
@@ -336,21 +338,21 @@ def _mistuning(table, study: Study, path) -> Mistuning:
     for key in ("std", "samples"):
         if key not in table:
             raise ConfigError(f"{path}: [mistuning] needs {key}")
-    std = _checked(path, "", _checks.positive_scalar, "[mistuning] std", table["std"], allow_zero=True)
+    std = checked(path, "", _checks.positive_scalar, "[mistuning] std", table["std"], allow_zero=True)
     from ..frequency.structures.mistuning import MAX_STD
 
     if std > MAX_STD:
         raise ConfigError(f"{path}: [mistuning] std is a relative stiffness deviation and must be at most {MAX_STD} "
                           f"(a blade's stiffness scatters by a few percent), got {std!r}")
-    samples = _checked(path, "", _checks.positive_int, "[mistuning] samples", table["samples"])
-    seed = _checked(path, "", _checks.positive_int, "[mistuning] seed", table.get("seed", 0), minimum=0)
+    samples = checked(path, "", _checks.positive_int, "[mistuning] samples", table["samples"])
+    seed = checked(path, "", _checks.positive_int, "[mistuning] seed", table.get("seed", 0), minimum=0)
     reduction = table.get("reduction", "exact")
     if reduction not in ("exact", "modal"):
         raise ConfigError(f"{path}: [mistuning] reduction must be \"exact\" or \"modal\" (the assembled disk is "
                           f"condensed onto its contacts), got {reduction!r}")
     modes = table.get("modes")
     if modes is not None:
-        modes = _checked(path, "", _checks.positive_int, "[mistuning] modes", modes)
+        modes = checked(path, "", _checks.positive_int, "[mistuning] modes", modes)
     return Mistuning(std, samples, seed, reduction, modes)
 
 

@@ -17,7 +17,6 @@ import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-import scipy.sparse as sp
 
 from ...common import _checks
 from ...common._progress import Progress
@@ -25,11 +24,11 @@ from ..aft import MAX_PERIODS, check_harmonics
 from ..numerics.blas import small_dense
 from ..numerics.continuation import BranchPointWarning, StepControl, continuation, newton
 from ..structures.cyclic import CyclicStructure
-from ..equations.epmc import (DENSE_EIGEN, SPARSE_EIGEN, DampedBalance, DampedCyclicBalance, DampedReducedBalance,
-                              EpmcEquations, stuck_mode)
-from ..equations.hbm import HarmonicBalance, excitation
-from ..equations.cyclic_balance import CyclicHarmonicBalance, cyclic_linear_part, cyclic_reduction
-from ..equations.reduced import ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs
+from ..equations.build import build_equations
+from ..equations.epmc import DENSE_EIGEN, SPARSE_EIGEN, EpmcEquations, stuck_mode
+from ..equations.hbm import HarmonicBalance
+from ..equations.reduced import ReducedHarmonicBalance
+from ..reduction.choice import modal_error
 from .response import (FrequencyResponse, IncompleteCurveWarning, _check_determined, _check_resolution, _static_state,
                        tenths)
 from ..structures.structure import Structure
@@ -233,35 +232,6 @@ def default_control(lo: float, hi: float) -> StepControl:
     return StepControl(ds_initial=step, ds_max=step)
 
 
-def _cyclic_equations(disk: CyclicStructure, H: int, diameter: int, samples, max_periods, reduction, modes):
-    """As :func:`_equations` for a sector in a nodal diameter: condensed exactly in each harmonic's diameter."""
-    reduction, modes = cyclic_reduction(disk, reduction, modes)
-    if reduction == "modal":
-        raise ValueError("reduction: a sector's nonlinear mode is condensed exactly in each harmonic's nodal "
-                         "diameter; use reduction='exact' or 'auto' (a modal condensation of a sector with the "
-                         "mode's negative damping is not available)")
-    loads = excitation(disk, {}, H)
-    loads[0] += disk.preload_force()
-    linear = cyclic_linear_part(disk, loads, diameter, "exact")
-    return (CyclicHarmonicBalance(disk, {}, 0, diameter, linear),
-            DampedCyclicBalance(disk, {}, H, diameter, linear, samples=samples, max_periods=max_periods), "exact",
-            None)
-
-
-def _equations(structure: Structure, H: int, samples, max_periods, reduction, modes):
-    """``(static, dynamic, reduction, modes)``: the static problem and the damped harmonic balance equations."""
-    loads = excitation(structure, {}, H)
-    loads[0] += structure.preload_force()
-    retained = retained_dofs(structure, loads)
-    reduction, modes = choose_reduction(structure, H, reduction, modes, retained.size)
-    if reduction == "none":
-        return (HarmonicBalance(structure, {}, 0), DampedBalance(structure, H, samples=samples,
-                                                                 max_periods=max_periods), reduction, modes)
-    linear = linear_part(structure, retained, reduction, modes)
-    return (ReducedHarmonicBalance(structure, {}, 0, linear),
-            DampedReducedBalance(structure, {}, H, linear, samples=samples, max_periods=max_periods), reduction, modes)
-
-
 def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4), *, harmonics: int = 3,
                     samples: int | None = None, reduction: str = "auto", modes: int | None = None,
                     control: StepControl | None = None, progress: bool = False,
@@ -351,11 +321,9 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     progress = _checks.flag("progress", progress)
     _check_determined(structure)
     with small_dense(structure, H):  # small dense systems solved many times: one BLAS thread
-        if diameter is None:
-            static_hb, hb, reduction, modes = _equations(structure, H, samples, max_periods, reduction, modes)
-        else:
-            static_hb, hb, reduction, modes = _cyclic_equations(structure, H, diameter, samples, max_periods,
-                                                                reduction, modes)
+        static_hb, hb, reduction, modes = build_equations(structure, {}, {}, H, engine_order=diameter,
+                                                          samples=samples, max_periods=max_periods,
+                                                          reduction=reduction, modes=modes, damped=True)
         x0, *static = _static_state(static_hb)
         lam, phi, M, C = stuck_mode(structure, static_hb._full(x0, 1.0)[0], mode, diameter)
         phi_u = phi[hb.linear.retained] if hasattr(hb, "linear") else phi  # on the unknowns' DOFs

@@ -25,8 +25,10 @@ from ..numerics.blas import small_dense
 from ..numerics.continuation import StepControl, continuation, newton
 from ..equations.hbm import HarmonicBalance, excitation
 from ..structures.cyclic import CyclicStructure
-from ..equations.cyclic_balance import check_engine_order, cyclic_equations, phase_operator
-from ..equations.reduced import ReducedHarmonicBalance, choose_reduction, linear_part, modal_error, retained_dofs
+from ..equations.build import build_equations
+from ..equations.cyclic_balance import check_engine_order, phase_operator
+from ..equations.reduced import ReducedHarmonicBalance
+from ..reduction.choice import modal_error
 from .stability import assess
 from ..structures.structure import Structure, direction
 
@@ -427,21 +429,9 @@ def _equations(structure, force, harmonics, samples, max_periods, reduction, mod
     engine_order = check_engine_order(structure, engine_order)
     _check_determined(structure)
     static_force = _static_force(force) if force is not None else {}
-    if isinstance(structure, CyclicStructure):
-        return cyclic_equations(structure, force, static_force, H, engine_order, samples, max_periods, reduction,
-                                modes)
-    loads = excitation(structure, force, H)
-    loads[0] += structure.preload_force()
-    retained = retained_dofs(structure, loads)
-    reduction, modes = choose_reduction(structure, H, reduction, modes, retained.size)
-    if reduction == "none":
-        return (HarmonicBalance(structure, static_force, 0), HarmonicBalance(structure, force, H, samples=samples,
-                                                                              max_periods=max_periods),
-                (reduction, modes))
-    linear = linear_part(structure, retained, reduction, modes)
-    return (ReducedHarmonicBalance(structure, static_force, 0, linear),
-            ReducedHarmonicBalance(structure, force, H, linear, samples=samples, max_periods=max_periods),
-            (reduction, modes))
+    eq = build_equations(structure, force, static_force, H, engine_order=engine_order, samples=samples,
+                         max_periods=max_periods, reduction=reduction, modes=modes)
+    return eq.static, eq.dynamic, (eq.reduction, eq.modes)
 
 
 #: DOFs up to which the structure is checked for directions held by friction alone (a dense eigensolution)

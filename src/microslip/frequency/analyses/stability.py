@@ -45,7 +45,7 @@ Forms of the equations:
   it has at most :data:`WHOLE_LIMIT` unknowns. Above, one sparse factorisation of
   that problem per point would cost far more than the curve (a 1024-DOF blade,
   H = 5: 0.4-0.8 s per point against 5 ms), and the exponents are those of a modal
-  model of the structure (:data:`~microslip.frequency.equations.reduced.DEFAULT_MODES` modes
+  model of the structure (:data:`~microslip.frequency.reduction.choice.DEFAULT_MODES` modes
   plus the residual flexibility, the next form) with the same contact Jacobian;
   on a 384-DOF scikit-fem blade its leading exponents equal the whole structure's
   to 1.1e-5 of ``omega`` (the real part to 0.11 %: the modal model leaves out the
@@ -95,7 +95,7 @@ import scipy.sparse.linalg as spla
 from ..numerics.blas import one_blas_thread
 from ..equations.hbm import HarmonicBalance, harmonic_operators
 from ..reduction.modal import ModalCondensation
-from ..equations.reduced import DEFAULT_MODES
+from ..reduction.choice import DEFAULT_MODES
 
 #: unknowns of the quadratic eigenproblem up to which it is solved densely (every eigenvalue); above, the
 #: iterative solver is faster (a 40-mode blade model, H = 3, 280 unknowns: 194 ms dense, 6 ms iterative)

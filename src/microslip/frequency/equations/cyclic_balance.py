@@ -24,9 +24,7 @@ from ...common import _checks
 from ..aft import MAX_PERIODS
 from ..reduction.condensation import Condensation
 from ..structures.cyclic import CyclicStructure
-from ..reduction.cyclic_modal import CyclicModalCondensation
-from .hbm import excitation
-from .reduced import DEFAULT_MODES, EXACT_LIMIT, ReducedHarmonicBalance
+from .reduced import ReducedHarmonicBalance
 
 
 def phase_operator(disk: CyclicStructure, H: int, engine_order: int) -> np.ndarray:
@@ -39,71 +37,6 @@ def phase_operator(disk: CyclicStructure, H: int, engine_order: int) -> np.ndarr
         a, b = 2 * h - 1, 2 * h
         P[a, a], P[a, b], P[b, a], P[b, b] = c, -s, s, c
     return P
-
-
-def cyclic_retained(disk: CyclicStructure, loads: np.ndarray) -> np.ndarray:
-    """Sector DOFs the equations keep: those of the contacts (own and next sector) and of the loads."""
-    Bt, Bn, _ = disk.contact_directions()
-    Btn, Bnn = disk.contact_directions_next()
-    used = (np.any(Bt != 0, axis=1) | np.any(Bn != 0, axis=1) | np.any(Btn != 0, axis=1)
-            | np.any(Bnn != 0, axis=1) | np.any(loads != 0, axis=0))
-    on_right = np.intersect1d(np.flatnonzero(np.any(loads != 0, axis=0)), disk.right)
-    if on_right.size:
-        raise ValueError(f"force: DOF {int(on_right[0])} is on the right boundary (the next sector's left one); "
-                         f"apply the force to the matching left DOF instead")
-    return np.flatnonzero(used)
-
-
-def cyclic_reduction(disk: CyclicStructure, reduction: str, modes) -> tuple[str, int | None]:
-    """``(reduction, modes)`` of a sector, checked; ``"auto"``: exact up to ``EXACT_LIMIT`` independent DOFs.
-
-    A sector is always condensed onto its retained DOFs (``"none"`` is refused).
-    """
-    if not isinstance(reduction, str) or reduction not in ("auto", "exact", "modal"):
-        raise ValueError(f"a CyclicStructure is solved with reduction='exact' or 'modal' (the sector condensed in "
-                         f"each harmonic's nodal diameter) or 'auto'; got reduction={reduction!r}")
-    n = disk.independent.size
-    if modes is not None:
-        modes = _checks.positive_int("modes", modes)
-        if modes >= n:
-            raise ValueError(f"modes must be below the sector's {n} independent DOFs (all but the right boundary), "
-                             f"got {modes}")
-        if reduction == "exact":
-            raise ValueError("modes is used only with reduction='modal', got reduction='exact'")
-        reduction = "modal"
-    if reduction == "auto":
-        reduction = "exact" if n <= EXACT_LIMIT else "modal"
-    if reduction == "modal" and modes is None:
-        modes = min(DEFAULT_MODES, n - 1)
-    return reduction, modes
-
-
-def cyclic_linear_part(disk: CyclicStructure, loads: np.ndarray, engine_order: int, reduction: str = "exact",
-                       modes: int | None = None, harmonics: int = 0):
-    """The sector condensed onto its retained DOFs, in each harmonic's nodal diameter (independent numbering).
-
-    ``reduction="exact"``: a :class:`Condensation`; ``"modal"``: a
-    :class:`~.cyclic_modal.CyclicModalCondensation` with ``modes`` modes per
-    diameter, those of harmonics ``1..harmonics`` computed now.
-    """
-    retained = cyclic_retained(disk, loads)
-    position = np.searchsorted(disk.independent, retained)
-    phases = {}
-
-    def diameter(h):  # without boundary DOFs the sector's matrices are those of diameter 0 in every diameter
-        return disk.phase(h, engine_order) if disk.left.size else 0.0
-
-    def matrices(h):
-        phi = diameter(h)
-        if phi not in phases:
-            phases[phi] = disk.matrices(phi)
-        return phases[phi]
-
-    M0 = matrices(0)[0]
-    exact = Condensation(M0, None, None, position, harmonic_matrices=matrices)
-    if reduction == "exact":
-        return exact
-    return CyclicModalCondensation(exact, matrices, diameter, harmonics, modes)
 
 
 class CyclicHarmonicBalance(ReducedHarmonicBalance):
@@ -201,15 +134,3 @@ def check_engine_order(structure, engine_order):
     if not cyclic:
         raise ValueError("engine_order is only for a CyclicStructure; this structure is not cyclic")
     return _checks.positive_int("engine_order", engine_order, minimum=0)
-
-
-def cyclic_equations(disk: CyclicStructure, force, static_force, H, engine_order, samples, max_periods,
-                     reduction: str = "exact", modes: int | None = None):
-    """``(static, dynamic, (reduction, modes))``: the equations of a sector, sharing one condensation."""
-    reduction, modes = cyclic_reduction(disk, reduction, modes)
-    loads = excitation(disk, force, H)
-    loads[0] += disk.preload_force()
-    linear = cyclic_linear_part(disk, loads, engine_order, reduction, modes, H)
-    return (CyclicHarmonicBalance(disk, static_force, 0, engine_order, linear),
-            CyclicHarmonicBalance(disk, force, H, engine_order, linear, samples=samples, max_periods=max_periods),
-            (reduction, modes))

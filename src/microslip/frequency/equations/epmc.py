@@ -37,7 +37,6 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..structures.cyclic import CyclicStructure
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance

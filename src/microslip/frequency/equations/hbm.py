@@ -27,11 +27,11 @@ import scipy.sparse.linalg as spla
 
 from ...common import _checks
 from .. import _aft, _aft_plane, _hbm
+from ..numerics.blas import DENSE_LIMIT
 from ..aft import (MAX_PERIODS, check_harmonics, check_periodic, check_samples, cycle_work, friction_work,
                    friction_work_plane)
 from ..structures.structure import Structure
 
-DENSE_LIMIT = 600  # unknowns up to which dense linear algebra is used
 
 
 def harmonic_operators(H: int):

@@ -21,75 +21,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...common import _checks
 from ..aft import MAX_PERIODS
-from ..reduction.condensation import Condensation
-from .hbm import DENSE_LIMIT, HarmonicBalance
-from ..reduction.modal import ModalCondensation
 from ..structures.structure import Structure
-
-REDUCTIONS = ("auto", "none", "exact", "modal")
-#: DOFs up to which ``"auto"`` condenses exactly (above: modal)
-EXACT_LIMIT = 5000
-#: DOFs from which ``"auto"`` condenses a small dense structure that keeps at most a quarter of them: a nonlinear
-#: mode of a 40-DOF chain with 4 contacts took 0.67 s on every DOF against 0.27 s condensed (60 DOFs, 6
-#: contacts: 4.8 s against 0.75 s), its forced response 0.40 s against 0.16 s; at 20 DOFs with 4 contacts both
-#: about equal, at 10 DOFs with 2 every DOF was faster (0.06 against 0.09 s)
-FEW_RETAINED_MIN_DOFS = 20
-#: normal modes ``"auto"`` keeps for a modal reduction
-DEFAULT_MODES = 60
-
-
-def retained_dofs(structure: Structure, f_ext: np.ndarray) -> np.ndarray:
-    """DOFs the reduced equations keep: those the contacts' directions or the excitation/preloads touch."""
-    Bt, Bn, _ = structure.contact_directions()
-    used = np.any(Bt != 0, axis=1) | np.any(Bn != 0, axis=1) | np.any(f_ext != 0, axis=0)
-    used |= np.any(structure.second_tangential_directions() != 0, axis=1)
-    return np.flatnonzero(used)
-
-
-def choose_reduction(structure: Structure, harmonics: int, reduction: str, modes,
-                     retained: int | None = None) -> tuple[str, int | None]:
-    """``(reduction, modes)`` checked, ``"auto"`` resolved by size.
-
-    ``"auto"``: ``"none"`` while the full dense equations are small
-    (``(2H+1) ndof <=`` :data:`~.hbm.DENSE_LIMIT`), unless the structure has
-    at least :data:`FEW_RETAINED_MIN_DOFS` DOFs of which the equations would
-    keep (``retained``, the DOFs the contacts, excitation and preloads use) at
-    most a quarter: then ``"exact"``, as up to :data:`EXACT_LIMIT` DOFs;
-    ``"modal"`` with :data:`DEFAULT_MODES` modes above.
-    """
-    if not isinstance(reduction, str) or reduction not in REDUCTIONS:
-        raise ValueError(f"reduction must be one of {', '.join(map(repr, REDUCTIONS))}, got {reduction!r}")
-    ndof = structure.ndof
-    if modes is not None:
-        modes = _checks.positive_int("modes", modes)
-        if modes >= ndof:
-            raise ValueError(f"modes must be below the number of DOFs ({ndof}), got {modes}")
-        if reduction not in ("modal", "auto"):
-            raise ValueError(f"modes is used only with reduction='modal', got reduction={reduction!r}")
-        if reduction == "auto":
-            reduction = "modal"
-    if reduction == "auto":
-        few = retained is not None and ndof >= FEW_RETAINED_MIN_DOFS and 4 * retained <= ndof
-        if (2 * harmonics + 1) * ndof <= DENSE_LIMIT and not few:
-            reduction = "none"
-        elif ndof <= EXACT_LIMIT:
-            reduction = "exact"
-        else:
-            reduction = "modal"
-    if reduction == "modal" and modes is None:
-        modes = min(DEFAULT_MODES, ndof - 1)
-    return reduction, (modes if reduction == "modal" else None)
-
-
-def linear_part(structure: Structure, retained, reduction: str, modes):
-    """The condensation of ``structure`` onto ``retained``: a Condensation or a ModalCondensation."""
-    C = structure.C
-    if reduction == "exact":
-        return Condensation(structure.M, C, structure.K, retained)
-    return ModalCondensation(structure.M, C, structure.K, retained, modes)
-
+from .hbm import HarmonicBalance
 
 class ReducedHarmonicBalance(HarmonicBalance):
     """Harmonic balance equations on the retained DOFs of a structure.
@@ -103,7 +37,7 @@ class ReducedHarmonicBalance(HarmonicBalance):
     harmonics : int
         ``H`` (0: the static problem).
     linear : Condensation or ModalCondensation
-        The condensed linear structure (from :func:`linear_part`); shared
+        The condensed linear structure (from :func:`~microslip.frequency.reduction.choice.linear_part`); shared
         between the static and the dynamic problem.
     samples, max_periods
         As for :class:`~microslip.frequency.equations.hbm.HarmonicBalance`.
@@ -165,15 +99,3 @@ class ReducedHarmonicBalance(HarmonicBalance):
         out = super().curve_quantities(xs, omegas, viscous=False)
         out["viscous"] = out["excitation"] - out["contacts_harmonic"].sum(axis=-1)
         return out
-
-
-def modal_error(linear: ModalCondensation, omega: float) -> float:
-    """Relative difference (Frobenius) of the modal and the exact condensed first-harmonic stiffness at ``omega``.
-
-    One sparse factorisation of the structure (through the exact condensation the
-    modal one keeps for its static term, which has split the matrices already):
-    the estimate reported with a modal result (at its peak frequency).
-    """
-    exact, _ = linear.static.harmonic(1, omega, derivative=False)
-    modal, _ = linear.harmonic(1, omega, derivative=False)
-    return float(np.linalg.norm(modal - exact) / np.linalg.norm(exact))

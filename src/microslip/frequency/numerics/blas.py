@@ -12,7 +12,8 @@ import contextlib
 from contextlib import contextmanager
 from functools import cache
 
-from ..equations.hbm import DENSE_LIMIT
+#: unknowns up to which the harmonic balance uses dense linear algebra (and one BLAS thread)
+DENSE_LIMIT = 600
 
 
 @cache
@@ -32,7 +33,7 @@ def one_blas_thread():
 def small_dense(structure, harmonics: int):
     """:func:`one_blas_thread` when the harmonic balance of every DOF of ``structure`` is small and dense, else nothing.
 
-    ``(2 harmonics + 1) ndof <=`` :data:`~.hbm.DENSE_LIMIT` unknowns: every linear
+    ``(2 harmonics + 1) ndof <=`` :data:`DENSE_LIMIT` unknowns: every linear
     system of the solve, reduced or not, is then that small.
     """
     if (2 * harmonics + 1) * structure.ndof <= DENSE_LIMIT:

@@ -1,4 +1,4 @@
-"""Mistuned bladed disks: random blade stiffness scatter, the assembled disk, and each blade's peak.
+"""Mistuned bladed disks: random blade stiffness scatter and the assembled disk.
 
 A tuned disk of ``N`` identical sectors is solved on one sector under an
 engine order (:class:`~microslip.frequency.CyclicStructure`). Real blades
@@ -13,21 +13,19 @@ excitation DOFs::
     factor = blade_peaks(result, sector, tip).max() / tuned.peak(tip)[1]
 
 where ``tuned = frequency_response(sector, force, omega, engine_order=eo)``:
-the amplification factor (:func:`amplification_factor`), the largest blade
+the amplification factor (:func:`~microslip.frequency.analyses.blade_peaks.amplification_factor`), the largest blade
 amplitude over the tuned one. For a linear disk (one mode family, weak
 coupling) it does not exceed Whitehead's limit ``(1 + sqrt(N)) / 2``.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
 
 import numpy as np
 
 from ...common import _checks
 from .cyclic import CyclicStructure, _dof_list
-from ..analyses.response import FrequencyResponse, curve_peak
-from .structure import Structure, direction
+from .structure import Structure
 
 #: the largest standard deviation :func:`blade_scatter` accepts: a blade stiffness scatter is a few percent;
 #: at 0.25 a draw below -4 std (1 + delta <= 0) has a chance of 3e-5 per blade
@@ -117,118 +115,3 @@ def mistuned_disk(sector: CyclicStructure, scatter, *, blade_dofs=None) -> Struc
         if not dofs.size:
             raise ValueError("blade_dofs must name at least one DOF of the sector, got none")
     return sector.assembled(1.0 + delta, scaled_dofs=dofs)
-
-
-def blade_amplitudes(result: FrequencyResponse, sector: CyclicStructure, dof, *,
-                     harmonic: int | None = None) -> np.ndarray:
-    """The amplitude of one sector DOF in every blade of an assembled disk, along the curve (m).
-
-    Parameters
-    ----------
-    result, sector, dof, harmonic
-        As :func:`blade_peaks`.
-
-    Returns
-    -------
-    ndarray, shape (points, sectors)
-        Column ``s``: :meth:`FrequencyResponse.amplitude` of that DOF in sector ``s``.
-    """
-    if not isinstance(result, FrequencyResponse):
-        raise TypeError(f"result must be a FrequencyResponse, got {type(result).__name__}")
-    if not isinstance(sector, CyclicStructure):
-        raise TypeError(f"sector must be a microslip CyclicStructure, got {type(sector).__name__}")
-    whole = sector.sectors * sector.independent.size
-    if result.engine_order is not None or result.structure.ndof != whole:
-        raise ValueError(f"result must be a response of the whole disk assembled from sector ({sector.sectors} "
-                         f"sectors, {whole} DOFs), got one of {result.structure.ndof} DOFs"
-                         + (f" solved as a sector (engine_order = {result.engine_order})"
-                            if result.engine_order is not None else ""))
-    b = direction("dof", dof, sector.ndof, dof_map=sector.dof_map)
-    used = np.flatnonzero(b)
-    if harmonic is not None:
-        h = _checks.positive_int("harmonic", harmonic, minimum=1)
-        if h > result.harmonics:
-            raise ValueError(f"harmonic must be at most harmonics = {result.harmonics}, got {h}")
-    full = _holding(result, np.concatenate([sector._whole_index(s, used) for s in range(sector.sectors)]))
-    out = np.empty((result.points, sector.sectors))
-    for s in range(sector.sectors):
-        w = np.zeros(whole)
-        np.add.at(w, sector._whole_index(s, used), b[used])
-        out[:, s] = full.amplitude(w, harmonic)
-    return out
-
-
-def blade_peaks(result: FrequencyResponse, sector: CyclicStructure, dof, *, harmonic: int | None = None) -> np.ndarray:
-    """The peak amplitude of one sector DOF in every blade of an assembled disk (m).
-
-    Parameters
-    ----------
-    result : FrequencyResponse
-        A response of the disk of :func:`mistuned_disk` (or
-        :meth:`CyclicStructure.assembled`) of ``sector``.
-    sector : CyclicStructure
-        The sector the disk was assembled from.
-    dof : int, str or mapping
-        A DOF of the sector (index, name ``"node:component"`` with a DOF map,
-        or ``{dof: coefficient}`` for a relative displacement), as
-        :meth:`FrequencyResponse.amplitude` takes it.
-    harmonic : int, optional
-        ``h >= 1``: amplitude of harmonic ``h``; None: the largest deviation
-        from the static value over a period.
-
-    Returns
-    -------
-    ndarray, shape (sectors,)
-        Blade ``s``'s peak (m): the highest point of that DOF's curve in
-        sector ``s``, refined by a parabola as :meth:`FrequencyResponse.peak`,
-        so a tuned disk gives the sector solution's ``peak(dof)`` in every
-        blade. With ``harmonic=None`` the maximum over a period is taken on
-        256 samples, each blade at its own phase of the travelling wave: a
-        tuned disk's blades then differ by up to ``1 - cos(pi / 256)``
-        (7.5e-5) of the amplitude (exactly equal with ``harmonic``).
-    """
-    curves = blade_amplitudes(result, sector, dof, harmonic=harmonic)
-    return np.array([curve_peak(result.omega, curves[:, s])[1] for s in range(sector.sectors)])
-
-
-def _holding(result: FrequencyResponse, needed: np.ndarray) -> FrequencyResponse:
-    """``result`` itself when it holds the ``needed`` DOFs, else a copy holding them, recovered once per point."""
-    needed = np.unique(needed)
-    if np.isin(needed, result.dofs).all():
-        return result
-    if result.recovery is None:
-        raise ValueError("dof: this result keeps only its retained DOFs and cannot recover others")
-    coefficients = np.array([result.recovery(k)[:, needed] for k in range(result.points)])
-    return replace(result, coefficients=coefficients, dofs=needed, recovery=None)
-
-
-def amplification_factor(result: FrequencyResponse, tuned: FrequencyResponse, sector: CyclicStructure, dof, *,
-                         harmonic: int | None = None) -> float:
-    """The largest blade peak of a mistuned disk over the tuned sector's peak (dimensionless).
-
-    Parameters
-    ----------
-    result : FrequencyResponse
-        The disk's response (:func:`mistuned_disk` solved with the force of
-        :meth:`CyclicStructure.travelling_wave`).
-    tuned : FrequencyResponse
-        ``sector``'s own response under the same force and engine order
-        (``frequency_response(sector, force, omega, engine_order=eo)``).
-    sector, dof, harmonic
-        As :func:`blade_peaks`.
-
-    Returns
-    -------
-    float
-        ``max_s blade_peaks[s] / tuned.peak(dof)`` amplitude: 1 for a tuned disk.
-    """
-    if not isinstance(tuned, FrequencyResponse):
-        raise TypeError(f"tuned must be the FrequencyResponse of the cyclic sector, got {type(tuned).__name__}")
-    if tuned.engine_order is None:
-        raise ValueError(f"tuned must be the response of the cyclic sector (solved with engine_order), got one of a "
-                         f"structure of {tuned.structure.ndof} DOFs without an engine order")
-    peaks = blade_peaks(result, sector, dof, harmonic=harmonic)
-    reference = tuned.peak(dof, harmonic)[1]
-    if not reference > 0:
-        raise ValueError(f"tuned: the sector's peak amplitude of dof {dof!r} is {reference!r} m; expected > 0")
-    return float(peaks.max() / reference)
