@@ -21,7 +21,8 @@ from pathlib import Path
 import numpy as np
 
 from microslip import MicroslipModel, Sphere, tune
-from microslip.frequency import _aft, aft
+from microslip.kernels import aft as _aft
+from microslip.frequency import aft
 
 H, NS = 7, 128
 NB = 2 * H + 1

@@ -26,7 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from microslip import Sphere, tune
-from microslip.frequency import _aft, _aft_plane, aft, aft_plane
+from microslip.kernels import aft as _aft, aft_plane as _aft_plane
+from microslip.frequency import aft, aft_plane
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_aft import best_time  # noqa: E402  (the same timing in both AFT benchmarks)

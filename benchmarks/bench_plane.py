@@ -29,8 +29,9 @@ from __future__ import annotations
 import numpy as np
 
 from bench_simulate import MODES, arguments, best_time, print_row, time_modes  # as along one direction
-from microslip import Sphere, _kernels, tune
-from microslip._kernels import warm_up
+from microslip import Sphere, tune
+from microslip.kernels import element as _kernels
+from microslip.kernels.element import warm_up
 
 N_TOT = 37.5
 

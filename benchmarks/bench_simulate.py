@@ -34,7 +34,7 @@ import timeit
 import numpy as np
 
 from microslip import Sphere, tune
-from microslip._kernels import warm_up
+from microslip.kernels.element import warm_up
 
 N_TOT = 37.5
 

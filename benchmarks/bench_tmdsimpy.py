@@ -56,7 +56,8 @@ import numpy as np
 import scipy.linalg as sla
 
 from microslip import MicroslipModel, Sphere, Structure, nonlinear_modes, tune
-from microslip.frequency import _aft, _aft_plane, aft_plane, craig_bampton
+from microslip.kernels import aft as _aft, aft_plane as _aft_plane
+from microslip.frequency import aft_plane, craig_bampton
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import best_of  # noqa: E402

@@ -35,7 +35,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "frequency"))
 
-from microslip._kernels import STICK  # noqa: E402
+from microslip.kernels.element import STICK  # noqa: E402
 from microslip.frequency import (UnderResolvedWarning, frequency_point, frequency_response,  # noqa: E402
                                  steady_state)
 from test_damper import blade_pair, damper, lifting_pair, steady_contacts, tip_force  # noqa: E402

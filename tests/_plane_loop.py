@@ -1,10 +1,10 @@
 """The march on the contact plane one element at a time, compiled (tests only).
 
-:func:`march_plane_elementwise` is the loop :func:`microslip._kernels.march_plane` ran before it was
-written in vector form (:mod:`microslip._plane_lanes`): each element through
-:func:`microslip._kernels.plane_step`, one at a time, the sums added in element order. Compiled, so
+:func:`march_plane_elementwise` is the loop :func:`microslip.kernels.element.march_plane` ran before it was
+written in vector form (:mod:`microslip.kernels.plane_lanes`): each element through
+:func:`microslip.kernels.element.plane_step`, one at a time, the sums added in element order. Compiled, so
 that the vector form can be compared with it bit for bit on many long marches of up to 40 elements
-(the pure-Python twin, :func:`microslip._kernels.march_plane_reference`, is too slow for that).
+(the pure-Python twin, :func:`microslip.kernels.element.march_plane_reference`, is too slow for that).
 """
 
 from __future__ import annotations
@@ -12,12 +12,12 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from microslip._kernels import OPEN, SLIP, STICK, plane_step, plane_work
+from microslip.kernels.element import OPEN, SLIP, STICK, plane_step, plane_work
 
 
 @nb.njit(nogil=True, error_model="numpy")
 def march_plane_elementwise(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cover - compiled
-    """:func:`microslip._kernels.march_plane` one element at a time: the same arguments, the same numbers.
+    """:func:`microslip.kernels.element.march_plane` one element at a time: the same arguments, the same numbers.
 
     Each step updates the elements in one loop into scratch rows, copies the
     records from the rows, then adds the rows in element order.

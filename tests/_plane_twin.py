@@ -54,7 +54,7 @@ def step(kt, kn, gap, mu, t, n, s, dt, dn, ds):
 
 
 def aft_plane_reference(kt, kn, gaps, mu, x1, x2, xn, Ns, max_periods=20000):
-    """``(F (3, nb), Jac (3, 3, nb, nb), periods)`` as :func:`microslip.frequency._aft_plane._aft_plane`."""
+    """``(F (3, nb), Jac (3, 3, nb, nb), periods)`` as :func:`microslip.kernels.aft_plane._aft_plane`."""
     x1, x2, xn = (np.asarray(x, float) for x in (x1, x2, xn))
     nb = x1.size
     E = basis(nb, Ns)
@@ -112,7 +112,7 @@ def aft_plane_reference(kt, kn, gaps, mu, x1, x2, xn, Ns, max_periods=20000):
 
 
 def march_plane_reference(kt, kn, gaps, mu, t1, t2, n, s):
-    """Twin of :func:`microslip.frequency._plane_march.march_plane`: ``(T (steps, 2), N, Ti, cond, s)``.
+    """Twin of :func:`microslip.kernels.plane_march.march_plane`: ``(T (steps, 2), N, Ti, cond, s)``.
 
     The radial return written out with plain floats, one element and one sample at a time.
     """
@@ -145,7 +145,7 @@ def march_plane_reference(kt, kn, gaps, mu, t1, t2, n, s):
 
 
 def integrate_plane_reference(A_inv, K, B1, B0, force, Bt, Bt2, Bn, n0, models, sliders, q_prev, q, steps):
-    """Twin of :func:`microslip.frequency._transient_plane.integrate_plane` (every contact on its plane).
+    """Twin of :func:`microslip.kernels.transient_plane.integrate_plane` (every contact on its plane).
 
     ``sliders`` is a list of ``(2, J)`` arrays. Returns ``(out, q_prev, q, sliders)``.
     """

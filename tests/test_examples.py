@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from _paths import EXAMPLES
-from microslip import Sphere, _kernels, accuracy, mdr, paths, tune
+from microslip import Sphere, accuracy, mdr, paths, tune
+from microslip.kernels import element as _kernels
 from microslip.frequency import frequency_point
 
 sys.path.insert(0, str(EXAMPLES))

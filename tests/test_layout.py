@@ -18,9 +18,13 @@ PACKAGE = Path(microslip.__file__).parent
 ROOT = PACKAGE.parent
 
 #: the allowed direction of the arrows: a module may import from its own top-level package or from
-#: one of lower rank, never from one of higher rank (``_plane_lanes``: LLVM vector code the kernels build on)
-RANKS = {"_plane_lanes": -1, "common": 0, "_kernels": 0, "model": 1, "reference": 2, "fe": 2, "accuracy": 3,
-         "frequency": 3, "tuning": 4, "config": 4, "measured": 5, "figures": 6, "study": 6, "cli": 7, "": 8}
+#: one of lower rank, never from one of higher rank
+RANKS = {"common": 0, "kernels": 0, "model": 1, "reference": 2, "fe": 2, "accuracy": 3, "frequency": 3,
+         "tuning": 4, "config": 4, "measured": 5, "figures": 6, "study": 6, "cli": 7, "": 8}
+
+#: the same inside ``frequency/``: numerics without physics, the AFT's public wrappers, structures, their
+#: reductions, the equations built on both, the analyses users run
+FREQUENCY_RANKS = {"numerics": 0, "aft": 1, "structures": 2, "reduction": 3, "equations": 4, "analyses": 5, "": 6}
 
 
 def _module_name(path: Path) -> str:
@@ -115,19 +119,91 @@ def test_arrows_run_one_way_between_packages(graph):
     assert wrong == []
 
 
+def _room(name: str) -> str:
+    """A module's sub-package of ``frequency`` (``""`` for the package itself), None outside it."""
+    parts = name.split(".")
+    if parts[1:2] != ["frequency"]:
+        return None
+    return parts[2] if len(parts) > 2 else ""
+
+
+def test_arrows_run_one_way_inside_frequency(graph):
+    rooms = {_room(m) for m in graph} - {None}
+    assert rooms <= set(FREQUENCY_RANKS), "a new room of frequency/ needs its rank here"
+    wrong = [(a, b) for a, targets in graph.items() for b in targets
+             if _room(a) is not None and _room(b) is not None and _room(a) != _room(b)
+             and FREQUENCY_RANKS[_room(b)] >= FREQUENCY_RANKS[_room(a)]]
+    assert wrong == []
+
+
+def _package(name: str, path: Path) -> str:
+    return name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
+
+
+def _private_imports(modules: dict) -> list:
+    """``(module, imported)`` for every underscore name a module imports from another package.
+
+    The package of a module is the folder it sits in; ``common``'s helpers (``_checks``, ``_io``, ...)
+    are meant to be shared and do not count.
+    """
+    found = []
+    for name, path in modules.items():
+        package = _package(name, path)
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            if node.level:
+                base = package.split(".")[:len(package.split(".")) - node.level + 1]
+                source = ".".join(base + ([node.module] if node.module else []))
+            else:
+                source = node.module or ""
+            if source.split(".")[0] != "microslip" or source.startswith("microslip.common"):
+                continue
+            for alias in node.names:
+                target = f"{source}.{alias.name}"
+                home = target.rsplit(".", 1)[0] if target in modules else source
+                home_package = _package(home, modules[home]) if home in modules else home
+                private = alias.name.startswith("_") or any(p.startswith("_") for p in source.split(".")[1:])
+                if private and home_package != package:
+                    found.append((name, target))
+    return found
+
+
+def test_no_private_name_is_imported_across_packages():
+    assert _private_imports(_modules()) == []
+
+
+def test_the_private_import_counter_counts(tmp_path):
+    files = {"microslip/a/__init__.py": "", "microslip/a/x.py": "from ..b.y import _hidden, shown\nfrom . import _z\n",
+             "microslip/a/_z.py": "", "microslip/b/__init__.py": "", "microslip/b/y.py": "",
+             "microslip/c.py": "from .b import y\nfrom .a import _z\nfrom .common._checks import _show\n"}
+    modules = {}
+    for rel, text in files.items():
+        path = tmp_path / rel
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+        parts = list(Path(rel).with_suffix("").parts)
+        modules[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
+    assert sorted(_private_imports(modules)) == [("microslip.a.x", "microslip.b.y._hidden"),
+                                                 ("microslip.c", "microslip.a._z")]
+
+
 def test_the_top_level_holds_packages_and_a_handful_of_modules():
     modules = sorted(p.stem for p in PACKAGE.glob("*.py"))
-    assert modules == ["__init__", "_kernels", "_plane_lanes", "model"]
+    assert modules == ["__init__", "model"]
     packages = sorted(p.parent.name for p in PACKAGE.glob("*/__init__.py"))
-    assert packages == ["accuracy", "cli", "common", "config", "fe", "figures", "frequency", "measured", "reference",
-                        "study", "tuning"]
+    assert packages == ["accuracy", "cli", "common", "config", "fe", "figures", "frequency", "kernels", "measured",
+                        "reference", "study", "tuning"]
+    rooms = sorted(p.parent.name for p in (PACKAGE / "frequency").glob("*/__init__.py"))
+    assert rooms == ["analyses", "equations", "numerics", "reduction", "structures"]
+    assert sorted(p.stem for p in (PACKAGE / "frequency").glob("*.py")) == ["__init__", "aft"]
 
 
 def test_internal_modules_are_not_attributes_of_the_top_level():
     public = set(microslip.__all__) | {"__version__"}
     extra = {name for name in vars(microslip) if not name.startswith("__")} - public
     packages = {p.parent.name for p in PACKAGE.glob("*/__init__.py")}
-    assert extra <= packages | {"model", "_kernels", "_plane_lanes"}
+    assert extra <= packages | {"model"}
 
 
 def test_every_public_name_is_importable_where_users_import_it():

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from .common import _checks
-from . import _kernels
+from .kernels import element as _kernels
 from .common._io import atomic_write
 from .common._version import __version__
 from .common.units import unit_factor

@@ -258,7 +258,7 @@ def test_the_period_a_pair_of_vectors_at_a_time_is_plane_step_to_the_bit():
     ``plane_step`` marched sample by sample (the contact cycles' march) from the same sliders, on 11
     elements (one pass and a padded one) that open, stick and slip: the conditions, each element's
     force and the sliders equal to the bit (the same operations in the same order)."""
-    from microslip.frequency import _aft_plane, _plane_march
+    from microslip.kernels import aft_plane as _aft_plane, plane_march as _plane_march
 
     rng = np.random.default_rng(5)
     J, Ns = 11, 64
@@ -281,7 +281,7 @@ def test_the_period_a_pair_of_vectors_at_a_time_is_plane_step_to_the_bit():
 
 def _plain_periods(model, t, n, Ns, periods):
     """The tangential force coefficients (N, (2, 2H+1)) after ``periods`` plain periods from the static step."""
-    from microslip.frequency import _aft, _aft_plane
+    from microslip.kernels import aft as _aft, aft_plane as _aft_plane
 
     H = (n.size - 1) // 2
     E, P = _aft.tables(H, Ns)[:2]

@@ -7,7 +7,8 @@ import pytest
 
 from microslip import Sphere, tune
 from microslip.frequency import ContactCycle, Structure, contact_cycle, frequency_point
-from microslip.frequency import UnderResolvedWarning, _aft
+from microslip.frequency import UnderResolvedWarning
+from microslip.kernels import aft as _aft
 from microslip.frequency.analyses.contact_cycle import SLIP_STATES, slip_states
 
 MODEL = tune(Sphere.paper(), 37.5, elements=4)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from microslip import MicroslipModel, Sphere, tune
-from microslip._kernels import STICK
+from microslip.kernels.element import STICK
 from microslip.frequency import (Structure, UnderPlatformDamper, frequency_point, frequency_response, steady_state,
                                  synthesise)
 

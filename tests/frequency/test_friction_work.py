@@ -5,8 +5,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from microslip import Sphere, tune
-from microslip._kernels import NO_CONDITIONS, NO_ELEMENTS, STICK, march
-from microslip.frequency._aft import tables
+from microslip.kernels.element import NO_CONDITIONS, NO_ELEMENTS, STICK, march
+from microslip.kernels.aft import tables
 from microslip.frequency.aft import friction_work, pack_models
 
 SPHERE = Sphere.paper()

@@ -16,7 +16,8 @@ from scipy.optimize import brentq
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import (FrequencyResponse, HarmonicBalance, Structure, frequency_point,
                                  frequency_response, static_solution)
-from microslip.frequency import UnderResolvedWarning, _transient, synthesise
+from microslip.frequency import UnderResolvedWarning, synthesise
+from microslip.kernels import transient as _transient
 
 from _paths import EXAMPLES
 

@@ -7,7 +7,7 @@ import pytest
 from microslip import MicroslipModel
 from microslip.frequency import (CyclicStructure, Structure, contact_cycle, craig_bampton, frequency_point,
                                  frequency_response, steady_state)
-from microslip.frequency import _aft
+from microslip.kernels import aft as _aft
 
 MODEL = MicroslipModel(kt=[3e4, 2e4, 1e4], kn=[2e6, 2e6, 2e6], gaps=[0.0, 0.3e-6, 0.6e-6], mu=0.5)
 APPROACH = 1e-6  # N = 2 + 1.4 + 0.8 = 4.2 N, slip force 2.1 N

@@ -6,7 +6,7 @@ import pytest
 from _plane_twin import integrate_plane_reference, march_plane_reference
 from microslip import MicroslipModel
 from microslip.frequency import Structure
-from microslip.frequency._plane_march import march_plane
+from microslip.kernels.plane_march import march_plane
 from microslip.frequency.analyses.transient import PeriodMap
 
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from microslip import MicroslipModel
-from microslip._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
+from microslip.kernels.element import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from microslip.frequency import (HarmonicBalance, Structure, frequency_point, frequency_response, steady_state,
                                  synthesise)
 from microslip.frequency.analyses.response import _equations

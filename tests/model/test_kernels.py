@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 
 from _plane_loop import march_plane_elementwise
 from _strategies import UM, lengths_array, models, paths
-from microslip import MicroslipModel, _kernels
+from microslip import MicroslipModel
+from microslip.kernels import element as _kernels
 from microslip.model import OPEN, SLIP, STICK
 
 

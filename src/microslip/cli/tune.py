@@ -147,7 +147,7 @@ def _loops_option(kind: str, role: str):
 
 def _run_loops(args) -> int:
     from ..measured import loops
-    from ..measured.loops._record import read_with_options
+    from ..measured.loops import read_with_options
     from ..common._progress import Progress
     from ..measured.loop_tuning import tune_on_loops
 

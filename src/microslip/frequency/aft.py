@@ -8,7 +8,7 @@ contact is marched over ``samples`` points per period, period after period,
 until its state repeats exactly, and the periodic forces ``T`` and ``N`` are
 returned as Fourier coefficients, with their derivatives with respect to the
 coefficients of ``t`` and ``n``, carried through the march (see
-:mod:`microslip.frequency._aft` for the algorithm).
+:mod:`microslip.kernels.aft` for the algorithm).
 
 History convention: the contact is taken closed at ``t = 0`` with no
 tangential force (every slider at 0). The static part of the motion is
@@ -37,7 +37,7 @@ import numpy as np
 
 from ..common import _checks
 from ..model import PLANE_LIMIT, MicroslipModel
-from . import _aft, _aft_plane
+from ..kernels import aft as _aft, aft_plane as _aft_plane
 
 MAX_PERIODS = 1000
 #: harmonics kept at most (each adds two unknowns per DOF; a response with kinks needs tens, not hundreds)
@@ -321,7 +321,7 @@ def aft_plane(model: MicroslipModel, t, n, *, samples: int | None = None,
     Each element is an isotropic Jenkins slider on the contact plane: its
     trial force ``kt_i (t - s_i)`` (2-vectors) is returned radially onto the
     disc of radius ``mu N_i`` when it leaves it. Along a straight line the
-    result is :func:`aft`'s, rotated (see :mod:`microslip.frequency._aft_plane`
+    result is :func:`aft`'s, rotated (see :mod:`microslip.kernels.aft_plane`
     for the algorithm). Unlike one direction, the periodic state is in general
     reached only asymptotically (a circular orbit in gross slip): an element is
     periodic when its slider repeats to rounding (32 ulps of the motion).
@@ -462,7 +462,7 @@ def friction_work(packed, xt, xn, synthesis, max_periods: int = MAX_PERIODS) -> 
     For a displacement and a normal approach linear between the samples this is
     exact up to the instant slip starts inside a step, so it converges like
     ``1/samples^2`` even where the normal load varies during slip (the work
-    ``T_k (s_k - s_k-1)`` of :func:`microslip._kernels.friction_work` there
+    ``T_k (s_k - s_k-1)`` of :func:`microslip.kernels.element.friction_work` there
     converges like ``1/samples``: 10 % low at 128 samples on the inclined block
     of ``examples/inclined_block.py`` where its contact slides and opens).
 
@@ -484,7 +484,7 @@ def friction_work(packed, xt, xn, synthesis, max_periods: int = MAX_PERIODS) -> 
     opens : ndarray of bool, shape (nc,)
         Whether some element opens and closes during the cycle.
     """
-    from ._friction_work import friction_work_batch
+    from ..kernels.friction_work import friction_work_batch
 
     kt, kn, gaps, offsets, mu = packed
     nc = offsets.size - 1
@@ -524,8 +524,8 @@ def friction_work_plane(packed, planar, xt, xt2, xn, synthesis, max_periods: int
     opens : ndarray of bool, shape (nc,)
         Whether some element opens and closes during the cycle, likewise.
     """
-    from .._kernels import STICK
-    from ._plane_march import march_plane, periodic_state
+    from ..kernels.element import STICK
+    from ..kernels.plane_march import march_plane, periodic_state
 
     kt, kn, gaps, offsets, mu = packed
     Ns = synthesis.shape[0]

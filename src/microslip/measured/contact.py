@@ -44,7 +44,7 @@ from ..common import _checks
 from . import _loop_checks
 from ._loop_checks import backlash, fit_mu
 from .backbone_fit import _KNOTS, FittedBackbone, fit_backbone
-from .loops._branch import analyse_branch
+from .loops import analyse_branch
 from ..tuning import TuningError
 
 __all__ = ["FittedBackbone", "MeasuredContact", "backlash", "fit_backbone", "fit_mu"]

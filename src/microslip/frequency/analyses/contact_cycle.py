@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...common import _checks
-from .. import _aft, _plane_march
+from ...kernels import aft as _aft, plane_march as _plane_march
 from ..aft import MAX_PERIODS, NotPeriodicError, synthesise
 from .response import FrequencyResponse
 

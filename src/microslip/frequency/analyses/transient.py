@@ -2,7 +2,7 @@
 
 An independent check of harmonic balance: the same structure and contacts,
 integrated in time with explicit central differences (compiled, see
-:mod:`microslip.frequency._transient`) period after period, until the
+:mod:`microslip.kernels.transient`) period after period, until the
 response repeats.
 
 Where it starts matters. A contact element that sticks through the whole
@@ -33,9 +33,10 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from ...common import _checks
-from ..._kernels import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
+from ...kernels.element import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from ...common._progress import Progress
-from .. import _aft, _plane_march, _transient, _transient_plane
+from ...kernels import (aft as _aft, plane_march as _plane_march, transient as _transient,
+                        transient_plane as _transient_plane)
 from ..aft import MAX_HARMONICS, MAX_PERIODS, MAX_TABLE, check_periodic, check_table
 from ..equations.hbm import excitation
 from .response import FrequencyResponse, static_solution

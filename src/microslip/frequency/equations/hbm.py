@@ -26,7 +26,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ...common import _checks
-from .. import _aft, _aft_plane, _hbm
+from ...kernels import aft as _aft, aft_plane as _aft_plane, harmonic_balance as _hbm
 from ..numerics.blas import DENSE_LIMIT
 from ..aft import (MAX_PERIODS, check_harmonics, check_periodic, check_samples, cycle_work, friction_work,
                    friction_work_plane)
@@ -245,7 +245,7 @@ class HarmonicBalance:
 
         ``R`` alone when ``jacobian`` is False, else ``(R, Jx, R_omega)`` (fresh
         arrays). Dense problems use the compiled kernel of
-        :mod:`microslip.frequency._hbm`; sparse ones :meth:`evaluate_reference`.
+        :mod:`microslip.kernels.harmonic_balance`; sparse ones :meth:`evaluate_reference`.
 
         Raises
         ------

@@ -1,1 +1,2 @@
-"""microslip.frequency.numerics."""
+"""Numerical machinery with no physics: pseudo-arclength continuation and Newton's method
+(:mod:`.continuation`), BLAS threads for small dense problems (:mod:`.blas`)."""

@@ -15,7 +15,8 @@ generates the synthetic cylinder-on-flat data set shipped with the package.
 """
 
 from ._analysis import LoopError, Loops, analyse, find_reversals
-from ._record import Record, read
+from ._branch import analyse_branch  # noqa: F401  (for microslip.measured.contact)
+from ._record import Record, read, read_with_options  # noqa: F401  (read_with_options: for the command line)
 from . import synthetic  # noqa: F401  (the shipped data set; imported so `microslip.loops.synthetic` resolves)
 
 __all__ = ["LoopError", "Loops", "Record", "analyse", "find_reversals", "read"]

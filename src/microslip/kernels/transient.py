@@ -5,7 +5,7 @@ Central differences: with ``A = M/dt^2 + C/(2 dt)``,
 ``A q[k+1] = f[k] - K q[k] - F_c(q[k]) + (2 M/dt^2) q[k] - (M/dt^2 - C/(2 dt)) q[k-1]``
 
 where ``F_c`` are the contact forces, marched one step with the same kernel
-as :meth:`microslip.MicroslipModel.simulate` (:func:`microslip._kernels.march`).
+as :meth:`microslip.MicroslipModel.simulate` (:func:`microslip.kernels.element.march`).
 Stable for ``dt < 2 / omega_max``.
 """
 
@@ -14,7 +14,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .._kernels import march, march_reference
+from .element import march, march_reference
 
 
 @nb.njit(cache=True, nogil=True, inline="always")

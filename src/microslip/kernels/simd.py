@@ -1,6 +1,6 @@
 """Explicit vector loops for the AFT on the contact plane: its periods, its derivatives' passes (private).
 
-The sweep (:func:`microslip.frequency._aft_plane._sweep`) adds, at each sample, every element's
+The sweep (:func:`microslip.kernels.aft_plane._sweep`) adds, at each sample, every element's
 contribution to six coefficient rows of ``nbp`` values (16 at H = 7) and updates its three state rows.
 Written as plain loops, the compiler vectorises them only behind run-time checks that the rows do not
 overlap (28 pairwise comparisons for one element), which cost more than the 16 values they guard. The
@@ -9,8 +9,8 @@ written here directly in LLVM's vector form, ``LANES`` values at a time, without
 sums of a sample kept in registers while the elements add to them. On a machine without vectors that
 wide LLVM splits each operation into narrower ones: the results are the same everywhere.
 
-The period (:func:`microslip.frequency._aft_plane._period`) updates every element at every sample; a
-compiled loop over the elements calling :func:`microslip._kernels.plane_step` vectorises likewise only
+The period (:func:`microslip.kernels.aft_plane._period`) updates every element at every sample; a
+compiled loop over the elements calling :func:`microslip.kernels.element.plane_step` vectorises likewise only
 behind run-time checks between its dozen rows, repeated at every sample (at J = 8 slower than one
 element at a time). :func:`period_march` is that loop in vector form, without the checks, a whole period per
 call, its elements' sliders held in registers from sample to sample; :func:`start_weights` runs the elements'
@@ -26,7 +26,7 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-from .._plane_lanes import counted_loop, inverse_root, splat, stretch
+from .plane_lanes import counted_loop, inverse_root, splat, stretch
 
 #: values per vector operation; the rows' length must be a multiple of it
 LANES = 16
@@ -59,7 +59,7 @@ def _vector_loop(builder, count, step, vector, name, body):
 
 
 #: the rows of the sample sums :func:`sample_rows` reads (``local``, see
-#: :func:`microslip.frequency._aft_plane._sample_sums`): the local derivatives ``d11 = dT1/dt1, d12, d22,
+#: :func:`microslip.kernels.aft_plane._sample_sums`): the local derivatives ``d11 = dT1/dt1, d12, d22,
 #: c1 = dT1/dn, c2 = dT2/dn`` in rows 3 to 7, one for each of its six coefficient rows
 LOCAL_ROWS = (3, 4, 6, 4, 5, 7)
 
@@ -192,7 +192,7 @@ MARCH_PAIR = 2 * MARCH_LANES
 
 
 def _plane_lanes(builder, sqrt_fn, par, state, tx, ty, nk0):
-    """:func:`microslip._kernels.plane_step` on ``MARCH_LANES`` elements, with the period map's derivative.
+    """:func:`microslip.kernels.element.plane_step` on ``MARCH_LANES`` elements, with the period map's derivative.
 
     ``par`` the vectors ``kt, mu kn / kt, mu kn, kn, gap``; ``state`` ``s1, s2, c0 .. c3``; ``tx, ty, nk0``
     the sample's motion in every lane. Returns the new state and the records ``(code, alpha, v1, v2, T1,
@@ -291,7 +291,7 @@ def _row_vector(builder, data, row, width, col):
 def period_march(typingctx, par, st, rec, t1, t2, n):  # pragma: no cover - compiled
     """One period of the AFT's march on the plane for every element, ``MARCH_PAIR`` elements per pass.
 
-    The arithmetic of :func:`microslip._kernels.plane_step`, operation for
+    The arithmetic of :func:`microslip.kernels.element.plane_step`, operation for
     operation (no fused multiply-adds: the same numbers bit for bit; a
     compiled loop over the elements calling it stays one element at a time,
     see the module's note). Each pass marches two vectors of
@@ -486,7 +486,7 @@ def _wide_arrays(context, builder, signature, args):
 @intrinsic
 def project_rows(typingctx, PT, X, out):  # pragma: no cover - compiled
     """``out[r] = X[r] @ PT`` for every row ``r``: each of the ``nbp`` sums in sample order, a product and then a
-    sum (no fused multiply-add), as :func:`microslip.frequency._aft._project` adds them, to the bit.
+    sum (no fused multiply-add), as :func:`microslip.kernels.aft._project` adds them, to the bit.
 
     ``PT`` (Ns, nbp) (``nbp`` a multiple of ``LANES``), ``X`` (R, Ns) and
     ``out`` (R, nbp) C-contiguous float64. The ``nbp`` sums of a row go side

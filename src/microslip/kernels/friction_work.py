@@ -9,7 +9,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .._kernels import STICK, march
+from .element import STICK, march
 
 
 @nb.njit(cache=True, nogil=True)

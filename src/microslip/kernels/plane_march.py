@@ -1,13 +1,13 @@
 """Compiled march of a contact on its plane, sample by sample, from given sliders (private).
 
-The element update is :func:`microslip._kernels.plane_step`, the AFT's and
+The element update is :func:`microslip.kernels.element.plane_step`, the AFT's and
 ``MicroslipModel.simulate``'s own, so that a period marched here from the AFT's periodic state
 (:func:`periodic_state`) repeats the forces harmonic balance used. Used for a
 contact's cycle at a point (:mod:`~microslip.frequency.analyses.contact_cycle`), its
 friction work per cycle and the time integration of structures with contacts
 on their planes (:mod:`~microslip.frequency.analyses.transient`).
 
-Its loop is kept apart from :func:`microslip._kernels.march_plane` (the same
+Its loop is kept apart from :func:`microslip.kernels.element.march_plane` (the same
 step, the same order of the sums, so the same numbers bit for bit): the time
 integration calls it once per time step with one sample, where that march's
 scratch rows (allocated per call, so that its element loop vectorises) would
@@ -19,9 +19,9 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .._kernels import plane_step
-from ._aft import _synthesise
-from ._aft_plane import _march, march_work, periodic_tolerance
+from .element import plane_step
+from .aft import _synthesise
+from .aft_plane import _march, march_work, periodic_tolerance
 
 #: an empty array for the per-element records a caller does not want
 NO_ELEMENTS = np.empty((0, 0, 2))

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from ._aft import _aft_contact
+from .aft import _aft_contact
 
 
 @nb.njit(cache=True, nogil=True)

@@ -15,7 +15,7 @@ samples in O(nb).
 The march. The contact is taken closed at ``t = 0`` with no tangential force
 (every slider at 0). The static part ``(c0 of t, c0 of n)`` is applied first
 as one monotonic step from that virgin state; then whole periods are marched
-with the return mapping of :mod:`microslip._kernels` until the state at the
+with the return mapping of :mod:`microslip.kernels.element` until the state at the
 end of a period equals the state at its start (each element separately).
 That happens after finitely many periods: a slip sets the slider to one of
 the ``2 Ns`` values ``t_k -+ mu N_k / kt`` whatever it was before, and the
@@ -47,7 +47,7 @@ from functools import lru_cache
 import numba as nb
 import numpy as np
 
-from .._kernels import OPEN, SLIP, STICK
+from .element import OPEN, SLIP, STICK
 
 SLIP_NEG = 3  # slip with a negative force (SLIP: positive)
 NEVER = -1  # "last slip" of an element that never slipped

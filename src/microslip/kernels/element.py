@@ -33,7 +33,7 @@ import math
 import numba as nb
 import numpy as np
 
-from ._plane_lanes import DD2_MIN, LANES, PADDING, step_lanes, step_lanes_recorded
+from .plane_lanes import DD2_MIN, LANES, PADDING, step_lanes, step_lanes_recorded
 
 OPEN = 0
 STICK = 1
@@ -217,7 +217,7 @@ def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cov
     Each sample updates every element with :func:`plane_step`'s operations
     in vector form, eight elements at a time, and adds the elements' forces,
     normal forces and work in element order
-    (:func:`microslip._plane_lanes.step_lanes`): the numbers of a loop over
+    (:func:`microslip.kernels.plane_lanes.step_lanes`): the numbers of a loop over
     the elements calling :func:`plane_step`, bit for bit. ``mu kn / kt`` and
     ``mu kn`` are computed here once per element, as ``(mu * kn) / kt`` and
     ``mu * kn``.

@@ -1,8 +1,8 @@
 """Compiled explicit time integration of a structure with contacts on their planes (private).
 
-The scheme of :mod:`microslip.frequency._transient` (central differences), with
-each contact either along one direction (:func:`microslip._kernels.march`) or
-on its plane (:func:`microslip.frequency._plane_march.march_plane`, the
+The scheme of :mod:`microslip.kernels.transient` (central differences), with
+each contact either along one direction (:func:`microslip.kernels.element.march`) or
+on its plane (:func:`microslip.kernels.plane_march.march_plane`, the
 AFT's element update): ``t1 = Bt . q``, ``t2 = Bt2 . q``, and the contact's
 force acts along ``Bt T1 + Bt2 T2 + Bn N``. ``sliders`` has shape
 ``(2, elements)``: both components of every slider (the second unused on a
@@ -14,9 +14,9 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .._kernels import march
-from ._plane_march import march_plane
-from ._transient import advance, linear_rhs
+from .element import march
+from .plane_march import march_plane
+from .transient import advance, linear_rhs
 
 
 @nb.njit(cache=True, nogil=True)
@@ -24,7 +24,7 @@ def integrate_plane(A_inv, K, B1, B0, force, Bt, Bt2, Bn, n0, planar, kt, kn, ga
                     q_prev, q, steps, out):  # pragma: no cover - compiled
     """March ``steps`` steps; ``q_prev``, ``q`` and ``sliders`` (2, elements) are updated in place.
 
-    As :func:`microslip.frequency._transient.integrate`, with the contacts'
+    As :func:`microslip.kernels.transient.integrate`, with the contacts'
     second directions ``Bt2`` and ``planar`` (bool, ``nc``).
     """
     ndof = q.shape[0]

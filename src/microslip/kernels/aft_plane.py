@@ -2,7 +2,7 @@
 
 Plain float64 arrays in, arrays out; the checked public wrapper is
 :func:`microslip.frequency.aft.aft_plane`. Fourier layout and tables as in
-:mod:`microslip.frequency._aft`.
+:mod:`microslip.kernels.aft`.
 
 The element. Element ``i`` is an isotropic Jenkins slider on the plane: with
 ``r = mu kn_i (n - g_i) / kt_i`` (its stick radius, m) and ``d = t - s_i``
@@ -10,7 +10,7 @@ The element. Element ``i`` is an isotropic Jenkins slider on the plane: with
 ``|d| <= r`` (``T_i = kt_i d``) and slips otherwise: ``u = d / |d|``,
 ``s_i = t - r u``, ``T_i = mu kn_i (n - g_i) u`` (the trial force returned
 radially onto the disc of radius ``mu N_i``). Along a straight line this is
-the one-direction return mapping of :mod:`microslip._kernels`, to the bit
+the one-direction return mapping of :mod:`microslip.kernels.element`, to the bit
 (``d / |d|`` is exactly ``+-1`` there).
 
 The march. As in one direction: the contact is closed at ``t = 0`` with every
@@ -67,9 +67,10 @@ from functools import lru_cache
 import numba as nb
 import numpy as np
 
-from .._kernels import OPEN, SLIP, STICK, plane_step
-from ._aft import _aft_contact, _dft, _diagonal_jacobian, _synthesise, tables
-from ._simd import MARCH_PAIR, columns_times_basis, period_march, project_rows, sample_coefficients, sample_rows, start_weights
+from .element import OPEN, SLIP, STICK, plane_step
+from .aft import _aft_contact, _dft, _diagonal_jacobian, _synthesise, tables
+from .simd import (MARCH_PAIR, columns_times_basis, period_march, project_rows, sample_coefficients, sample_rows,
+                   start_weights)
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -90,7 +91,7 @@ def _step(rk, nk, t1, t2, s1, s2):  # pragma: no cover - compiled
     ``rk = mu kn / kt``, ``nk = n - gap``; the slider ``(s1, s2)`` before the
     sample. In slip ``alpha = r / |d|`` and ``q = 1 / |d|`` (``d = t - s``
     before the sample; the force is ``mu kn nk q d``); 0 otherwise. The
-    element update is :func:`microslip._kernels.plane_step` (its force unused).
+    element update is :func:`microslip.kernels.element.plane_step` (its force unused).
     """
     _, _, _, code, a1, a2, al, q = plane_step(1.0, rk, 0.0, 0.0, nk, t1, t2, s1, s2)
     if code != SLIP:
@@ -185,7 +186,7 @@ def sweep_tables(H: int, Ns: int) -> np.ndarray:
     padded to :data:`PAD`.
 
     Rows ``0 .. Ns-1`` hold ``P.T``, rows ``Ns .. 2 Ns - 1`` ``E``
-    (:func:`~microslip.frequency._aft.tables`); the padding columns are zero.
+    (:func:`~microslip.kernels.aft.tables`); the padding columns are zero.
     """
     E, P, _, _, _ = tables(H, Ns)
     nbasis = 2 * H + 1
@@ -282,7 +283,7 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - com
     element's force ``rec[4:6, k, i]``; ``st[2:6]`` receives the period
     map's derivative ``dPhi/ds`` (row-major 2x2 per element). The rows are
     :func:`march_work`'s; the elements past ``J`` (padding) stay open. The
-    element update is :func:`microslip._kernels.plane_step`'s arithmetic,
+    element update is :func:`microslip.kernels.element.plane_step`'s arithmetic,
     ``MARCH_PAIR`` elements at a time (:func:`._simd.period_march`).
     """
     _period_of(_march_parameters(kt, kn, gaps, mu, rk, st.shape[1]), t1, t2, n, st, rec)
@@ -781,7 +782,7 @@ def aft_mixed_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, 
                     FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods):  # pragma: no cover - compiled
     """AFT of contacts along one direction and on their planes (``planar[c]``), in one call.
 
-    The one-direction arrays as :func:`microslip.frequency._aft.aft_batch`
+    The one-direction arrays as :func:`microslip.kernels.aft.aft_batch`
     (for a contact on its plane: its first direction's); ``FT2`` (nc, nb)
     the second tangential force, ``JT12, JT21, JT22, JT2n`` (nc, nb, nb) the
     derivatives of ``T1`` by ``t2``, ``T2`` by ``t1``, ``t2`` and ``n``

@@ -1,7 +1,7 @@
 """One step of the march on the contact plane in LLVM's vector form, eight elements at a time (private).
 
-:func:`microslip._kernels.march_plane` calls :func:`step_lanes` once per sample. It repeats
-:func:`microslip._kernels.plane_step`'s operations on vectors of ``LANES`` elements, operation for
+:func:`microslip.kernels.element.march_plane` calls :func:`step_lanes` once per sample. It repeats
+:func:`microslip.kernels.element.plane_step`'s operations on vectors of ``LANES`` elements, operation for
 operation (no fused multiply-adds: the same numbers bit for bit), and adds the elements' forces, normal
 forces and friction work in element order, as the scalar loop does. Written as a compiled loop over the
 elements, the compiler vectorises it only behind run-time checks that the rows it reads and writes do
@@ -43,10 +43,10 @@ PARAMETERS = ("kt", "rk", "mkn", "kn", "gap")
 #: never positive (open), its normal force ``0 max(-inf, 0)`` is zero, and it never slips (its stick
 #: radius ``0 (-inf)`` is NaN, and ``|d|^2 > NaN`` is false)
 PADDING = (1.0, 0.0, 0.0, 0.0, math.inf)
-#: the conditions recorded, those of :mod:`microslip._kernels` (which imports this module)
+#: the conditions recorded, those of :mod:`microslip.kernels.element` (which imports this module)
 OPEN, STICK, SLIP = 0, 1, 2
 #: the smallest ``|d|^2`` (m^2) the element update divides by (``2^-1000``: its reciprocal is finite); see
-#: :func:`microslip._kernels.plane_step`
+#: :func:`microslip.kernels.element.plane_step`
 DD2_MIN = 2.0 ** -1000
 
 _DOUBLE = ir.DoubleType()
@@ -107,7 +107,7 @@ def _if(builder, condition, name, then):
 
 
 def inverse_root(builder, dd2, sqrt):
-    """``1 / |d|`` as :func:`microslip._kernels.plane_step` computes it, on a vector ``dd2`` of ``|d|^2``:
+    """``1 / |d|`` as :func:`microslip.kernels.element.plane_step` computes it, on a vector ``dd2`` of ``|d|^2``:
     ``sqrt(dd2) (1 / max(dd2, DD2_MIN))``, the square root and the division side by side; ``sqrt`` is
     LLVM's square root for that vector type."""
     vector = dd2.type
@@ -117,7 +117,7 @@ def inverse_root(builder, dd2, sqrt):
 
 
 def stretch(builder, rk, gap, n, tx, ty, s1, s2):
-    """The start of :func:`microslip._kernels.plane_step` on vectors, operation for operation: ``(nk, closed,
+    """The start of :func:`microslip.kernels.element.plane_step` on vectors, operation for operation: ``(nk, closed,
     r, dx, dy, dd2, slipped)``, the depth ``n - gap``, whether it is positive, the stick radius ``rk nk``,
     the stretch ``d = t - s``, ``|d|^2`` and whether ``|d|^2 > r^2``."""
     nk = builder.fsub(n, gap)
@@ -316,7 +316,7 @@ def step_lanes(typingctx, par, sl, tx, ty, n):  # pragma: no cover - compiled
     ``mkn = mu kn``; the padding elements :data:`PADDING`); ``sl`` (2, Jp):
     the sliders, updated. Both C-contiguous float64, ``Jp`` a multiple of
     :data:`LANES`. The sums are those of
-    :func:`microslip._kernels.march_plane`: the elements' forces (N), normal
+    :func:`microslip.kernels.element.march_plane`: the elements' forces (N), normal
     forces (N) and friction work (J), added in element order.
     """
     _check_layout(par, sl)
