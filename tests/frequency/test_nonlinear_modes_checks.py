@@ -30,6 +30,11 @@ def mode():
     ({"amplitude": (-1e-6, 1e-3)}, ValueError, "amplitude[0]"),
     ({"amplitude": (1e-3, 1e-6)}, ValueError, "amplitude must rise from start to end, got start = 0.001"),
     ({"amplitude": (1e-3, 1e-3)}, ValueError, "amplitude must rise from start to end"),
+    # before: NaN modal mass, modal damping and damping ratios with a numpy RuntimeWarning (a^2 underflowed)
+    ({"amplitude": (1e-300, 1e-299)}, ValueError, "amplitude must start at 1e-146 kg^1/2 m or above, got start = "
+                                                  "1e-300: the mode is mass-normalised, so its energies are a^2 times "
+                                                  "its modal mass"),
+    ({"amplitude": (1e-160, 1e-3)}, ValueError, "amplitude must start at 1e-146 kg^1/2 m or above, got start = 1e-160"),
     ({"harmonics": 0}, ValueError, "harmonics must be an integer >= 1, got 0"),
     ({"harmonics": "3"}, TypeError, "harmonics must be an integer"),
     ({"samples": 4}, ValueError, "samples must be at least 2 * harmonics + 1 = 7"),
@@ -67,6 +72,15 @@ def test_the_nodal_diameter_is_checked(structure, kwargs, words):
     with pytest.raises(ValueError) as info:
         nonlinear_modes(structure(), **kwargs)
     assert words in str(info.value)
+
+
+def test_the_smallest_amplitude_gives_finite_results():
+    from microslip.frequency.analyses.nonlinear_modes import MIN_AMPLITUDE
+
+    m = nonlinear_modes(chain(), 1, (MIN_AMPLITUDE, 10 * MIN_AMPLITUDE), harmonics=1)
+    for values in (m.modal_mass, m.modal_damping, m.damping_ratio, m.viscous_damping_ratio, m.contact_damping_ratio):
+        assert np.all(np.isfinite(values))
+    np.testing.assert_allclose(m.modal_mass, 1.0, rtol=1e-6)
 
 
 def test_a_mode_without_stiffness_is_refused():

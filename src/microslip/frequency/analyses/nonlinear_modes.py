@@ -189,10 +189,21 @@ class NonlinearModes(FrequencyResponse):
         return synthesize(self, force, omega, points=points)
 
 
+#: the smallest modal amplitude (kg^1/2 m) a mode is followed from: the mode is mass-normalised, so its energies are
+#: ``a^2`` times its modal mass (1 at small amplitude) and its stiffness (``omega^2``) whatever the structure; below
+#: ``sqrt(tiny / eps)`` (1.0e-146) they lose digits to underflow, below ``sqrt(tiny)`` (1.5e-154) they are zero and
+#: the modal mass and damping ratios NaN
+MIN_AMPLITUDE = float(np.sqrt(np.finfo(float).tiny / np.finfo(float).eps))
+
+
 def _amplitude_range(amplitude) -> tuple[float, float]:
     lo, hi = _checks.positive_pair("amplitude", amplitude, "(start, end) of modal amplitudes in kg^1/2 m")
     if not lo < hi:
         raise ValueError(f"amplitude must rise from start to end, got start = {lo!r} >= end = {hi!r}")
+    if lo < MIN_AMPLITUDE:
+        raise ValueError(f"amplitude must start at {MIN_AMPLITUDE:.3g} kg^1/2 m or above, got start = {lo!r}: the "
+                         f"mode is mass-normalised, so its energies are a^2 times its modal mass (1 for the linear "
+                         f"mode), which underflows double precision below that (a rigid mass m moves by a / sqrt(m))")
     return lo, hi
 
 
@@ -256,7 +267,9 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     mode : int, default 1
         Which linear mode of the stuck structure to start from (1: the lowest).
     amplitude : (float, float), default (1e-8, 1e-4)
-        Start and end of the modal amplitude ``a`` (kg^1/2 m, ``start < end``);
+        Start and end of the modal amplitude ``a`` (kg^1/2 m, ``start < end``,
+        ``start >=`` :data:`MIN_AMPLITUDE` = 1.0e-146, below which the energies,
+        ``a^2`` times the unit modal mass, underflow);
         a DOF where the mass-normalised mode has the value ``phi_i`` moves by
         ``a phi_i`` (m) at small amplitude, so for a structure of mass ``m``
         moving as a whole ``a = sqrt(m) x``.
