@@ -1,5 +1,7 @@
 """Structure and contacts: directions, preloads, input checks."""
 
+import re
+
 import numpy as np
 import pytest
 import scipy.sparse as sp
@@ -79,7 +81,8 @@ def test_force_vector_errors():
     (np.array([[1.0, 1.0], [1.0, 1.0]]), "M must be positive definite \\(a mass matrix\\); it is symmetric with a "
                                          "positive diagonal but singular or indefinite"),
     (np.array([[1.0, 2.0], [2.0, 1.0]]), "M must be positive definite \\(a mass matrix\\)"),
-    (np.array([[1.0, 0.5], [0.0, 1.0]]), "M must be symmetric, got \\|M - M\\^T\\| up to 0.5"),
+    (np.array([[1.0, 0.5], [0.0, 1.0]]), "M must be symmetric \\(\\|M - M\\^T\\| at most 1e-06 x max\\|M\\| = 1e-06\\): "
+                                         "M\\[0, 1\\] = 0.5 but M\\[1, 0\\] = 0.0, a difference of 0.5"),
     (sp.csr_matrix(np.array([[1.0, 2.0], [2.0, 1.0]])), "M must be positive definite \\(a mass matrix\\)"),
     (sp.csr_matrix(np.array([[1.0, 1.0], [1.0, 1.0]])), "M must be positive definite \\(a mass matrix\\)"),
     (sp.diags([1.0, -2.0]), "M must be positive definite: its diagonal entry 1 is -2.0"),
@@ -129,3 +132,80 @@ def test_assembled_contact_data():
     Bt, Bn, n0 = empty.contact_directions()
     assert Bt.shape == Bn.shape == (2, 0) and n0.shape == (0,)
     assert [a.size for a in empty.packed_models()] == [0, 0, 0, 1, 0]
+
+
+# -- issue 24 item 4: non-symmetric matrices refused by name; an indefinite K where a path needs it -----------------
+
+def _chain(n: int = 6) -> np.ndarray:
+    K = np.diag([2e6] * n) - np.diag([1e6] * (n - 1), 1) - np.diag([1e6] * (n - 1), -1)
+    K[-1, -1] = 1e6
+    return K
+
+
+@pytest.mark.parametrize("sparse", [False, True])
+@pytest.mark.parametrize("which", ["K", "C"])
+def test_a_non_symmetric_stiffness_or_damping_is_refused_naming_the_worst_entry(which, sparse):
+    # before, Structure took it: craig_bampton then symmetrised it silently (7 % off the full solve here), the
+    # modal reduction and nonlinear_modes' linear mode used half of it
+    K = _chain()
+    C = 1e-5 * K + 0.5 * np.eye(6)
+    A = (K if which == "K" else C).copy()
+    A[1, 2] *= 1.3
+    A[0, 1] *= 1.0001  # a smaller asymmetry: the message names the worst pair
+    mats = {"K": K, "C": C, which: sp.csr_matrix(A) if sparse else A}
+    with pytest.raises(ValueError) as info:
+        Structure(np.eye(6), mats["C"], mats["K"])
+    worst = float(A[1, 2])
+    assert str(info.value).startswith(f"{which} must be symmetric (|{which} - {which}^T| at most 1e-06 x max|{which}| = ")
+    assert f"{which}[1, 2] = {worst!r} but {which}[2, 1] = {float(A[2, 1])!r}" in str(info.value)
+    assert "non-symmetric (gyroscopic) structures are not supported" in str(info.value)
+
+
+def test_asymmetry_within_the_tolerance_is_accepted_and_names_come_from_the_dof_map():
+    from microslip.fe import DofMap
+
+    K = _chain()
+    K[1, 2] *= 1 + 1e-7  # rounding of a printed file: accepted (the FE readers' tolerance, 1e-6 of max |K|)
+    Structure(np.eye(6), None, K)
+    K[1, 2] = -1000010.0
+    names = DofMap([10, 10, 11, 11, 12, 12], ["x", "y"] * 3)
+    with pytest.raises(ValueError, match=r"K\[1, 2\] \('10:y', '11:x'\) = -1000010.0 but K\[2, 1\] = -1000000.0"):
+        Structure(np.eye(6), None, K, dof_map=names)
+
+
+def _indefinite() -> Structure:
+    K = _chain()
+    K[3, 3] = -5e6  # indefinite: a negative eigenvalue
+    s = Structure(np.eye(6), 0.5 * np.eye(6), K)
+    s.add_contact(MODEL, tangential=0, normal=5, preload=1.0)
+    return s
+
+
+@pytest.mark.parametrize("keep, modes", [([0, 5], 4), ([0, 5], 1), ([0, 5], 0), ([0, 1, 2, 3, 4, 5], 0)])
+def test_craig_bampton_refuses_an_indefinite_stiffness_naming_its_negative_eigenvalue(keep, modes):
+    # before: the negative eigenvalue was reported as a 0 rad/s fixed-interface mode
+    from microslip.frequency import craig_bampton
+
+    with pytest.raises(ValueError, match=r"K must be positive semi-definite for a Craig-Bampton reduction \(the "
+                                         r"(structure with the kept DOFs fixed|reduced structure)\): K phi = lambda M "
+                                         r"phi has the negative eigenvalue -\d"):
+        craig_bampton(_indefinite(), keep, modes)
+
+
+def test_the_modal_reduction_and_the_stuck_mode_refuse_an_indefinite_stiffness():
+    # (on up to 2000 DOFs frequency_response and nonlinear_modes stop before, at their static check)
+    from microslip.frequency.equations.epmc import stuck_mode
+    from microslip.frequency.reduction.choice import linear_part
+
+    for sparse in (False, True):
+        s = _indefinite()
+        if sparse:
+            s = Structure(sp.csr_matrix(s.M), sp.csr_matrix(s.C), sp.csr_matrix(s.K))
+        lowest = float(np.linalg.eigvalsh(_indefinite().K)[0])
+        with pytest.raises(ValueError, match=f"K must be positive semi-definite for a modal reduction: K phi = lambda M "
+                                             f"phi has the negative eigenvalue {re.escape(f'{lowest:.6g}')} rad\\^2/s\\^2"):
+            linear_part(s, [0, 5], "modal", 3)
+        with pytest.raises(ValueError, match=f"K must be positive semi-definite for the linear mode of the structure "
+                                             f"with its contacts stuck: K phi = lambda M phi has the negative "
+                                             f"eigenvalue -"):
+            stuck_mode(s, np.zeros(6), 2)

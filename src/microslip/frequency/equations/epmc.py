@@ -40,7 +40,7 @@ import scipy.sparse.linalg as spla
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
-from ..structures.structure import Structure
+from ..structures.structure import Structure, refuse_indefinite
 
 #: DOFs up to which the linear mode is found by a dense eigensolution (sparse matrices: a sparse one above
 #: :data:`SPARSE_EIGEN`)
@@ -141,6 +141,8 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
     the sector's independent DOFs (complex unless the diameter is 0 or ``N/2``),
     with that diameter's matrices (:meth:`~.cyclic.CyclicStructure.matrices`):
     a contact to the next sector acts along ``b_own + exp(-i phi) b_next``.
+    An indefinite stiffness (a negative eigenvalue among the ``mode`` lowest) is
+    refused by name.
     """
     Bt, Bn, n0 = structure.contact_directions()
     if nodal_diameter is None:
@@ -170,12 +172,14 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
     if n <= (SPARSE_EIGEN if sp.issparse(K) else DENSE_EIGEN):
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
         Md = M.toarray() if sp.issparse(M) else np.asarray(M)
-        lam, vec = sla.eigh(0.5 * (Kd + Kd.conj().T), Md, subset_by_index=[mode - 1, mode - 1])
-        lam, phi = float(lam[0]), vec[:, 0]
+        lam, vec = sla.eigh(0.5 * (Kd + Kd.conj().T), Md, subset_by_index=[0, mode - 1])
+        refuse_indefinite(lam, Kd, Md, "the linear mode of the structure with its contacts stuck")
+        lam, phi = float(lam[-1]), vec[:, -1]
     else:
         Ms = sp.csc_matrix(M)
         scale = float(np.median(np.abs(K.diagonal())) / np.median(np.abs(Ms.diagonal())))
         lam, vec = spla.eigsh(sp.csc_matrix(K), k=mode, M=Ms, sigma=-1e-6 * scale, which="LM")
+        refuse_indefinite(lam, K, Ms, "the linear mode of the structure with its contacts stuck")
         order = np.argsort(lam)
         lam, phi = float(lam[order[-1]]), vec[:, order[-1]]
         phi = phi / np.sqrt(np.real(phi.conj() @ (Ms @ phi)))

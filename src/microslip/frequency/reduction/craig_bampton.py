@@ -23,7 +23,7 @@ from ...common import _checks
 from ...common._io import atomic_write
 from ...model import MicroslipModel
 from ..structures.cyclic import CyclicStructure, add_contact_terms, contact_terms
-from ..structures.structure import Structure
+from ..structures.structure import Structure, refuse_indefinite
 
 #: interior DOFs up to which the fixed-interface eigenproblem is solved densely
 DENSE_EIGEN = 600
@@ -152,8 +152,12 @@ def craig_bampton(structure: Structure, keep, modes: int) -> CraigBampton:
     Raises
     ------
     ValueError
-        ``keep`` missing a contact's DOF or out of range; the structure moves
-        freely with the kept DOFs fixed (keep more DOFs).
+        ``keep`` missing a contact's DOF, out of range or repeating a DOF; the
+        structure moves freely with the kept DOFs fixed (keep more DOFs); an
+        indefinite ``K`` (the negative eigenvalue named: of the structure with
+        the kept DOFs fixed, or of the reduced structure).
+    TypeError
+        ``keep`` holds something other than DOF indices.
     """
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
@@ -183,18 +187,27 @@ def craig_bampton(structure: Structure, keep, modes: int) -> CraigBampton:
         if not np.all(np.isfinite(psi)):
             raise ValueError("the structure moves freely with the kept DOFs fixed: keep more DOFs")
         T[i, :b.size] = psi
+        fixed = "a Craig-Bampton reduction (the structure with the kept DOFs fixed)"
+        if i.size <= DENSE_EIGEN:  # the lowest fixed-interface mode even when none is kept: is K indefinite there?
+            lam, phi = sla.eigh(Kii.toarray(), Mii.toarray(), subset_by_index=[0, max(modes, 1) - 1])
+            refuse_indefinite(lam, Kii, Mii, fixed)
+            lam, phi = lam[:modes], phi[:, :modes]
+        elif modes:
+            op = spla.LinearOperator(Kii.shape, matvec=lu.solve, dtype=float)
+            lam, phi = spla.eigsh(Kii, k=modes, M=Mii, sigma=0.0, which="LM", OPinv=op)
+            refuse_indefinite(lam, Kii, Mii, fixed)
+            order = np.argsort(lam)
+            lam, phi = lam[order], phi[:, order]
         if modes:
-            if i.size <= DENSE_EIGEN:
-                lam, phi = sla.eigh(Kii.toarray(), Mii.toarray(), subset_by_index=[0, modes - 1])
-            else:
-                op = spla.LinearOperator(Kii.shape, matvec=lu.solve, dtype=float)
-                lam, phi = spla.eigsh(Kii, k=modes, M=Mii, sigma=0.0, which="LM", OPinv=op)
-                order = np.argsort(lam)
-                lam, phi = lam[order], phi[:, order]
             T[i, b.size:] = phi
-            frequencies = np.sqrt(np.maximum(lam, 0.0))
+            frequencies = np.sqrt(np.maximum(lam, 0.0))  # >= 0 but for rounding (checked above)
     reduced = [T.T @ (A @ T) for A in (structure.M, structure.C, structure.K)]
-    reduced = [0.5 * (A + A.T) for A in reduced]
+    reduced = [0.5 * (A + A.T) for A in reduced]  # symmetric to rounding already (Structure checks M, C, K)
+    # T^T K T is congruent to K when every interior mode is kept (Sylvester): an indefinite K shows here, through
+    # the boundary's static condensation if not through the interior
+    Mr, _, Kr = reduced
+    refuse_indefinite(sla.eigh(Kr, Mr, eigvals_only=True, subset_by_index=[0, 0]), Kr, Mr,
+                      "a Craig-Bampton reduction (the reduced structure)")
     return CraigBampton(_carry_over(structure, reduced, b), T, b, frequencies)
 
 

@@ -28,6 +28,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..structures.structure import refuse_indefinite
 from .condensation import CLASSICAL, ORDERING, Condensation, SingularInteriorError, _Products
 
 #: DOFs up to which the eigenproblem is solved densely
@@ -44,7 +45,9 @@ class ModalCondensation:
     Parameters
     ----------
     M, C, K : ndarray or scipy.sparse matrix, shape (ndof, ndof)
-        Mass (kg), damping (N s/m) and stiffness (N/m) matrices (symmetric).
+        Mass (kg), damping (N s/m) and stiffness (N/m) matrices (symmetric; ``K``
+        positive semi-definite: a negative eigenvalue among those computed, the
+        lowest ones, is refused by name).
     retained : array_like of int, shape (m,)
         DOFs kept (sorted, unique); external forces act on these only.
     modes : int
@@ -75,6 +78,7 @@ class ModalCondensation:
             Md = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
             lam, phi = sla.eigh(Kd, Md, subset_by_index=[0, k - 1])
             lam = lam + s
+            refuse_indefinite(lam, K, M, "a modal reduction")  # before Cholesky's factorisation of K - s M fails
             factor = sla.cho_factor(Kd)
             solve = lambda b: sla.cho_solve(factor, b)  # noqa: E731
             flex = solve(np.eye(ndof)[:, self.retained])
@@ -82,6 +86,7 @@ class ModalCondensation:
             lu = spla.splu(sp.csc_matrix(shifted), permc_spec=ORDERING)
             op = spla.LinearOperator(shifted.shape, matvec=lu.solve, dtype=float)
             lam, phi = spla.eigsh(sp.csr_matrix(K), k=k, M=sp.csr_matrix(M), sigma=s, which="LM", OPinv=op)
+            refuse_indefinite(lam, K, M, "a modal reduction")  # the eigenvalues nearest the shift
             order = np.argsort(lam)
             lam, phi = lam[order], phi[:, order]
             E = np.zeros((ndof, self.m))

@@ -30,7 +30,7 @@ import scipy.sparse.linalg as spla
 
 from ...common import _checks
 from ...fe.dof_map import DofMap
-from ...fe.files import read_matrices
+from ...fe.files import SYMMETRY_TOLERANCE, read_matrices
 from ...model import MicroslipModel
 from ..aft import pack_models
 
@@ -51,11 +51,40 @@ def _matrix(name: str, value, ndof: int | None):
     return A
 
 
+def _entry(name: str, i: int, j: int, dof_map) -> str:
+    """``M[3, 5]``, with the DOFs' names when a DOF map is known: ``M[3, 5] ('12:x', '14:y')``."""
+    return f"{name}[{i}, {j}]" + (f" ({dof_map.names[i]!r}, {dof_map.names[j]!r})" if dof_map is not None else "")
+
+
+def check_symmetric(name: str, A, dof_map=None) -> None:
+    """Raise unless ``A`` (dense or sparse, square) is symmetric to :data:`SYMMETRY_TOLERANCE`, relative.
+
+    ``max |A - A^T| <= SYMMETRY_TOLERANCE max |A|`` (the tolerance of the
+    finite-element file readers); the message names the worst pair of entries.
+    Non-symmetric structures (gyroscopic, follower forces) are not supported:
+    the reductions and the linear modes assume symmetric matrices.
+    """
+    if sp.issparse(A):
+        D = sp.coo_matrix(A - A.T)
+        if not D.nnz:
+            return
+        k = int(np.argmax(np.abs(D.data)))
+        i, j, worst = int(D.row[k]), int(D.col[k]), float(abs(D.data[k]))
+        scale = float(abs(A).max())
+    else:
+        D = np.abs(A - A.T)
+        i, j = (int(x) for x in np.unravel_index(np.argmax(D), D.shape)) if D.size else (0, 0)
+        worst, scale = (float(D[i, j]), float(np.max(np.abs(A)))) if D.size else (0.0, 0.0)
+    if worst > SYMMETRY_TOLERANCE * scale:
+        i, j = min(i, j), max(i, j)
+        raise ValueError(f"{name} must be symmetric (|{name} - {name}^T| at most {SYMMETRY_TOLERANCE:g} x "
+                         f"max|{name}| = {SYMMETRY_TOLERANCE * scale:.3g}): {_entry(name, i, j, dof_map)} = "
+                         f"{float(A[i, j])!r} but {name}[{j}, {i}] = {float(A[j, i])!r}, a difference of "
+                         f"{worst:.3g}; non-symmetric (gyroscopic) structures are not supported")
+
+
 def _positive_definite(name: str, A) -> None:
-    """Raise unless ``A`` (dense or sparse, square) is symmetric positive definite."""
-    asym = abs(A - A.T).max() if sp.issparse(A) else np.max(np.abs(A - A.T))
-    if asym > 1e-12 * abs(A).max():
-        raise ValueError(f"{name} must be symmetric, got |{name} - {name}^T| up to {asym:.3g}")
+    """Raise unless ``A`` (dense or sparse, square, symmetric) is positive definite."""
     diag = A.diagonal()
     if np.any(diag <= 0):
         i = int(np.argmax(diag <= 0))
@@ -78,6 +107,32 @@ def _positive_definite(name: str, A) -> None:
     if not ok:
         raise ValueError(f"{name} must be positive definite (a mass matrix); it is symmetric with a positive "
                          f"diagonal but singular or indefinite")
+
+
+#: an eigenvalue of ``K phi = lambda M phi`` below ``-INDEFINITE_TOLERANCE max K_ii / min M_ii`` is negative (beyond
+#: the round-off of a rigid-body mode's zero): ``K`` is then indefinite
+INDEFINITE_TOLERANCE = 1e-9
+
+
+def refuse_indefinite(lam, K, M, where: str) -> None:
+    """Raise when the smallest of the eigenvalues ``lam`` (rad^2/s^2) of ``K phi = lambda M phi`` is negative.
+
+    ``where`` names the path that needs a positive semi-definite ``K`` (modal
+    reduction, Craig--Bampton, the stuck linear mode): a negative eigenvalue
+    has no real natural frequency (a buckled structure, a negative geometric
+    stiffness larger than the elastic one).
+    """
+    lam = np.real(np.asarray(lam, dtype=complex if np.iscomplexobj(lam) else float))
+    if not lam.size:
+        return
+    low = float(np.min(lam))
+    diag_k, diag_m = np.abs(np.real(K.diagonal())), np.abs(np.real(M.diagonal()))
+    limit = INDEFINITE_TOLERANCE * float(np.max(diag_k, initial=0.0)) / float(np.min(diag_m))
+    if low < -limit:
+        raise ValueError(f"K must be positive semi-definite for {where}: K phi = lambda M phi has the negative "
+                         f"eigenvalue {low:.6g} rad^2/s^2 (below -{INDEFINITE_TOLERANCE:g} x max K_ii / min M_ii = "
+                         f"{-limit:.3g}), which has no real natural frequency: K is indefinite (a buckled "
+                         f"structure, or a negative geometric stiffness larger than the elastic one)")
 
 
 def dof_index(name: str, key, ndof: int, dof_map=None) -> int:
@@ -221,15 +276,24 @@ class Structure:
     ----------
     M, C, K : array_like or scipy.sparse matrix, shape (ndof, ndof)
         Mass (kg), viscous damping (N s/m) and stiffness (N/m) matrices,
-        finite. ``M`` must be symmetric positive definite (every DOF carries
-        mass: time integration factorises it). ``C`` may be ``None`` (no
-        viscous damping).
+        finite and symmetric to the relative tolerance
+        :data:`~microslip.fe.files.SYMMETRY_TOLERANCE` (``max |A - A^T| <=
+        1e-6 max |A|``; non-symmetric, e.g. gyroscopic, structures are not
+        supported). ``M`` must be positive definite (every DOF carries mass:
+        time integration factorises it). ``K`` may be indefinite here, but the
+        modal and Craig--Bampton reductions and nonlinear modes refuse an
+        indefinite ``K``, naming its negative eigenvalue. ``C`` may be
+        ``None`` (no viscous damping).
+    dof_map : microslip.fe.DofMap, optional
+        Names of the DOFs (``"node:component"``): wherever a DOF index is
+        taken, its name may be given instead.
 
     Raises
     ------
     ValueError
         A matrix that is not square and finite, of another size than ``M``,
-        or an ``M`` that is not symmetric positive definite.
+        not symmetric (the message names the worst pair of entries), or an
+        ``M`` that is not positive definite.
 
     Examples
     --------
@@ -243,15 +307,18 @@ class Structure:
 
     def __init__(self, M, C, K, *, dof_map=None):
         self.M = _matrix("M", M, None)
-        _positive_definite("M", self.M)
         ndof = self.M.shape[0]
-        self.K = _matrix("K", K, ndof)
-        self.C = sp.csr_matrix((ndof, ndof)) if C is None and sp.issparse(self.M) else (
-            np.zeros((ndof, ndof)) if C is None else _matrix("C", C, ndof))
         if dof_map is not None and not isinstance(dof_map, DofMap):
             raise TypeError(f"dof_map must be a microslip.fe.DofMap, got {type(dof_map).__name__}")
         if dof_map is not None and len(dof_map) != ndof:
             raise ValueError(f"dof_map must have one row per DOF ({ndof}), got {len(dof_map)}")
+        check_symmetric("M", self.M, dof_map)
+        _positive_definite("M", self.M)
+        self.K = _matrix("K", K, ndof)
+        check_symmetric("K", self.K, dof_map)
+        self.C = sp.csr_matrix((ndof, ndof)) if C is None and sp.issparse(self.M) else (
+            np.zeros((ndof, ndof)) if C is None else _matrix("C", C, ndof))
+        check_symmetric("C", self.C, dof_map)
         self.dof_map = dof_map
         self.contacts: list[Contact] = []
         #: external static forces on the structure (N), ``(ndof,)``, e.g. a damper's centrifugal load
