@@ -372,6 +372,11 @@ def matrices_file() -> str:
     return "matrices.npz"
 
 
+def sector_file() -> str:
+    np.savez("sector.npz", M=np.eye(3) * 0.1, K=np.array([[2e6, -1e6, 0.0], [-1e6, 2e6, -1e6], [0.0, -1e6, 1e6]]))
+    return "sector.npz"
+
+
 # microslip.fe: a 3-DOF model (masses in kg, stiffnesses in N/m) in a NumPy .npz file and in one Matrix Market file
 # per matrix, and its DOF map in a CSV file
 FE_M = np.diag([1.0, 1.0, 0.5])
@@ -739,6 +744,8 @@ CASES += [
          modes=1),
     case("CraigBampton.expand", lambda: reduced().expand, u=[1e-6, 0.0]),
     case("Structure.from_files", lambda: Structure.from_files, kinds=PATH, path=L(matrices_file)),
+    case("CyclicStructure.from_files", lambda: microslip.frequency.CyclicStructure.from_files, kinds=PATH,
+         path=L(sector_file), sectors=8, left=[0], right=[2]),
     case("Structure.dof_index", lambda: jenkins_structure().dof_index, dof=0),
     case("frequency.damper_design_curve", lambda: microslip.frequency.damper_design_curve, refused_only=True,
          kinds={"damper": "object", "force": "array"}, structure=L(lambda: Structure(np.eye(2), None, np.eye(2) * 1e4)),

@@ -299,3 +299,35 @@ def test_modal_arguments_of_a_sector_are_checked(kwargs, message):
     d, f = chain_sector(40)
     with pytest.raises(ValueError, match=message):
         frequency_point(d, f, 3000.0, harmonics=2, engine_order=2, **kwargs)
+
+
+def test_dofs_by_name_and_from_files(tmp_path):
+    """With a DOF map a sector's boundaries, next-sector DOFs and scaled DOFs may be named as the configuration
+    names them, and ``CyclicStructure.from_files`` reads a sector as ``Structure.from_files`` reads a structure
+    (issue 24, item 18: both were a TypeError)."""
+    from microslip.fe import DofMap
+
+    M, C, K = sector_matrices()
+    names = DofMap([1014, 2014, 3000, 4000], ["x"] * 4)
+    by_name = CyclicStructure(M, C, K, sectors=SECTORS, left=["1014:x"], right="2014:1", dof_map=names)
+    np.testing.assert_array_equal(by_name.left, [0])
+    np.testing.assert_array_equal(by_name.right, [1])
+    assert by_name.next("3000:x") == disk().next(2)
+    add_contacts(by_name, lambda i: i, by_name.next)
+    whole = by_name.assembled(np.linspace(0.9, 1.1, SECTORS), scaled_dofs=["4000:x"])
+    np.testing.assert_array_equal(whole.K, disk().assembled(np.linspace(0.9, 1.1, SECTORS), scaled_dofs=[3]).K)
+    with pytest.raises(ValueError, match="left\\[1\\]: DOF '1015:x': node 1015 is not in the DOF map"):
+        CyclicStructure(M, C, K, sectors=SECTORS, left=["1014:x", "1015:x"], right=[1, 2], dof_map=names)
+    with pytest.raises(TypeError, match="left must be a list of DOF indices, got \\['1014:x'\\] \\(DOF names such as "
+                                        "'1204:x' need a DOF map"):
+        CyclicStructure(M, C, K, sectors=SECTORS, left=["1014:x"], right=[1])
+    with pytest.raises(ValueError, match="right must not repeat a DOF: DOF 1 appears 2 times"):
+        CyclicStructure(M, C, K, sectors=SECTORS, left=[0, 2], right=["2014:x", 1], dof_map=names)
+
+    np.savez(tmp_path / "sector.npz", M=M, C=C, K=K)
+    names.to_csv(tmp_path / "sector_dofs.csv")
+    read = CyclicStructure.from_files(tmp_path / "sector.npz", sectors=SECTORS, dof_map=tmp_path / "sector_dofs.csv",
+                                      left=["1014:x"], right=["2014:x"])
+    assert isinstance(read, CyclicStructure) and read.sectors == SECTORS and read.dof_map == names
+    np.testing.assert_array_equal(read.K, K)
+    np.testing.assert_array_equal(read.right, [1])

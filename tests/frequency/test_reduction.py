@@ -177,7 +177,12 @@ def test_craig_bampton_converges_with_the_modes(full_points):
     ([N - 1], 2, ValueError, "keep must include every DOF a contact or a static force uses"),
     ([N - 1, N // 2, N // 2 - 1, 2 * N - 1, 999], 2, ValueError, "keep: DOF indices must lie in 0..59"),
     ([N - 1, N - 1], 2, ValueError, "keep must not repeat a DOF"),
-    ("abc", 2, TypeError, "keep must be a non-empty list of DOF indices"),
+    ("abc", 2, TypeError, "keep must be a list of DOF indices, got 'abc' \\(DOF names such as '1204:x' need a DOF map"),
+    ([], 2, TypeError, "keep must be a non-empty list of DOF indices, got \\[\\]"),
+    ([0, 99], 2, ValueError, "keep: DOF indices must lie in 0..59, got 0..99"),
+    ([0.5], 2, TypeError, "keep must be a list of DOF indices, got \\[0.5\\]"),
+    ([N - 1, 2.0], 2, TypeError, "keep must be a list of DOF indices, got \\[29, 2.0\\]"),
+    ([N - 1, N // 2, N // 2 - 1, 2 * N - 1, N - 1], 2, ValueError, "keep must not repeat a DOF: DOF 29 appears 2 times"),
     ([N - 1, N // 2, N // 2 - 1, 2 * N - 1], 100, ValueError, "modes must be at most 56"),
 ])
 def test_craig_bampton_checks_its_arguments(keep, modes, error, message):
@@ -261,3 +266,21 @@ def test_auto_condenses_a_small_structure_that_keeps_few_of_its_dofs():
                                    atol=1e-8 * np.abs(full.dof_coefficients(13)).max())
     small = _jenkins_chain(10, 2)
     assert frequency_point(small, np.eye(10)[0], 2500.0, harmonics=3).reduction == "none"
+
+
+def test_craig_bampton_keeps_dofs_given_by_name():
+    """With a DOF map the kept DOFs may be named as everywhere else (issue 24, item 18)."""
+    from microslip.fe import DofMap
+
+    s = two_chains()
+    named = Structure(s.M, s.C, s.K, dof_map=DofMap(np.arange(100, 100 + s.ndof), ["x"] * s.ndof))
+    for c in s.contacts:
+        named.add_contact(c.model, tangential=c.tangential, normal=c.normal, preload=c.preload or None,
+                          approach=c.approach, name=c.name)
+    keep = [N - 1, N // 2, N // 2 - 1, 2 * N - 1]
+    by_index = craig_bampton(s, keep, 4)
+    by_name = craig_bampton(named, [f"{100 + k}:x" for k in keep[:2]] + keep[2:], 4)
+    np.testing.assert_array_equal(by_name.keep, keep)
+    np.testing.assert_array_equal(by_name.recovery, by_index.recovery)
+    with pytest.raises(ValueError, match="keep\\[1\\]: DOF '999:x': node 999 is not in the DOF map"):
+        craig_bampton(named, [f"{100 + N - 1}:x", "999:x"], 4)

@@ -30,7 +30,7 @@ from ..equations.cyclic_balance import check_engine_order, phase_operator
 from ..equations.reduced import ReducedHarmonicBalance
 from ..reduction.choice import modal_error
 from .stability import assess
-from ..structures.structure import Structure, direction
+from ..structures.structure import Structure, direction, dof_label
 
 _CURVE_SAMPLES = 256  # samples per period when reporting the maximum of a time signal
 
@@ -299,7 +299,7 @@ class FrequencyResponse:
             ax.plot(x, np.where(edge, y, np.nan), "--", color=line.get_color())
         what = "max |q - q0| over a period" if harmonic is None else f"harmonic {harmonic} amplitude"
         ax.set_xlabel("excitation frequency ω (rad/s)" if frequency_unit == "rad/s" else "excitation frequency f (Hz)")
-        ax.set_ylabel(f"{self.labels.get('dof', 'response')}: {what} ({unit})")
+        ax.set_ylabel(f"{self.labels.get('dof', dof_label(self.structure, dof) or 'response')}: {what} ({unit})")
         ax.grid(True, alpha=0.3)
         if label:
             ax.legend()

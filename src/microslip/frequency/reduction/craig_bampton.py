@@ -23,7 +23,7 @@ from ...common import _checks
 from ...common._io import atomic_write
 from ...model import MicroslipModel
 from ..structures.cyclic import CyclicStructure, add_contact_terms, contact_terms
-from ..structures.structure import Structure, refuse_indefinite
+from ..structures.structure import Structure, dof_indices, refuse_indefinite
 
 #: interior DOFs up to which the fixed-interface eigenproblem is solved densely
 DENSE_EIGEN = 600
@@ -106,13 +106,9 @@ class CraigBampton:
 
 
 def _kept(structure: Structure, keep) -> np.ndarray:
-    keep = np.atleast_1d(np.asarray(keep))
-    if keep.ndim != 1 or keep.size == 0 or not np.issubdtype(keep.dtype, np.integer):
+    if np.size(keep) == 0 and not isinstance(keep, str):
         raise TypeError(f"keep must be a non-empty list of DOF indices, got {keep!r}")
-    if keep.min() < 0 or keep.max() >= structure.ndof:
-        raise ValueError(f"keep: DOF indices must lie in 0..{structure.ndof - 1}, got {keep.min()}..{keep.max()}")
-    if np.unique(keep).size != keep.size:
-        raise ValueError("keep must not repeat a DOF")
+    keep = dof_indices("keep", keep, structure.ndof, structure.dof_map)
     Bt, Bn, _ = structure.contact_directions()
     used = np.any(Bt != 0, axis=1) | np.any(Bn != 0, axis=1) | (structure.preload_force() != 0)
     used |= np.any(structure.second_tangential_directions() != 0, axis=1)
@@ -139,7 +135,8 @@ def craig_bampton(structure: Structure, keep, modes: int) -> CraigBampton:
         The full structure (dense or sparse) with its contacts.
     keep : array_like of int, shape (k,)
         DOFs kept physical: every DOF a contact uses, plus the excitation and
-        output DOFs you need.
+        output DOFs you need; indices, or names ``"node:component"`` when the
+        structure has a DOF map.
     modes : int
         Fixed-interface normal modes kept (``0 <= modes < ndof - k``),
         computed by a sparse shift-invert eigensolver above 600 interior DOFs.
@@ -157,7 +154,8 @@ def craig_bampton(structure: Structure, keep, modes: int) -> CraigBampton:
         indefinite ``K`` (the negative eigenvalue named: of the structure with
         the kept DOFs fixed, or of the reduced structure).
     TypeError
-        ``keep`` holds something other than DOF indices.
+        ``keep`` holds something other than DOF indices (or names, with a
+        DOF map).
     """
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")

@@ -29,7 +29,8 @@ import scipy.sparse as sp
 
 from ...common import _checks
 from ...model import MicroslipModel
-from .structure import Contact, Structure, direction, lists_two_directions
+from ...fe.files import read_matrices
+from .structure import Contact, Structure, direction, dof_index, dof_indices, lists_two_directions
 
 
 @dataclass(frozen=True)
@@ -39,15 +40,8 @@ class NextDof:
     dof: int
 
 
-def _dof_list(name: str, values, ndof: int) -> np.ndarray:
-    arr = np.atleast_1d(np.asarray(values))
-    if arr.ndim != 1 or not (np.issubdtype(arr.dtype, np.integer) or arr.size == 0):
-        raise TypeError(f"{name} must be a list of DOF indices, got {values!r}")
-    if arr.size and (arr.min() < 0 or arr.max() >= ndof):
-        raise ValueError(f"{name}: DOF indices must lie in 0..{ndof - 1}, got {arr.min()}..{arr.max()}")
-    if np.unique(arr).size != arr.size:
-        raise ValueError(f"{name} must not repeat a DOF")
-    return arr.astype(np.int64)
+def _dof_list(name: str, values, ndof: int, dof_map=None) -> np.ndarray:
+    return dof_indices(name, values, ndof, dof_map)
 
 
 class CyclicStructure(Structure):
@@ -60,9 +54,10 @@ class CyclicStructure(Structure):
         including its left and right boundary DOFs; ``C`` may be None.
     sectors : int
         Number of sectors ``N`` of the whole disk (at least 3).
-    left, right : array_like of int, shape (k,)
+    left, right : array_like of int or of str, shape (k,)
         The boundary DOFs: ``right[j]`` of sector ``s`` is ``left[j]`` of
-        sector ``s + 1`` (same direction in the sector's own frame).
+        sector ``s + 1`` (same direction in the sector's own frame); indices,
+        or names ``"node:component"`` with a ``dof_map``.
     dof_map : microslip.fe.DofMap, optional
         Names of the sector's DOFs (``"node:component"``), as for :class:`Structure`.
 
@@ -91,8 +86,8 @@ class CyclicStructure(Structure):
     def __init__(self, M, C, K, *, sectors: int, left, right, dof_map=None):
         super().__init__(M, C, K, dof_map=dof_map)
         self.sectors = _checks.positive_int("sectors", sectors, minimum=3)
-        self.left = _dof_list("left", left, self.ndof)
-        self.right = _dof_list("right", right, self.ndof)
+        self.left = _dof_list("left", left, self.ndof, self.dof_map)
+        self.right = _dof_list("right", right, self.ndof, self.dof_map)
         if self.left.size != self.right.size:
             raise ValueError(f"left and right must pair the boundary DOFs one to one, got {self.left.size} and "
                              f"{self.right.size} DOFs")
@@ -105,12 +100,30 @@ class CyclicStructure(Structure):
         #: each contact's direction on the next sector's DOFs, ``(tangential, normal)``, shape (ndof,) each
         self.next_directions: list[tuple[np.ndarray, np.ndarray]] = []
 
+    @classmethod
+    def from_files(cls, path=None, *, sectors: int, left, right, M=None, K=None, C=None, dof_map=None,
+                   names=None) -> CyclicStructure:
+        """One sector from finite-element matrix files, as :meth:`Structure.from_files
+        <microslip.frequency.Structure.from_files>`; ``sectors``, ``left`` and ``right`` as in the class (the
+        boundaries may be named ``"node:component"`` with a ``dof_map``).
+
+        Examples
+        --------
+        >>> disk = CyclicStructure.from_files("sector.mat", sectors=24, dof_map="sector_dofs.csv",
+        ...                                   left=["1014:x", "1014:y"], right=["2014:x", "2014:y"])  # doctest: +SKIP
+        """
+        m = read_matrices(path, M=M, K=K, C=C, dof_map=dof_map, names=names)
+        return cls(m.M, m.C, m.K, sectors=sectors, left=left, right=right, dof_map=m.dof_map)
+
     def __repr__(self) -> str:
         return (f"CyclicStructure(ndof={self.ndof}, sectors={self.sectors}, boundary={self.left.size}, "
                 f"contacts={len(self.contacts)})")
 
     def next(self, dof) -> NextDof:
-        """DOF ``dof`` of the next sector, for a contact's ``tangential`` or ``normal`` mapping."""
+        """DOF ``dof`` (an index, or a name ``"node:component"`` with a DOF map) of the next sector, for a contact's
+        ``tangential`` or ``normal`` mapping."""
+        if isinstance(dof, str):
+            return NextDof(dof_index("dof", dof, self.ndof, self.dof_map))
         i = _checks.positive_int("dof", dof, minimum=0)
         if i >= self.ndof:
             raise ValueError(f"dof: DOF {i} is out of range for a sector with {self.ndof} DOFs")
@@ -282,7 +295,7 @@ class CyclicStructure(Structure):
         inside = np.ones(self.ndof, dtype=bool)
         if scaled_dofs is not None:
             inside[:] = False
-            inside[_dof_list("scaled_dofs", scaled_dofs, self.ndof)] = True
+            inside[_dof_list("scaled_dofs", scaled_dofs, self.ndof, self.dof_map)] = True
         return factors, inside
 
     def _whole_terms(self, sector: int, terms) -> dict:

@@ -156,6 +156,46 @@ def dof_index(name: str, key, ndof: int, dof_map=None) -> int:
     return i
 
 
+def dof_indices(name: str, values, ndof: int, dof_map=None) -> np.ndarray:
+    """The rows of a list of DOFs, integer indices or (with ``dof_map``) names such as ``"1204:x"``; no repeats.
+
+    Every list of DOFs of the API (a sector's boundaries, the DOFs a
+    Craig--Bampton reduction keeps, a mistuned blade's DOFs) goes through here.
+    A single DOF is a list of one.
+    """
+    given = values
+    if isinstance(values, (str, int, np.integer)) and not isinstance(values, (bool, np.bool_)):
+        values = [values]
+    if isinstance(values, (list, tuple)) and any(isinstance(v, str) for v in values):
+        if dof_map is None:
+            raise TypeError(f"{name} must be a list of DOF indices, got {given!r} (DOF names such as '1204:x' need "
+                            f"a DOF map: dof_map=... when the structure is made)")
+        arr = np.array([dof_index(f"{name}[{k}]", v, ndof, dof_map) for k, v in enumerate(values)], dtype=np.int64)
+    else:
+        arr = np.atleast_1d(np.asarray(values))
+        if arr.ndim != 1 or not (np.issubdtype(arr.dtype, np.integer) or arr.size == 0):
+            names = " or names" if dof_map is not None else ""
+            raise TypeError(f"{name} must be a list of DOF indices{names}, got {given!r}")
+        if arr.size and (arr.min() < 0 or arr.max() >= ndof):
+            raise ValueError(f"{name}: DOF indices must lie in 0..{ndof - 1}, got {arr.min()}..{arr.max()}")
+    unique, counts = np.unique(arr, return_counts=True)
+    if np.any(counts > 1):
+        raise ValueError(f"{name} must not repeat a DOF: DOF {int(unique[np.argmax(counts > 1)])} appears "
+                         f"{int(counts.max())} times")
+    return arr.astype(np.int64)
+
+
+def dof_label(structure, dof) -> str | None:
+    """The name of one DOF for a plot: its DOF map's ``"node:component"``, the name given, or ``"DOF i"``;
+    None for a combination of DOFs."""
+    dof_map = getattr(structure, "dof_map", None)
+    if isinstance(dof, str):
+        return dof
+    if isinstance(dof, (int, np.integer)) and not isinstance(dof, (bool, np.bool_)) and 0 <= dof < structure.ndof:
+        return dof_map.names[int(dof)] if dof_map is not None else f"DOF {int(dof)}"
+    return None
+
+
 def direction(name: str, spec, ndof: int, *, allow_none: bool = False, dof_map=None) -> np.ndarray:
     """A contact direction as a dense vector of length ``ndof``.
 
