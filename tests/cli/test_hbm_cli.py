@@ -164,7 +164,7 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
      "\\[structure\\] M must be positive definite: its diagonal entry 1 is -0.1"),
     ("omega = [12000, 18000]", 'omega = [12000, "18kN"]',
      "\\[sweep\\] omega\\[1\\] must be a frequency: a number \\(rad/s\\) or a string with a unit of angular "
-     "frequency \\(rad/s\\) or frequency \\(Hz, kHz; converted with 2 pi\\), got '18kN'"),
+     "frequency \\(rad/s, rpm\\) or frequency \\(Hz, kHz; converted with 2 pi\\), got '18kN'"),
     ("omega = [12000, 18000]", 'frequency = ["2kHz", "x"]', "\\[sweep\\] frequency\\[1\\] must be a frequency: a "
      "number \\(Hz\\)"),
     ("omega = [12000, 18000]", 'omega = "12000"', "\\[sweep\\] omega must be a list \\[start, end\\], got '12000'"),

@@ -40,8 +40,17 @@ def test_hertz_and_radians_per_second_are_different_kinds():
                                                    "('rad/s' is a unit of angular frequency)")):
         unit_factor("rad/s", "frequency")
     with pytest.raises(ValueError, match=re.escape("omega: unknown angular frequency unit 'Hz'; expected one of: "
-                                                   "rad/s ('Hz' is a unit of frequency)")):
+                                                   "rad/s, rpm ('Hz' is a unit of frequency)")):
         parse_quantity("60Hz", "angular frequency", name="omega")
+
+
+def test_a_rotation_speed_in_rpm_is_an_angular_frequency():
+    # issue 24, item 18: "3000rpm" was an unknown unit
+    assert parse_quantity("3000rpm", "angular frequency", name="speed") == pytest.approx(100 * np.pi, rel=1e-15)
+    assert parse_quantity("60 rpm", "angular frequency") == pytest.approx(2 * np.pi, rel=1e-15)
+    with pytest.raises(ValueError, match=re.escape("unknown frequency unit 'rpm'; expected one of: Hz, kHz ('rpm' is "
+                                                   "a unit of angular frequency)")):
+        parse_quantity("3000rpm", "frequency")
 
 
 @pytest.mark.parametrize("text, kind, default, value", [

@@ -19,7 +19,7 @@ _UNITS = {
     "time": {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "min": 60.0},
     "stiffness": {"N/m": 1.0, "N/mm": 1e3, "N/um": 1e6, "N/µm": 1e6},
     "frequency": {"Hz": 1.0, "kHz": 1e3},  # cycles per second; times 2 pi for rad/s
-    "angular frequency": {"rad/s": 1.0},
+    "angular frequency": {"rad/s": 1.0, "rpm": 2.0 * 3.141592653589793 / 60.0},  # rpm: revolutions per minute
     "energy": {"J": 1.0, "mJ": 1e-3, "uJ": 1e-6, "µJ": 1e-6},
     "dimensionless": {"-": 1.0, "": 1.0, "1": 1.0},
 }
@@ -36,7 +36,8 @@ def unit_factor(unit: str, kind: str | None = None) -> float:
         Unit symbol, such as ``"mm"``, ``"N"``, ``"GPa"``, ``"in"``, ``"kip"``.
     kind : str, optional
         One of ``length``, ``force``, ``pressure``, ``time``, ``stiffness``,
-        ``frequency`` (Hz), ``angular frequency`` (rad/s), ``energy``,
+        ``frequency`` (Hz), ``angular frequency`` (rad/s; ``rpm``, revolutions
+        per minute, is ``2 pi / 60`` rad/s: a rotation speed), ``energy``,
         ``dimensionless``; the unit must be of it. Hz and rad/s are distinct
         kinds: converting one into the other needs the factor ``2 pi``, which
         a unit factor cannot carry.

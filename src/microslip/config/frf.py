@@ -38,7 +38,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # [[damper]]                        # an under-platform damper (UnderPlatformDamper), one table each
     # mass = 0.01                       # kg
     # inertia = 5e-7                    # kg m^2
-    # centrifugal_load = "300N"         # or speed = "1000rad/s" with radius = "0.25m"
+    # centrifugal_load = "300N"         # or speed = "1000rad/s" (or "3000rpm") with radius = "0.25m"
     # damping = 50.0                    # 1/s, mass-proportional (optional)
     # retention = "1e3N/m"              # N/m: the features keeping the damper in its pocket, a spring from
                                         # each of X, Y and the arc R to the disk (optional, default 0)
@@ -284,7 +284,7 @@ def _angular_frequency(value, what: str, path, bare: str) -> float:
         except (ValueError, TypeError):
             continue
     raise ConfigError(f"{path}: {what} must be a frequency: a number ({bare}) or a string with a unit of "
-                      f"angular frequency (rad/s) or frequency (Hz, kHz; converted with 2 pi), got {value!r}")
+                      f"angular frequency (rad/s, rpm) or frequency (Hz, kHz; converted with 2 pi), got {value!r}")
 
 
 def _frequency_range(value, what: str, path, bare: str) -> tuple[float, float]:
