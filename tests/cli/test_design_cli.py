@@ -131,6 +131,9 @@ def test_a_bad_retention_is_refused_naming_the_file_and_the_key(config, value, m
     ("platform = {x = 3, y = 4}", 'platform = {x = "next:3", y = 4}', "names a next-sector DOF, which needs a "
      "\\[cyclic\\] table"),
     ("dof = 2", "dof = 7", "\\[design\\] dof names DOF 7; the structure has 6"),
+    ("dof = 2", 'dof = "tipp0"', "\\[design\\] dof: 'tipp0' is not a DOF; did you mean 'tip0'\\?"),
+    ("dof = 2", "dof = 2.0", "\\[design\\] dof: 2.0 is not a DOF \\(an index from 0 to 5, or one of the names px0"),
+    ("dof = 2", 'dof = "damper0 X"', "\\[design\\] dof: 'damper0 X' is not a DOF"),  # the damper's own: not a peak
 ])
 def test_damper_and_design_tables_are_checked(config, old, new, message):
     config.write_text(config.read_text().replace(old, new))
@@ -146,3 +149,25 @@ def test_a_cyclic_table_makes_a_sector(config):
     cfg = load_config(config)
     assert isinstance(cfg.structure, CyclicStructure) and cfg.engine_order == 2 and cfg.structure.sectors == 12
     assert cfg.structure.next_directions[-1][0][0] != 0  # the curved contact reaches the next sector's DOF 0
+
+
+def test_the_design_dof_takes_a_name_and_the_damper_speed_rpm(config):
+    """Issue 24, item 18: ``[design] dof`` needed an integer where [output] plot and [modes] dof take a name, and a
+    rotation speed in rpm was an unknown unit."""
+    config.write_text(config.read_text().replace("dof = 2", 'dof = "tip0"')
+                      .replace('centrifugal_load = "50N"', 'speed = "3000rpm"\nradius = "0.25m"'))
+    cfg = load_config(config)
+    assert cfg.design_dof == 2
+    assert cfg.dampers[0].centrifugal_load == pytest.approx(0.02 * 0.25 * (100 * np.pi) ** 2, rel=1e-14)
+
+
+def test_the_cyclic_boundaries_take_names(config):
+    text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = ["px0"]\nright = [3]\n'
+                                      'engine_order = 2\n\n[excitation]')
+    text = text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = 4}')
+    config.write_text(text)
+    cfg = load_config(config)
+    assert list(cfg.structure.left) == [0] and list(cfg.structure.right) == [3]
+    config.write_text(text.replace('left = ["px0"]', 'left = ["pz0"]'))
+    with pytest.raises(ConfigError, match="\\[cyclic\\] left: 'pz0' is not a DOF; did you mean 'py0'\\?"):
+        load_config(config)

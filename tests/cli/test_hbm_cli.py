@@ -216,3 +216,61 @@ def test_frf_help_documents_every_option(capsys):
     text = capsys.readouterr().out
     for option in ("config", "--out", "--quiet", "microslip.config.frf"):
         assert option in text
+
+
+# -- issue 24, item 18: DOFs by name in [excitation] and [output]; a DOF map's names ----------------------------------
+
+@pytest.mark.parametrize("table", ['h1 = {x = "0.6N"}', 'h1 = {"0" = 0.6}', 'h1 = {x = "0.4N", "0" = "200mN"}',
+                                   'h1 = {x = 0.6, y = "0N"}'])
+def test_the_excitation_takes_a_table_of_dofs_by_name_or_index(config_dir, table):
+    cfg = config_dir / "block.toml"
+    listed = load_config(cfg).force
+    _edit(cfg, 'h1 = ["0.6N", "0N"]', table)
+    by_name = load_config(cfg).force
+    assert by_name.keys() == listed.keys()
+    np.testing.assert_allclose(by_name[1], listed[1], rtol=1e-15)
+
+
+def test_a_phase_table_goes_with_an_amplitude_table(config_dir):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, 'h1 = ["0.6N", "0N"]', 'h1 = {x = 0.6, y = 0.3}\nphase_h1 = {y = 90}')
+    np.testing.assert_allclose(load_config(cfg).force[1], [0.6, 0.3j], atol=1e-15)
+
+
+@pytest.mark.parametrize("table, message", [
+    ('h1 = {z = 0.6}', "block.toml: \\[excitation\\] h1: 'z' is not a DOF \\(an index from 0 to 1, or one of the names "
+                       "x, y\\)"),
+    ('h1 = {X = 0.6}', "\\[excitation\\] h1: 'X' is not a DOF; did you mean 'x'\\?"),
+    ('h1 = {"2" = 0.6}', "\\[excitation\\] h1 names DOF 2; the structure has 2"),
+    ('h1 = {x = "0.6m"}', "\\[excitation\\] h1\\['x'\\]: unknown force unit 'm'"),
+    ('h1 = 0.6', "\\[excitation\\] h1 must be a list of numbers \\(one per DOF\\) or a table of DOFs, e.g. "
+                 "\\{\"x\" = 1.0\\}, got 0.6"),
+    ('h1 = [0.6, 0.0]\nphase_h1 = {w = 90}', "\\[excitation\\] phase_h1: 'w' is not a DOF"),
+])
+def test_a_bad_dof_in_the_excitation_is_named(config_dir, table, message):
+    cfg = config_dir / "block.toml"
+    _edit(cfg, 'h1 = ["0.6N", "0N"]', table)
+    with pytest.raises(ConfigError, match=message):
+        load_config(cfg)
+
+
+def test_names_of_a_dof_map_in_the_excitation_and_the_outputs(config_dir):
+    """With matrices read from a file and a DOF map, '1113:y' (or '1113:2') names a DOF in [excitation], [output]
+    plot and [modes] dof: ``h1 = {"1113:y" = "1N"}`` used to fail with "unknown force unit ':y'"."""
+    cfg = config_dir / "block.toml"
+    np.savez(config_dir / "block.npz", M=0.1 * np.eye(2), K=1e7 * np.eye(2), C=17.32 * np.eye(2))
+    (config_dir / "block_dofs.csv").write_text("node,component\n1113,x\n1113,y\n")
+    _edit(cfg, "M = [[0.1, 0.0], [0.0, 0.1]]          # kg", 'file = "block.npz"\ndof_map = "block_dofs.csv"')
+    _edit(cfg, "K = [[1e7, 0.0], [0.0, 1e7]]          # N/m\n", "")
+    _edit(cfg, "C = [[17.32, 0.0], [0.0, 17.32]]      # N s/m\n", "")
+    _edit(cfg, 'dofs = ["x", "y"]\n', "")
+    _edit(cfg, 'h1 = ["0.6N", "0N"]', 'h1 = {"1113:x" = "0.6N"}\nstatic = {"1113:2" = "1N"}')
+    _edit(cfg, "plot = [0, 1]", 'plot = ["1113:y", "1113:1"]')
+    _edit(cfg, 'dof = "x"', 'dof = "1113:y"')
+    c = load_config(cfg, nonlinear=True)
+    np.testing.assert_array_equal(c.force[1], [0.6, 0.0])
+    np.testing.assert_array_equal(c.force[0], [0.0, 1.0])
+    assert c.plot_dofs == [1, 0] and c.nonlinear_mode.dof == 1 and c.dof_names == ["1113:x", "1113:y"]
+    _edit(cfg, 'h1 = {"1113:x" = "0.6N"}', 'h1 = {"1114:x" = "0.6N"}')
+    with pytest.raises(ConfigError, match="\\[excitation\\] h1: DOF '1114:x': node 1114 is not in the DOF map"):
+        load_config(cfg)

@@ -30,7 +30,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
 
     # [cyclic]                          # one sector of a bladed disk (CyclicStructure)
     # sectors = 24
-    # left = [0]                        # boundary DOFs: right[j] of a sector is left[j] of the next
+    # left = [0]                        # boundary DOFs (indices or names): right[j] of a sector is left[j] of the next
     # right = [1]
     # engine_order = 3                  # the travelling wave's engine order (or in [sweep])
                                         # contacts may then name the next sector's DOFs: {"next:4" = -1}
@@ -50,8 +50,9 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
                                         # "next:4" for the next sector's)
 
     [excitation]                        # amplitudes per DOF (N); "static" for the static force
-    h1 = [0.6, 0.0]
-    # phase_h1 = [0.0, 90.0]            # degrees: F = amplitude * exp(i phase)
+    h1 = [0.6, 0.0]                     # one per DOF, or a table of DOFs by name or index (the others 0 N):
+                                        # h1 = {"1113:y" = "1N", "7" = 0.5} or {y = 0.6}
+    # phase_h1 = [0.0, 90.0]            # degrees: F = amplitude * exp(i phase) (a list or a table, as h1)
     # scale = 2.0                       # multiplies every harmonic's amplitude (not the static force)
 
     [sweep]
@@ -78,7 +79,7 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
 
     # [design]                          # microslip design: the damper's peak-response curve
     # loads = ["3N", "20N", "300N"]     # centrifugal loads of the (one) damper: from sliding to stuck
-    # dof = 2                           # the DOF whose peak is read
+    # dof = 2                           # the DOF whose peak is read (an index or a name, "y" or "1113:y")
 
     [output]
     # plot = [0]                        # DOFs to plot, indices or names ("x"; default: all, up to 6)
@@ -218,23 +219,32 @@ def _dof_names(value, ndof: int, path) -> list[str]:
     return list(value)
 
 
-def _plot_dofs(value, names: list[str], path, where: str = "[output] plot") -> list[int]:
+def _dof_key(key, names: list[str], path, where: str, dof_map=None) -> int:
+    """One DOF: an index (an integer, or its digits as a table key such as ``"7"``), a name of ``names``, or with a
+    DOF map any spelling of ``"node:component"`` (``"1113:2"`` is ``"1113:y"``)."""
+    if isinstance(key, str) and key.strip().isdigit():
+        key = int(key)
+    if isinstance(key, str) and key in names:
+        return names.index(key)
+    if isinstance(key, int) and not isinstance(key, bool):
+        if 0 <= key < len(names):
+            return key
+        raise ConfigError(f"{path}: {where} names DOF {key}; the structure has {len(names)}")
+    if isinstance(key, str) and dof_map is not None and ":" in key:
+        try:
+            return dof_map.index(key)
+        except (ValueError, TypeError) as exc:
+            raise ConfigError(f"{path}: {where}: {exc}") from None
+    raise ConfigError(f"{path}: {where}: {key!r} is not a DOF{close_spelling(str(key), names)} (an index "
+                      f"from 0 to {len(names) - 1}, or one of the names {', '.join(names[:8])}"
+                      f"{', ...' if len(names) > 8 else ''})")
+
+
+def _plot_dofs(value, names: list[str], path, where: str = "[output] plot", dof_map=None) -> list[int]:
     """``[output] plot`` (or ``where``): DOF indices or names, as indices."""
     if not isinstance(value, list):
         raise ConfigError(f"{path}: {where} must be a list of DOFs (indices or names), got {value!r}")
-    out = []
-    for d in value:
-        if isinstance(d, str) and d in names:
-            out.append(names.index(d))
-        elif isinstance(d, int) and not isinstance(d, bool) and 0 <= d < len(names):
-            out.append(d)
-        elif isinstance(d, int) and not isinstance(d, bool):
-            raise ConfigError(f"{path}: {where} names DOF {d}; the structure has {len(names)}")
-        else:
-            raise ConfigError(f"{path}: {where}: {d!r} is not a DOF{close_spelling(str(d), names)} (an index "
-                              f"from 0 to {len(names) - 1}, or one of the names {', '.join(names[:8])}"
-                              f"{', ...' if len(names) > 8 else ''})")
-    return out
+    return [_dof_key(d, names, path, where, dof_map) for d in value]
 
 
 def checked(path, where: str, check, *args, **kwargs):
@@ -263,6 +273,24 @@ def _array(value, what: str, path, kind: str = "force") -> np.ndarray:
         return np.array([_quantity(v, kind, what, path) for v in value], dtype=float)
     except TypeError:
         raise ConfigError(f"{path}: {what} must be a list of numbers, got {value!r}") from None
+
+
+def _per_dof(value, what: str, path, names: list[str], dof_map, kind: str) -> np.ndarray:
+    """One value per DOF: a list of them, or a table ``{dof = value}`` by DOF name or index (the others zero)."""
+    if isinstance(value, dict):
+        out = np.zeros(len(names))
+        for key, v in value.items():
+            i = _dof_key(key, names, path, what, dof_map)
+            out[i] += _quantity(v, kind, f"{what}[{key!r}]", path)
+        return out
+    if not isinstance(value, list):
+        raise ConfigError(f"{path}: {what} must be a list of numbers (one per DOF) or a table of DOFs, e.g. "
+                          f"{{\"{names[0]}\" = 1.0}}, got {value!r}")
+    out = _array(value, what, path, kind)
+    if out.size != len(names):
+        raise ConfigError(f"{path}: {what} has {out.size} value(s); the structure has {len(names)} DOFs (one per DOF, "
+                          f"or a table of DOFs such as {{\"{names[-1]}\" = 1.0}})")
+    return out
 
 
 # units of a frequency in [sweep]: rad/s as they are, Hz and kHz times 2 pi
@@ -449,12 +477,12 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
                               dof_map=fe_files.dof_map if fe_files is not None else None)
     except (ValueError, TypeError) as exc:
         raise ConfigError(f"{path}: [structure] {exc}") from None
-    engine_order = None
-    if "cyclic" in data:
-        structure, engine_order = _cyclic(_table(data["cyclic"], "[cyclic]", path), structure, path)
     ndof = structure.ndof
     names = _dof_names(st["dofs"], ndof, path) if "dofs" in st else (
         structure.dof_map.names if structure.dof_map is not None else [f"q{i}" for i in range(ndof)])
+    engine_order = None
+    if "cyclic" in data:
+        structure, engine_order = _cyclic(_table(data["cyclic"], "[cyclic]", path), structure, names, path)
 
     # -- contacts ----------------------------------------------------------------------
     for i, c in enumerate(_tables(data, "contact", path)):
@@ -507,14 +535,12 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
             raise ConfigError(f"{path}: [excitation] has an unknown key "
                               f"{key!r}{close_spelling(key, EXCITATION_EXAMPLES)} "
                               f"(it accepts {EXCITATION_ACCEPTS})")
-        amp = _array(value, f"[excitation] {key}", path).astype(complex)
-        if amp.size != ndof:
-            raise ConfigError(f"{path}: [excitation] {key} has {amp.size} value(s); the structure has {ndof} DOFs "
-                              f"(one amplitude per DOF, N)")
+        amp = _per_dof(value, f"[excitation] {key}", path, names[:ndof], bare.dof_map, "force").astype(complex)
         amp = np.concatenate([amp, np.zeros(structure.ndof - ndof)])  # the dampers are not excited
         if f"phase_{key}" in ex:
-            amp = amp * np.exp(1j * np.radians(_array(ex[f"phase_{key}"], f"[excitation] phase_{key}", path,
-                                                      "dimensionless")))
+            phase = _per_dof(ex[f"phase_{key}"], f"[excitation] phase_{key}", path, names[:ndof], bare.dof_map,
+                             "dimensionless")
+            amp = amp * np.exp(1j * np.radians(np.concatenate([phase, np.zeros(structure.ndof - ndof)])))
         force[h] = amp if h == 0 else scale * amp
     for key in ex:
         if key.startswith("phase_") and key[6:] not in ex:
@@ -567,7 +593,8 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     if frequency_unit not in FREQUENCY_UNITS:
         raise ConfigError(f"{path}: [output] frequency_unit must be one of {', '.join(FREQUENCY_UNITS)}, "
                           f"got {frequency_unit!r}")
-    plot_dofs = _plot_dofs(out["plot"], names[:ndof], path) if "plot" in out else list(range(min(ndof, 6)))
+    plot_dofs = (_plot_dofs(out["plot"], names[:ndof], path, dof_map=bare.dof_map) if "plot" in out
+                 else list(range(min(ndof, 6))))
     harmonic = out.get("harmonic")
     if harmonic is not None:
         harmonic = checked(path, "", _checks.positive_int, "[output] harmonic", harmonic, minimum=0)
@@ -580,10 +607,8 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         if len(dampers) != 1:
             raise ConfigError(f"{path}: [design] needs exactly one [[damper]] (its load is varied), got {len(dampers)}")
         design_loads = _array(_get(design, "loads", "[design]", path), "[design] loads", path)
-        design_dof = checked(path, "", _checks.positive_int, "[design] dof", _get(design, "dof", "[design]", path),
-                              minimum=0)
-        if design_dof >= ndof:
-            raise ConfigError(f"{path}: [design] dof names DOF {design_dof}; the structure has {ndof}")
+        design_dof = _dof_key(_get(design, "dof", "[design]", path), names[:ndof], path, "[design] dof",
+                              bare.dof_map)
     mode_table = None
     if nonlinear:
         mode_table = _modes_table(_table(_get(data, "modes", "the file", path), "[modes]", path), names[:ndof],
@@ -625,15 +650,18 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
     return out
 
 
-def _cyclic(table: dict, structure: Structure, path):
-    """The sector as a :class:`CyclicStructure`, and the engine order."""
+def _cyclic(table: dict, structure: Structure, names: list[str], path):
+    """The sector as a :class:`CyclicStructure`, and the engine order; the boundaries' DOFs as everywhere (an index,
+    a name of ``[structure] dofs`` or of the DOF map)."""
     from ..frequency.structures.cyclic import CyclicStructure
 
     def dofs(key):
         value = _get(table, key, "[cyclic]", path)
         if isinstance(value, (str, int)):
             value = [value]
-        return [checked(path, f"[cyclic] {key}: ", structure.dof_index, v) for v in value]
+        if not isinstance(value, list):
+            raise ConfigError(f"{path}: [cyclic] {key} must be a list of DOFs (indices or names), got {value!r}")
+        return [_dof_key(v, names, path, f"[cyclic] {key}", structure.dof_map) for v in value]
 
     sectors = checked(path, "", _checks.positive_int, "[cyclic] sectors", _get(table, "sectors", "[cyclic]", path),
                        minimum=3)
