@@ -1,4 +1,4 @@
-"""DOF names (``"node:component"``) wherever a DOF is shown: the axes of a forced response's plot (issue 24, item 18)."""
+"""DOF names (``"node:component"``) where a DOF is shown: the axis of a forced response's plot (issue 24, item 18)."""
 
 import matplotlib
 

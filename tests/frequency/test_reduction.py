@@ -182,7 +182,8 @@ def test_craig_bampton_converges_with_the_modes(full_points):
     ([0, 99], 2, ValueError, "keep: DOF indices must lie in 0..59, got 0..99"),
     ([0.5], 2, TypeError, "keep must be a list of DOF indices, got \\[0.5\\]"),
     ([N - 1, 2.0], 2, TypeError, "keep must be a list of DOF indices, got \\[29, 2.0\\]"),
-    ([N - 1, N // 2, N // 2 - 1, 2 * N - 1, N - 1], 2, ValueError, "keep must not repeat a DOF: DOF 29 appears 2 times"),
+    ([N - 1, N // 2, N // 2 - 1, 2 * N - 1, N - 1], 2, ValueError,
+     "keep must not repeat a DOF: DOF 29 appears 2 times"),
     ([N - 1, N // 2, N // 2 - 1, 2 * N - 1], 100, ValueError, "modes must be at most 56"),
 ])
 def test_craig_bampton_checks_its_arguments(keep, modes, error, message):

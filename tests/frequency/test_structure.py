@@ -81,8 +81,8 @@ def test_force_vector_errors():
     (np.array([[1.0, 1.0], [1.0, 1.0]]), "M must be positive definite \\(a mass matrix\\); it is symmetric with a "
                                          "positive diagonal but singular or indefinite"),
     (np.array([[1.0, 2.0], [2.0, 1.0]]), "M must be positive definite \\(a mass matrix\\)"),
-    (np.array([[1.0, 0.5], [0.0, 1.0]]), "M must be symmetric \\(\\|M - M\\^T\\| at most 1e-06 x max\\|M\\| = 1e-06\\): "
-                                         "M\\[0, 1\\] = 0.5 but M\\[1, 0\\] = 0.0, a difference of 0.5"),
+    (np.array([[1.0, 0.5], [0.0, 1.0]]), "M must be symmetric \\(\\|M - M\\^T\\| at most 1e-06 x max\\|M\\| = "
+                                         "1e-06\\): M\\[0, 1\\] = 0.5 but M\\[1, 0\\] = 0.0, a difference of 0.5"),
     (sp.csr_matrix(np.array([[1.0, 2.0], [2.0, 1.0]])), "M must be positive definite \\(a mass matrix\\)"),
     (sp.csr_matrix(np.array([[1.0, 1.0], [1.0, 1.0]])), "M must be positive definite \\(a mass matrix\\)"),
     (sp.diags([1.0, -2.0]), "M must be positive definite: its diagonal entry 1 is -2.0"),
@@ -156,7 +156,8 @@ def test_a_non_symmetric_stiffness_or_damping_is_refused_naming_the_worst_entry(
     with pytest.raises(ValueError) as info:
         Structure(np.eye(6), mats["C"], mats["K"])
     worst = float(A[1, 2])
-    assert str(info.value).startswith(f"{which} must be symmetric (|{which} - {which}^T| at most 1e-06 x max|{which}| = ")
+    assert str(info.value).startswith(f"{which} must be symmetric (|{which} - {which}^T| at most 1e-06 x "
+                                      f"max|{which}| = ")
     assert f"{which}[1, 2] = {worst!r} but {which}[2, 1] = {float(A[2, 1])!r}" in str(info.value)
     assert "non-symmetric (gyroscopic) structures are not supported" in str(info.value)
 
@@ -202,10 +203,11 @@ def test_the_modal_reduction_and_the_stuck_mode_refuse_an_indefinite_stiffness()
         if sparse:
             s = Structure(sp.csr_matrix(s.M), sp.csr_matrix(s.C), sp.csr_matrix(s.K))
         lowest = float(np.linalg.eigvalsh(_indefinite().K)[0])
-        with pytest.raises(ValueError, match=f"K must be positive semi-definite for a modal reduction: K phi = lambda M "
-                                             f"phi has the negative eigenvalue {re.escape(f'{lowest:.6g}')} rad\\^2/s\\^2"):
+        negative = re.escape(f"{lowest:.6g}")
+        with pytest.raises(ValueError, match=f"K must be positive semi-definite for a modal reduction: K phi = "
+                                             f"lambda M phi has the negative eigenvalue {negative} rad\\^2/s\\^2"):
             linear_part(s, [0, 5], "modal", 3)
-        with pytest.raises(ValueError, match=f"K must be positive semi-definite for the linear mode of the structure "
-                                             f"with its contacts stuck: K phi = lambda M phi has the negative "
-                                             f"eigenvalue -"):
+        with pytest.raises(ValueError, match="K must be positive semi-definite for the linear mode of the structure "
+                                             "with its contacts stuck: K phi = lambda M phi has the negative "
+                                             "eigenvalue -"):
             stuck_mode(s, np.zeros(6), 2)
