@@ -84,6 +84,12 @@ def test_a_value_of_the_wrong_type_or_unit_is_refused_naming_it(block, value, me
     ('base = "inclined_block.toml"', "the study varies nothing"),
     ('base = "inclined_block.toml"\n[vary]\n"sweep.harmonics" = 3', "must be a non-empty list of values"),
     ('base = "inclined_block.toml"\n[vary]\n"sweep.harmonics" = []', "must be a non-empty list of values"),
+    # issue 24, item 23: two summary rows with the same key
+    ('base = "inclined_block.toml"\n[vary]\n"contact.sphere.preload" = ["25N", "50N", "25N"]',
+     "[vary] 'contact.sphere.preload' lists the value \"25N\" twice (values 1 and 3): the cases would be one case "
+     "solved twice, with the same key; list each value once"),
+    ('base = "inclined_block.toml"\n[vary]\n"excitation.h1" = [[0.6, 0.0], [0.6, 0.0]]',
+     "[vary] 'excitation.h1' lists the value [0.6, 0.0] twice (values 1 and 2)"),
     ('base = "inclined_block.toml"\n[random]\nseed = 1\n"contact.sphere.mu" = {uniform = [0.4, 0.6]}',
      "[random] needs samples"),
     ('base = "inclined_block.toml"\n[random]\nsamples = 3\n"contact.sphere.preload" = {gauss = [1, 2]}',

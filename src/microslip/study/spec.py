@@ -247,6 +247,14 @@ def _grid(table, path) -> dict:
         if not isinstance(values, list) or not values:
             raise ConfigError(f"{path}: [vary] {key!r} must be a non-empty list of values (one per case), "
                               f"got {values!r}")
+        seen = {}
+        for i, value in enumerate(values):  # as a case's key writes it: the same text is the same case
+            text = json.dumps(value, sort_keys=True, default=str)
+            if text in seen:
+                raise ConfigError(f"{path}: [vary] {key!r} lists the value {_show(value)} twice (values "
+                                  f"{seen[text] + 1} and {i + 1}): the cases would be one case solved twice, with "
+                                  f"the same key; list each value once")
+            seen[text] = i
         out[key] = values
     return out
 
