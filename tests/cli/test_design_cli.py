@@ -141,14 +141,26 @@ def test_damper_and_design_tables_are_checked(config, old, new, message):
         load_config(config)
 
 
-def test_a_cyclic_table_makes_a_sector(config):
-    text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = [0]\nright = [3]\n'
+def cyclic(config, left="[0]"):
+    """Make ``config`` a sector of 12 (boundaries ``left`` and DOF 3), its curved contact on the next sector."""
+    text = config.read_text().replace('[excitation]', f'[cyclic]\nsectors = 12\nleft = {left}\nright = [3]\n'
                                       'engine_order = 2\n\n[excitation]')
-    text = text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = 4}')
-    config.write_text(text)
+    config.write_text(text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = 4}'))
+
+
+@pytest.mark.parametrize("left", ["[0]", '["px0"]', '"px0"'])  # the boundaries by index or name (issue 24, item 18)
+def test_a_cyclic_table_makes_a_sector(config, left):
+    cyclic(config, left)
     cfg = load_config(config)
     assert isinstance(cfg.structure, CyclicStructure) and cfg.engine_order == 2 and cfg.structure.sectors == 12
+    assert list(cfg.structure.left) == [0] and list(cfg.structure.right) == [3]
     assert cfg.structure.next_directions[-1][0][0] != 0  # the curved contact reaches the next sector's DOF 0
+
+
+def test_a_cyclic_boundary_that_is_not_a_dof_is_named(config):
+    cyclic(config, '["pz0"]')
+    with pytest.raises(ConfigError, match="\\[cyclic\\] left: 'pz0' is not a DOF; did you mean 'py0'\\?"):
+        load_config(config)
 
 
 def test_the_design_dof_takes_a_name_and_the_damper_speed_rpm(config):
@@ -159,15 +171,3 @@ def test_the_design_dof_takes_a_name_and_the_damper_speed_rpm(config):
     cfg = load_config(config)
     assert cfg.design_dof == 2
     assert cfg.dampers[0].centrifugal_load == pytest.approx(0.02 * 0.25 * (100 * np.pi) ** 2, rel=1e-14)
-
-
-def test_the_cyclic_boundaries_take_names(config):
-    text = config.read_text().replace('[excitation]', '[cyclic]\nsectors = 12\nleft = ["px0"]\nright = [3]\n'
-                                      'engine_order = 2\n\n[excitation]')
-    text = text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = 4}')
-    config.write_text(text)
-    cfg = load_config(config)
-    assert list(cfg.structure.left) == [0] and list(cfg.structure.right) == [3]
-    config.write_text(text.replace('left = ["px0"]', 'left = ["pz0"]'))
-    with pytest.raises(ConfigError, match="\\[cyclic\\] left: 'pz0' is not a DOF; did you mean 'py0'\\?"):
-        load_config(config)
