@@ -244,8 +244,28 @@ class FrequencyResponse:
 
         The discrete maximum is refined by a parabola through it and its two
         neighbours, in the arclength of the curve (so it works at folds too).
+
+        Warns
+        -----
+        PeakOnEdgeWarning
+            When the highest point is the curve's first or last point
+            (:meth:`peak_on_edge`): the response still rises there, so the
+            resonance lies outside the range followed and this is no peak.
         """
-        return curve_peak(self.omega, self.amplitude(dof, harmonic))
+        amplitude = self.amplitude(dof, harmonic)
+        if on_edge(amplitude):
+            warnings.warn(edge_message(self.omega, amplitude, self.complete), PeakOnEdgeWarning, stacklevel=2)
+        return curve_peak(self.omega, amplitude)
+
+    def peak_on_edge(self, dof=0, harmonic: int | None = None) -> bool:
+        """True when the highest point of the curve is its first or last point.
+
+        The response then still rises at an end of the frequency range followed
+        (or at the last point of an incomplete curve): the resonance lies
+        outside, and :meth:`peak` gives the end of the range, not a peak.
+        ``dof``, ``harmonic`` as in :meth:`amplitude`.
+        """
+        return on_edge(self.amplitude(dof, harmonic))
 
     def time_history(self, point: int, dof=0, samples: int = _CURVE_SAMPLES) -> tuple[np.ndarray, np.ndarray]:
         """One period of a DOF's displacement at a point of the curve.
@@ -360,6 +380,29 @@ def _static_force(force) -> dict:
     if isinstance(force, Mapping) and 0 in force:
         return {0: force[0]}
     return {}
+
+
+class PeakOnEdgeWarning(RuntimeWarning):
+    """The highest point of a curve is its first or last point: the resonance lies outside the range followed."""
+
+
+def on_edge(amplitude) -> bool:
+    """True when the largest of ``amplitude`` (one value per point, in the order of the curve) is its first or
+    last value: the curve's highest point is an end of it, not a peak (False for a single point: no range)."""
+    i = int(np.argmax(amplitude))
+    return len(amplitude) > 1 and (i == 0 or i == len(amplitude) - 1)
+
+
+def edge_message(omega, amplitude, complete: bool = True) -> str:
+    """Why the highest point of a curve (``omega`` in rad/s, ``amplitude`` in m) is no peak."""
+    i = int(np.argmax(amplitude))
+    if i == len(amplitude) - 1 and not complete:
+        where = "the last point of the incomplete curve"
+    else:
+        where = "the start of the frequency range" if i == 0 else "the end of the frequency range"
+    return (f"the highest point of the curve is {where} (omega = {float(omega[i]):.6g} rad/s, "
+            f"{float(amplitude[i]):.4g} m): the response still rises there, so the resonance lies outside the range "
+            f"followed and this is no peak; widen the range past that end")
 
 
 def curve_peak(omega, amplitude) -> tuple[float, float]:
