@@ -105,13 +105,18 @@ def main(out=Path("microslip-examples")) -> tuple[list, list]:
     return rows, errors
 
 
+def folder(value: str) -> Path:
+    """The ``--out`` folder (created by :func:`main` if needed); a file there is refused."""
+    path = Path(value)
+    if path.exists() and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{path} is a file, not a folder")
+    return path
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description="Harmonic balance against time integration for a block pressed on "
                                                  "an inclined plane (writes inclined_block.csv and "
                                                  "inclined_block_truncation.csv).")
-    parser.add_argument("--out", default="microslip-examples", help="folder to write into (created if needed; "
-                                                                    "default ./microslip-examples)")
-    folder = Path(parser.parse_args().out)
-    if folder.exists() and not folder.is_dir():
-        parser.error(f"--out {folder} is a file, not a folder")
-    main(folder)
+    parser.add_argument("--out", type=folder, default=Path("microslip-examples"),
+                        help="folder to write into (created if needed; default ./microslip-examples)")
+    main(parser.parse_args().out)

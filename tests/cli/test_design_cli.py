@@ -195,18 +195,9 @@ def test_design_over_a_range_that_stops_below_a_resonance_says_how_to_widen_it(t
 
 
 def test_design_keeps_the_loads_finished_when_a_later_one_fails(tmp_path, capsys, monkeypatch):
-    from microslip.frequency import ConvergenceError
-    from microslip.frequency.analyses import design as design_module
+    from test_design import fail_at
 
-    real, calls = design_module.frequency_response, []
-
-    def failing_second(*args, **kwargs):
-        calls.append(1)
-        if len(calls) == 2:
-            raise ConvergenceError("the continuation stalled at omega = 4321 rad/s")
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(design_module, "frequency_response", failing_second)
+    fail_at(monkeypatch, 2, "the continuation stalled at omega = 4321 rad/s")
     out = tmp_path / "out"
     assert main(["design", str(quick_config(tmp_path)), "--out", str(out), "--quiet"]) == 1
     rows = design_rows(out)

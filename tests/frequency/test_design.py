@@ -157,17 +157,22 @@ def test_a_peak_on_the_range_edge_is_marked_and_left_out_of_the_optimum(tmp_path
         assert edge.peak(2) == (4200.0, edge.amplitude(2)[-1])
 
 
-@pytest.mark.filterwarnings("ignore:load .*: the continuation stopped")
-def test_a_load_that_fails_leaves_the_others(monkeypatch):
+def fail_at(monkeypatch, call: int, message: str):
+    """The ``call``-th forced response of a design curve fails with a ConvergenceError saying ``message``."""
     real, calls = design_module.frequency_response, []
 
-    def failing_second(*args, **kwargs):
+    def failing(*args, **kwargs):
         calls.append(1)
-        if len(calls) == 2:
-            raise ConvergenceError("Newton's method did not converge at omega = 3000 rad/s")
+        if len(calls) == call:
+            raise ConvergenceError(message)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(design_module, "frequency_response", failing_second)
+    monkeypatch.setattr(design_module, "frequency_response", failing)
+
+
+@pytest.mark.filterwarnings("ignore:load .*: the continuation stopped")
+def test_a_load_that_fails_leaves_the_others(monkeypatch):
+    fail_at(monkeypatch, 2, "Newton's method did not converge at omega = 3000 rad/s")
     with pytest.warns(DesignPointWarning, match="load 300 N: the forced response failed: Newton's method did not"):
         curve = damper_design_curve(blade_pair(), damper(), [5.0, 300.0, 20.0], antiphase(), RANGE, dof=2,
                                     harmonics=1, control=StepControl(max_points=5))
