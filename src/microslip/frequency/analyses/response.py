@@ -84,7 +84,8 @@ class FrequencyResponse:
     complete : bool
         True when the curve reaches the end of the range (or leaves the range
         past a fold); False when the continuation stopped at
-        ``StepControl.max_points`` first (:func:`frequency_response` warns).
+        ``StepControl.max_points`` first (:func:`frequency_response` warns), or
+        was interrupted (the ``partial`` of :class:`CurveInterrupted`).
     elapsed : float
         Wall time of the computation (s).
     labels : dict of str
