@@ -170,7 +170,7 @@ def fail_at(monkeypatch, call: int, message: str):
     monkeypatch.setattr(design_module, "frequency_response", failing)
 
 
-@pytest.mark.filterwarnings("ignore:load .*: the continuation stopped")
+@pytest.mark.filterwarnings("ignore:load .* the continuation stopped")
 def test_a_load_that_fails_leaves_the_others(monkeypatch):
     fail_at(monkeypatch, 2, "Newton's method did not converge at omega = 3000 rad/s")
     with pytest.warns(DesignPointWarning, match="load 300 N: the forced response failed: Newton's method did not"):
