@@ -117,6 +117,7 @@ def interrupt_after(monkeypatch, points: int, call: int = 1):
     monkeypatch.setattr(response_module, "continuation", continuation)
 
 
+@pytest.mark.filterwarnings("ignore:load .* the continuation stopped")
 def test_a_curve_cut_short_is_marked_and_left_out_of_the_optimum():
     with pytest.warns(IncompleteCurveWarning, match="load 300 N: the continuation stopped at max_points = 5 points"):
         cut = damper_design_curve(blade_pair(), damper(), [5.0, 300.0], antiphase(), RANGE, dof=2, harmonics=1,
