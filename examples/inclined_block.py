@@ -13,11 +13,17 @@ share among the elements -- varies along the cycle. The block is shaken along x 
 The script computes the forced response (H = 7) and compares it with explicit time
 integration of the same structure and contact to the periodic steady state at five
 frequencies including the resonance peak, then shows the harmonic truncation error
-at the peak as H grows. Run ``python examples/inclined_block.py`` (about 10 s).
-The same structure is the configuration ``inclined_block.toml`` of ``microslip frf``.
+at the peak as H grows. Run ``python examples/inclined_block.py [--out DIR]``; it prints both
+tables and writes them to ``inclined_block.csv`` and ``inclined_block_truncation.csv`` in ``DIR``
+(default ``./microslip-examples``). The same structure is the configuration ``inclined_block.toml``
+of ``microslip frf``.
 """
 
 from __future__ import annotations
+
+import argparse
+import csv
+from pathlib import Path
 
 import numpy as np
 
@@ -68,18 +74,49 @@ def truncation(structure, omega, harmonics=(1, 2, 3, 5, 7, 11, 15)):
     return rows
 
 
-def main():
+def _write(path: Path, header: list, rows) -> None:
+    with open(path, "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(header)
+        writer.writerows([repr(float(v)) if not isinstance(v, int) else str(v) for v in row] for row in rows)
+
+
+def main(out=Path("microslip-examples")) -> tuple[list, list]:
+    """Print the comparison and the truncation tables and write them as CSV into the folder ``out``;
+    returns their rows (see :func:`compare` and :func:`truncation`)."""
+    out = Path(out)
     block = inclined_block()
     curve = frequency_response(block, FORCE, RANGE, harmonics=7)
     w_peak, _ = curve.peak(0, 1)
     print(f"curve: {curve.points} points in {curve.elapsed:.3f} s; peak at {w_peak:.1f} rad/s")
     print("omega (rad/s)   HB x1 (um)   time integration x1 (um)   difference")
-    for w, a, b, d in compare(curve, [12500.0, 14500.0, w_peak, 15900.0, 16400.0]):
+    rows = compare(curve, [12500.0, 14500.0, w_peak, 15900.0, 16400.0])
+    for w, a, b, d in rows:
         print(f"{w:12.1f}   {a * 1e6:10.5f}   {b * 1e6:12.5f}              {d:+.2e}")
     print("H    error of max |x - x0| at the peak")
-    for H, e in truncation(block, w_peak):
+    errors = truncation(block, w_peak)
+    for H, e in errors:
         print(f"{H:2d}   {e:+.2e}")
+    out.mkdir(parents=True, exist_ok=True)
+    _write(out / "inclined_block.csv", ["omega [rad/s]", "harmonic balance x1 [m]", "time integration x1 [m]",
+                                        "difference [-]"], rows)
+    _write(out / "inclined_block_truncation.csv", ["harmonics H", "error of max |x - x0| at the peak [-]"], errors)
+    print(f"wrote {out / 'inclined_block.csv'} and {out / 'inclined_block_truncation.csv'}")
+    return rows, errors
+
+
+def folder(value: str) -> Path:
+    """The ``--out`` folder (created by :func:`main` if needed); a file there is refused."""
+    path = Path(value)
+    if path.exists() and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{path} is a file, not a folder")
+    return path
 
 
 if __name__ == "__main__":
-    main()
+    parser = argparse.ArgumentParser(description="Harmonic balance against time integration for a block pressed on "
+                                                 "an inclined plane (writes inclined_block.csv and "
+                                                 "inclined_block_truncation.csv).")
+    parser.add_argument("--out", type=folder, default=Path("microslip-examples"),
+                        help="folder to write into (created if needed; default ./microslip-examples)")
+    main(parser.parse_args().out)

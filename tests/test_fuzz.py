@@ -704,6 +704,7 @@ CASES += [
          jacobian=True),
     case("FrequencyResponse.amplitude", lambda: a_point().amplitude, dof=0, harmonic=1),
     case("FrequencyResponse.peak", lambda: a_point().peak, dof=0, harmonic=1),
+    case("FrequencyResponse.peak_on_edge", lambda: a_point().peak_on_edge, dof=0, harmonic=1),
     case("FrequencyResponse.time_history", lambda: a_point().time_history, point=0, dof=0, samples=16),
     case("FrequencyResponse.columns", lambda: a_point().columns, dofs=[0]),
     case("FrequencyResponse.to_csv", lambda: a_point().to_csv, kinds=PATH, path="frf.csv", dofs=[0]),

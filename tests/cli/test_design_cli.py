@@ -171,3 +171,77 @@ def test_the_design_dof_takes_a_name_and_the_damper_speed_rpm(config):
     cfg = load_config(config)
     assert cfg.design_dof == 2
     assert cfg.dampers[0].centrifugal_load == pytest.approx(0.02 * 0.25 * (100 * np.pi) ** 2, rel=1e-14)
+
+
+# -- loads without a peak, failures and Ctrl-C: marked, left out of the optimum, the command says so ---------------
+
+def quick_config(folder, old="", new=""):
+    """:data:`CONFIG` at 5 N (the damper slips) and 300 N (stuck), the tips in antiphase, one harmonic."""
+    return write_config(folder, lambda text: text.replace('loads = ["3N", "20N", "300N"]', 'loads = ["5N", "300N"]')
+                        .replace("h1 = [0, 0, 0.5, 0, 0, 0]", "h1 = [0, 0, 0.5, 0, 0, -0.5]")
+                        .replace("harmonics = 3", "harmonics = 1").replace(old, new))
+
+
+def design_rows(out):
+    import csv
+
+    return list(csv.DictReader(open(out / "design.csv")))
+
+
+def test_design_from_curves_cut_short_fails_and_names_them(tmp_path, capsys):
+    config = quick_config(tmp_path, "[design]", "[continuation]\nmax_points = 5\n\n[design]")
+    out = tmp_path / "out"
+    assert main(["design", str(config), "--out", str(out), "--quiet"]) == 1
+    assert [r["status"] for r in design_rows(out)] == ["incomplete curve"] * 2
+    err = capsys.readouterr().err
+    assert "microslip design: error: 2 loads without a peak, left out of the optimum: load 5 N: the forced " in err
+    assert "load 300 N: the forced response stopped at omega = " in err and "(raise [continuation] max_points)" in err
+    report = (out / "report.md").read_text()
+    assert "No optimum: no load has a peak inside the frequency range" in report and "Lowest peak" not in report
+    assert "**Left out of the optimum**: load 300 N" in report
+
+
+def test_design_over_a_range_that_stops_below_a_resonance_says_how_to_widen_it(tmp_path, capsys):
+    config = quick_config(tmp_path, "omega = [3000, 5000]", "omega = [3000, 4200]")
+    out = tmp_path / "out"
+    assert main(["design", str(config), "--out", str(out), "--quiet"]) == 1
+    rows = design_rows(out)
+    assert [r["status"] for r in rows] == ["peak", "peak on the range's edge"]
+    assert [r["peak on edge [-]"] for r in rows] == ["0", "1"]
+    captured = capsys.readouterr()
+    # the stuck damper's 5.76 um at 4200 rad/s is lower than the 5 N peak, and no peak: the optimum is 5 N
+    assert captured.out.startswith("lowest peak 7.238 µm at 5 N (among the loads with a peak inside the range)")
+    assert ("load 300 N: the response is highest at the end of the frequency range (4200 rad/s, 668.451 Hz) and "
+            "still rises there: the resonance lies above it") in captured.err
+    assert "raise the end of [sweep] omega past the resonance" in captured.err
+    assert "microslip design: warning: load 300 N: the highest point of the curve is the end" in captured.err
+    report = (out / "report.md").read_text()
+    assert "| 300 | 5.759 | 668.451 | peak on the range's edge |" in report
+
+
+def test_design_keeps_the_loads_finished_when_a_later_one_fails(tmp_path, capsys, monkeypatch):
+    from test_design import fail_at
+
+    fail_at(monkeypatch, 2, "the continuation stalled at omega = 4321 rad/s")
+    out = tmp_path / "out"
+    assert main(["design", str(quick_config(tmp_path)), "--out", str(out), "--quiet"]) == 1
+    rows = design_rows(out)
+    assert [r["status"] for r in rows] == ["peak", "failed"] and float(rows[0]["peak amplitude [m]"]) > 0
+    err = capsys.readouterr().err
+    assert "load 300 N: the forced response failed: the continuation stalled at omega = 4321 rad/s" in err
+    assert "Traceback" not in err
+
+
+def test_an_interrupted_design_writes_the_loads_finished_and_exits_130(tmp_path, capsys, monkeypatch):
+    from test_design import interrupt_after
+
+    interrupt_after(monkeypatch, 4, call=2)  # Ctrl-C in the second load's curve, at its fourth point
+    out = tmp_path / "out"
+    assert main(["design", str(quick_config(tmp_path)), "--out", str(out), "--quiet"]) == 130
+    rows = design_rows(out)
+    assert [r["status"] for r in rows] == ["peak", "incomplete curve"]
+    assert [r["complete [-]"] for r in rows] == ["1", "0"]
+    err = capsys.readouterr().err
+    assert err.strip().splitlines()[-1].startswith("microslip design: interrupted: load 300 N: interrupted at omega")
+    assert "Traceback" not in err
+    assert "**Interrupted**" in (out / "report.md").read_text()

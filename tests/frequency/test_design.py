@@ -6,8 +6,12 @@ import numpy as np
 import pytest
 from scipy.linalg import eigvals
 
-from microslip.frequency import frequency_response
+from microslip.frequency import ConvergenceError, StepControl, frequency_response
 from microslip.frequency import contact_cycle, damper_design_curve
+from microslip.frequency.analyses import design as design_module
+from microslip.frequency.analyses import response as response_module
+from microslip.frequency.analyses.design import DesignPointWarning
+from microslip.frequency.analyses.response import CurveInterrupted, IncompleteCurveWarning, PeakOnEdgeWarning
 from test_damper import blade_pair, damper  # the blade pair with its damper
 
 LOADS = [3.0, 5.0, 20.0, 300.0]  # N: the damper slides through the cycle (3 N), partly (5, 20 N), sticks (300 N)
@@ -89,3 +93,102 @@ def test_design_curve_arguments_are_checked(kwargs, message):
     args.update(kwargs)
     with pytest.raises(ValueError, match=message):
         damper_design_curve(blade_pair(), damper(), args["loads"], args["force"], (3000.0, 5000.0), dof=args["dof"])
+
+
+# -- loads without a peak: cut short, highest on the range's edge, failed, interrupted ----------------------------
+# With one harmonic: the damper at 5 N peaks at 4072 rad/s (7.24 um), stuck at 300 N at 4400 rad/s (113 um).
+
+def interrupt_after(monkeypatch, points: int, call: int = 1):
+    """Ctrl-C (KeyboardInterrupt) in the ``call``-th continuation once its curve has ``points`` points."""
+    real = response_module.continuation
+    calls = [0]
+
+    def continuation(*args, callback=None, **kwargs):
+        calls[0] += 1
+        this = calls[0]
+
+        def announce(value, count):
+            callback(value, count)
+            if this == call and count >= points:
+                raise KeyboardInterrupt
+
+        return real(*args, callback=announce, **kwargs)
+
+    monkeypatch.setattr(response_module, "continuation", continuation)
+
+
+@pytest.mark.filterwarnings("ignore:load .* the continuation stopped")
+def test_a_curve_cut_short_is_marked_and_left_out_of_the_optimum():
+    with pytest.warns(IncompleteCurveWarning, match="load 300 N: the continuation stopped at max_points = 5 points"):
+        cut = damper_design_curve(blade_pair(), damper(), [5.0, 300.0], antiphase(), RANGE, dof=2, harmonics=1,
+                                  control=StepControl(max_points=5))
+    assert not cut.complete.any() and not cut.trusted.any() and cut.status == ["incomplete curve"] * 2
+    with pytest.raises(ValueError, match="no optimum: no load has a trusted peak \\(load 5 N: the forced response "
+                                         "stopped at omega = "):
+        cut.optimum
+    # 200 points follow the 5 N curve to the end (132 points), not the 300 N one (336)
+    curve = damper_design_curve(blade_pair(), damper(), [5.0, 300.0], antiphase(), RANGE, dof=2, harmonics=1,
+                                control=StepControl(max_points=200))
+    assert list(curve.complete) == [True, False] and curve.status == ["peak", "incomplete curve"]
+    assert curve.optimum == (5.0, curve.peak_amplitude[0])
+    assert "load 300 N: the forced response stopped at omega = " in curve.problems()[0]
+
+
+def test_a_peak_on_the_range_edge_is_marked_and_left_out_of_the_optimum(tmp_path):
+    with pytest.warns(PeakOnEdgeWarning, match="load 300 N: the highest point of the curve is the end of the "
+                                               "frequency range \\(omega = 4200 rad/s"):
+        curve = damper_design_curve(blade_pair(), damper(), [5.0, 300.0], antiphase(), (3000.0, 4200.0), dof=2,
+                                    harmonics=1)
+    assert list(curve.on_edge) == [False, True] and curve.peak_frequency[1] == 4200.0
+    # the stuck damper's response at 4200 rad/s, on the flank of its resonance (4400), is below the 5 N peak
+    # (5.76 against 7.24 um): taken for a peak it would be the optimum
+    assert curve.peak_amplitude[1] < curve.peak_amplitude[0]
+    assert curve.optimum == (5.0, curve.peak_amplitude[0])
+    assert curve.problems() == [f"load 300 N: the response is highest at the end of the frequency range (4200 rad/s, "
+                                f"668.451 Hz) and still rises there: the resonance lies above it and the "
+                                f"{curve.peak_amplitude[1]:.4g} m there is no peak; raise the end of the range past "
+                                f"the resonance"]
+    rows = list(csv.DictReader(open(curve.to_csv(tmp_path / "design.csv"))))
+    assert [r["status"] for r in rows] == ["peak", "peak on the range's edge"]
+    assert [r["peak on edge [-]"] for r in rows] == ["0", "1"] and [r["complete [-]"] for r in rows] == ["1", "1"]
+    # the forced response says so itself; peak() keeps its return type and warns
+    edge, inside = curve.responses[1], curve.responses[0]
+    assert edge.peak_on_edge(2) and not inside.peak_on_edge(2)
+    with pytest.warns(PeakOnEdgeWarning, match="the end of the frequency range"):
+        assert edge.peak(2) == (4200.0, edge.amplitude(2)[-1])
+
+
+def fail_at(monkeypatch, call: int, message: str):
+    """The ``call``-th forced response of a design curve fails with a ConvergenceError saying ``message``."""
+    real, calls = design_module.frequency_response, []
+
+    def failing(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == call:
+            raise ConvergenceError(message)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(design_module, "frequency_response", failing)
+
+
+@pytest.mark.filterwarnings("ignore:load .* the continuation stopped")
+def test_a_load_that_fails_leaves_the_others(monkeypatch):
+    fail_at(monkeypatch, 2, "Newton's method did not converge at omega = 3000 rad/s")
+    with pytest.warns(DesignPointWarning, match="load 300 N: the forced response failed: Newton's method did not"):
+        curve = damper_design_curve(blade_pair(), damper(), [5.0, 300.0, 20.0], antiphase(), RANGE, dof=2,
+                                    harmonics=1, control=StepControl(max_points=5))
+    assert curve.status == ["incomplete curve", "failed", "incomplete curve"] and curve.responses[1] is None
+    assert np.isnan(curve.peak_amplitude[1]) and np.isfinite(curve.peak_amplitude[[0, 2]]).all()
+    assert curve.problems()[1] == ("load 300 N: the forced response failed: Newton's method did not converge at "
+                                   "omega = 3000 rad/s")
+
+
+def test_an_interrupted_design_keeps_the_loads_finished(monkeypatch):
+    interrupt_after(monkeypatch, 4, call=2)
+    with pytest.raises(CurveInterrupted, match="^load 300 N: interrupted at omega = .* after 4 points") as info:
+        damper_design_curve(blade_pair(), damper(), [5.0, 300.0, 20.0], antiphase(), RANGE, dof=2, harmonics=1)
+    assert isinstance(info.value, KeyboardInterrupt)  # a script stops as before
+    partial = info.value.partial
+    assert list(partial.loads) == [5.0, 300.0] and list(partial.complete) == [True, False]
+    assert partial.responses[1].points == 4 and partial.status == ["peak", "incomplete curve"]
+    assert partial.optimum == (5.0, partial.peak_amplitude[0])

@@ -61,6 +61,10 @@ def main(argv=None) -> int:
     except (ValueError, TypeError, OSError, ImportError) as exc:
         print(f"microslip {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt as exc:  # the commands that can keep something (frf, modes, design) wrote it already
+        said = f" ({exc})" if str(exc) else ""
+        print(f"microslip {args.command}: interrupted{said}", file=sys.stderr)
+        return 130
 
 
 def _show_warning(command: str):

@@ -28,7 +28,9 @@ def add_parser(sub) -> None:
                     "unstable stretches (Hill's method; dashed in the plot). Exit status: "
                     "0 on success, 1 when the solution fails or the curve stops at [continuation] max_points "
                     "before the end of the range (the results up to there are written), 2 for an invalid "
-                    "configuration. Plots and the report give frequencies in Hz unless [output] "
+                    "configuration, 130 when interrupted (Ctrl-C: the curve up to there is written). A DOF whose "
+                    "curve is highest at an end of the range (the resonance lies outside it) is named in a warning "
+                    "and in the report. Plots and the report give frequencies in Hz unless [output] "
                     "frequency_unit = \"rad/s\"; frf.csv has both. A contact that opens and closes faster than "
                     "the AFT samples resolve is named in a warning and in the report, with the [sweep] samples "
                     "that resolve it.")
@@ -77,13 +79,14 @@ def run(args) -> int:
 
     from ..frequency import (ConvergenceError, IncompleteCurveWarning, NotPeriodicError, UnderResolvedWarning,
                              frequency_response)
-    from ..frequency.analyses.response import incomplete_message
+    from ..frequency.analyses.response import CurveInterrupted, PeakOnEdgeWarning, edge_message, incomplete_message
     from ..config import load_config
     from ..common.report import Report, plural
     from ._contacts import add_section
 
     cfg = load_config(args.config)
     out = Path(args.out)
+    interrupted = None
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("ignore", IncompleteCurveWarning)  # reported below, as an error
@@ -94,6 +97,8 @@ def run(args) -> int:
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip frf: error: {exc}", file=sys.stderr)
         return 1
+    except CurveInterrupted as exc:  # Ctrl-C: the curve up to there is written, marked
+        result, interrupted = exc.partial, exc
     resolution = []
     for w in caught:
         if issubclass(w.category, UnderResolvedWarning):  # advice on [sweep] samples, without a traceback line
@@ -122,18 +127,34 @@ def run(args) -> int:
     report.text(f"{result.points} points in {result.elapsed:.3g} s "
                 f"({result.iterations.sum()} Newton iterations). Curve: `frf.csv` (SI units, ω in rad/s and f in "
                 f"Hz).")
-    rows = []
+    rows, edges = [], []
     for d in cfg.plot_dofs:
-        w, a = result.peak(d, cfg.harmonic)
-        rows.append([cfg.dof_names[d], f"{w / (2 * np.pi):.6g}", f"{w:.6g}", f"{a * 1e6:.6g}"])
-    report.table(["DOF", "peak f (Hz)", "peak ω (rad/s)", "peak amplitude (µm)"], rows,
-                 caption="Highest point of each plotted DOF's curve")
-    if not result.complete:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", PeakOnEdgeWarning)  # said once below, with the DOF's name
+            w, a = result.peak(d, cfg.harmonic)
+        edge = result.peak_on_edge(d, cfg.harmonic)
+        rows.append([cfg.dof_names[d], f"{w / (2 * np.pi):.6g}", f"{w:.6g}", f"{a * 1e6:.6g}",
+                     "on the range's edge: no peak" if edge else "peak"])
+        if edge:
+            edges.append(f"{cfg.dof_names[d]}: " + edge_message(result.omega, result.amplitude(d, cfg.harmonic),
+                                                                result.complete).replace("widen the range",
+                                                                                         "widen [sweep] omega"))
+            print(f"microslip frf: warning: {edges[-1]}", file=sys.stderr)
+    report.table(["DOF", "peak f (Hz)", "peak ω (rad/s)", "peak amplitude (µm)", "highest point"], rows,
+                 caption="Highest point of each plotted DOF's curve ('on the range's edge': the response still rises "
+                         "at an end of the curve, so the resonance lies outside the range)")
+    for text in edges:
+        report.text(f"**Highest on the range's edge**: {text}.")
+    if interrupted is not None:
+        report.text(f"**Interrupted** ({interrupted}): the curve stops there.")
+    elif not result.complete:
         report.text(f"**Incomplete curve**: {incomplete_message(result, cfg.omega[1], cfg.control)}.")
     for text in resolution:
         report.text(f"**Sampling**: {text}.")
-    report.text(_stability_text(result, cfg))
-    print(_stability_text(result, cfg))
+    stability = ("Stability was not computed: the computation was interrupted." if result.stable is None
+                 and interrupted is not None else _stability_text(result, cfg))
+    report.text(stability)
+    print(stability)
     if result.bifurcations:
         report.table(["kind", "ω (rad/s)", "f (Hz)"] + [f"{cfg.dof_names[d]} (µm)" for d in cfg.plot_dofs],
                      [[b.kind, f"{b.omega:.6g}", f"{b.omega / (2 * np.pi):.6g}"]
@@ -156,6 +177,9 @@ def run(args) -> int:
     report.write(out)
     print(f"wrote {csv}, {out / 'frf.png'} and {out / 'report.html'} ({result.points} points, "
           f"{result.elapsed:.3g} s)")
+    if interrupted is not None:
+        print(f"microslip frf: interrupted: {interrupted}; the curve written stops there", file=sys.stderr)
+        return 130
     if not result.complete:
         print(f"microslip frf: error: incomplete curve: {incomplete_message(result, cfg.omega[1], cfg.control)} "
               f"(set max_points in [continuation]); the results written stop there", file=sys.stderr)

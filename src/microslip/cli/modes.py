@@ -32,7 +32,8 @@ def add_parser(sub) -> None:
                     "forced response over that range, to compare their peaks. Prints the contacts' static state "
                     "and the mode's frequency and damping; shows progress on standard error. Exit status: 0 on "
                     "success, 1 when the solution fails or the mode stops before the end of its amplitude range "
-                    "(the results up to there are written), 2 for an invalid configuration.")
+                    "(the results up to there are written), 2 for an invalid configuration, 130 when interrupted "
+                    "(Ctrl-C: the mode up to there is written).")
     p.add_argument("config", help="TOML configuration file with a [modes] table")
     add_output_folder(p, "microslip-modes")
     p.set_defaults(func=run)
@@ -73,7 +74,7 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
     import matplotlib.pyplot as plt
 
     from ..common._io import write_csv
-    from ..frequency import frequency_response
+    from ..frequency import ConvergenceError, NotPeriodicError, frequency_response
     from ..frequency.analyses.synthesis import resonance_band
 
     synthesis = mode.synthesize(force)
@@ -91,11 +92,17 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
             f"peak {a_syn * 1e6:.4g} µm of {name} at {f_syn:.6g} {_frequency(cfg, 1)[1]}.")
     # a sector's forced response compares when the excitation's engine order is the mode's nodal diameter
     compare = cfg.nonlinear_mode.compare and cfg.omega is not None and cfg.engine_order == mode.engine_order
+    curve = None
     if compare:
         hb_force = {h: v for h, v in _force(cfg).items() if h}
-        curve = frequency_response(structure, hb_force, cfg.omega, harmonics=cfg.harmonics, samples=cfg.samples,
-                                   control=cfg.control, progress=not quiet, reduction=cfg.reduction, modes=cfg.modes,
-                                   stability=False, engine_order=cfg.engine_order)
+        try:
+            curve = frequency_response(structure, hb_force, cfg.omega, harmonics=cfg.harmonics, samples=cfg.samples,
+                                       control=cfg.control, progress=not quiet, reduction=cfg.reduction,
+                                       modes=cfg.modes, stability=False, engine_order=cfg.engine_order)
+        except (ConvergenceError, NotPeriodicError) as exc:
+            text += f" Harmonic balance over [sweep], to compare, failed: {exc}."
+            compare = False
+    if curve is not None:
         amplitude = curve.amplitude(dof, 1)
         x, _ = _frequency(cfg, curve.omega)
         ax.plot(x, amplitude * 1e6, "--", label="harmonic balance")
@@ -129,6 +136,7 @@ def run(args) -> int:
 
     from ..common.report import Report, plural
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, StepControl, nonlinear_modes
+    from ..frequency.analyses.response import CurveInterrupted
     from ..config import load_config
     from .frf import _static_text
 
@@ -141,6 +149,7 @@ def run(args) -> int:
         structure.add_static_force(force[0].real)
     import warnings
 
+    interrupted = None
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", IncompleteCurveWarning)
@@ -151,6 +160,8 @@ def run(args) -> int:
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip modes: error: {exc}", file=sys.stderr)
         return 1
+    except CurveInterrupted as exc:  # Ctrl-C: the mode up to there is written, marked
+        mode, interrupted = exc.partial, exc
     incomplete = [str(w.message) for w in caught if issubclass(w.category, IncompleteCurveWarning)]
     for w in caught:
         if not issubclass(w.category, IncompleteCurveWarning):
@@ -190,22 +201,30 @@ def run(args) -> int:
                  caption="The mode at about two amplitudes per decade and where it damps most")
     for text in incomplete:
         report.text(f"**Incomplete mode**: {text}.")
+    if interrupted is not None:
+        report.text(f"**Interrupted** ({interrupted}): the mode stops there.")
     for c in range(len(structure.contacts)):
         report.text(_static_text(mode, c))
         print(_static_text(mode, c))
     report.figure(_plots(mode, cfg, dof), "modes", "Natural frequency and damping ratio (total; dashed: the "
                   "contacts' share) against the modal amplitude and against the chosen DOF's first harmonic.", out)
     lines = []
-    if 1 in force and np.any(force[1]):
+    if 1 in force and np.any(force[1]) and interrupted is None:
         try:
             _synthesis(report, mode, cfg, dof, force[1], structure, out, args.quiet, lines)
         except ValueError as exc:  # no resonance within the mode's range: said, the mode is still written
             report.text(f"**Synthesis**: {exc}.")
-            lines.append(f"synthesis: {exc}")
+            print(f"microslip modes: warning: synthesis: {exc}", file=sys.stderr)
+        except KeyboardInterrupt:  # during the synthesis or its comparison: the mode is complete, written
+            interrupted = "interrupted during the synthesis of the forced response; the mode is complete"
+            report.text(f"**Interrupted**: {interrupted}.")
     for line in lines:
         print(line)
     report.write(out)
     print(f"wrote {csv}, {out / 'modes.png'} and {out / 'report.html'} ({mode.points} points, {mode.elapsed:.3g} s)")
+    if interrupted is not None:
+        print(f"microslip modes: interrupted: {interrupted}; wrote what was computed up to there", file=sys.stderr)
+        return 130
     if incomplete:
         print(f"microslip modes: error: {incomplete[0]}; the results written stop there", file=sys.stderr)
         return 1

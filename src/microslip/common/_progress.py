@@ -29,9 +29,10 @@ class Progress:
     def step(self, label: str) -> None:
         """Announce the next step."""
         self.count += 1
+        now = time.perf_counter()
+        self._noted = now  # a note comes ``every`` seconds after the last line, whichever it was
         if self.enabled:
-            elapsed = time.perf_counter() - self.start
-            print(f"[{self.count}/{self.total}] {label} ({elapsed:.1f} s)", file=self.stream, flush=True)
+            print(f"[{self.count}/{self.total}] {label} ({now - self.start:.1f} s)", file=self.stream, flush=True)
 
     def note(self, label: str, *, every: float = 5.0) -> None:
         """Within a long step: print ``label`` indented, at most once per ``every`` seconds (s)."""

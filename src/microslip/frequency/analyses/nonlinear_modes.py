@@ -22,15 +22,15 @@ from ...common import _checks
 from ...common._progress import Progress
 from ..aft import MAX_PERIODS, check_harmonics
 from ..numerics.blas import small_dense
-from ..numerics.continuation import BranchPointWarning, StepControl, continuation, newton
+from ..numerics.continuation import BranchPointWarning, StepControl, newton
 from ..structures.cyclic import CyclicStructure
 from ..equations.build import build_equations
 from ..equations.epmc import DENSE_EIGEN, SPARSE_EIGEN, EpmcEquations, stuck_mode
 from ..equations.hbm import HarmonicBalance
 from ..equations.reduced import ReducedHarmonicBalance
 from ..reduction.choice import modal_error
-from .response import (FrequencyResponse, IncompleteCurveWarning, _check_determined, _check_resolution, _static_state,
-                       tenths)
+from .response import (CurveInterrupted, FrequencyResponse, IncompleteCurveWarning, _check_determined,
+                       _check_resolution, _static_state, follow)
 from ..structures.structure import Structure
 
 
@@ -312,6 +312,9 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         a mode without stiffness.
     ConvergenceError
         When Newton's method fails at the first amplitude or the continuation stalls.
+    CurveInterrupted
+        On Ctrl-C along the mode (a ``KeyboardInterrupt``): its ``partial`` is
+        the mode up to the last amplitude reached (``complete`` False).
 
     Warns
     -----
@@ -350,15 +353,20 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         x[hb.ndof:2 * hb.ndof] = lo * phi_u.real  # z_1 = a_1 - i b_1 = lo phi
         x[2 * hb.ndof:3 * hb.ndof] = -lo * phi_u.imag
         y = eq.pack(x, np.sqrt(lam), float(np.real(np.conj(phi) @ (C @ phi))), s0)
-        y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):  # a diverging iterate fails by name
+            y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
         report = Progress(10, enabled=progress)
-        tick = tenths(report, s0, s1, lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
         branches = []
-        ys, ss, iters, complete = continuation(eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, callback=tick,
-                                               branch_points=branches)
+        ys, ss, iters, complete, stopped = follow(
+            eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, report=report, branch_points=branches,
+            describe=lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
         if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
             phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
         result = _collect(eq, ys, ss, iters, static, complete, mode, lam, phi, reduction, modes, diameter)
+    if stopped:
+        raise CurveInterrupted(f"interrupted at modal amplitude {result.modal_amplitude[-1]:.6g} kg^1/2 m after "
+                               f"{result.points} points, before the end of the range ({hi:.6g} kg^1/2 m)",
+                               replace(result, elapsed=time.perf_counter() - start)) from None
     report.done(f"nonlinear mode: {result.points} points")
     if not complete:
         warnings.warn(f"the continuation stopped at max_points = {ctl.max_points} points at modal amplitude "

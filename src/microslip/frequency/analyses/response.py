@@ -84,7 +84,8 @@ class FrequencyResponse:
     complete : bool
         True when the curve reaches the end of the range (or leaves the range
         past a fold); False when the continuation stopped at
-        ``StepControl.max_points`` first (:func:`frequency_response` warns).
+        ``StepControl.max_points`` first (:func:`frequency_response` warns), or
+        was interrupted (the ``partial`` of :class:`CurveInterrupted`).
     elapsed : float
         Wall time of the computation (s).
     labels : dict of str
@@ -244,8 +245,28 @@ class FrequencyResponse:
 
         The discrete maximum is refined by a parabola through it and its two
         neighbours, in the arclength of the curve (so it works at folds too).
+
+        Warns
+        -----
+        PeakOnEdgeWarning
+            When the highest point is the curve's first or last point
+            (:meth:`peak_on_edge`): the response still rises there, so the
+            resonance lies outside the range followed and this is no peak.
         """
-        return curve_peak(self.omega, self.amplitude(dof, harmonic))
+        amplitude = self.amplitude(dof, harmonic)
+        if on_edge(amplitude):
+            warnings.warn(edge_message(self.omega, amplitude, self.complete), PeakOnEdgeWarning, stacklevel=2)
+        return curve_peak(self.omega, amplitude)
+
+    def peak_on_edge(self, dof=0, harmonic: int | None = None) -> bool:
+        """True when the highest point of the curve is its first or last point.
+
+        The response then still rises at an end of the frequency range followed
+        (or at the last point of an incomplete curve): the resonance lies
+        outside, and :meth:`peak` gives the end of the range, not a peak.
+        ``dof``, ``harmonic`` as in :meth:`amplitude`.
+        """
+        return on_edge(self.amplitude(dof, harmonic))
 
     def time_history(self, point: int, dof=0, samples: int = _CURVE_SAMPLES) -> tuple[np.ndarray, np.ndarray]:
         """One period of a DOF's displacement at a point of the curve.
@@ -360,6 +381,29 @@ def _static_force(force) -> dict:
     if isinstance(force, Mapping) and 0 in force:
         return {0: force[0]}
     return {}
+
+
+class PeakOnEdgeWarning(RuntimeWarning):
+    """The highest point of a curve is its first or last point: the resonance lies outside the range followed."""
+
+
+def on_edge(amplitude) -> bool:
+    """True when the largest of ``amplitude`` (one value per point, in the order of the curve) is its first or
+    last value: the curve's highest point is an end of it, not a peak (False for a single point: no range)."""
+    i = int(np.argmax(amplitude))
+    return len(amplitude) > 1 and (i == 0 or i == len(amplitude) - 1)
+
+
+def edge_message(omega, amplitude, complete: bool = True) -> str:
+    """Why the highest point of a curve (``omega`` in rad/s, ``amplitude`` in m) is no peak."""
+    i = int(np.argmax(amplitude))
+    if i == len(amplitude) - 1 and not complete:
+        where = "the last point of the incomplete curve"
+    else:
+        where = "the start of the frequency range" if i == 0 else "the end of the frequency range"
+    return (f"the highest point of the curve is {where} (omega = {float(omega[i]):.6g} rad/s, "
+            f"{float(amplitude[i]):.4g} m): the response still rises there, so the resonance lies outside the range "
+            f"followed and this is no peak; widen the range past that end")
 
 
 def curve_peak(omega, amplitude) -> tuple[float, float]:
@@ -593,6 +637,9 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     ------
     ConvergenceError
         When Newton's method fails at the start or the continuation stalls.
+    CurveInterrupted
+        On Ctrl-C along the curve (a ``KeyboardInterrupt``): its ``partial``
+        is the curve up to the last point reached (``complete`` False).
 
     Warns
     -----
@@ -612,17 +659,117 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
                                                        reduction, modes, engine_order)
         report = Progress(10, enabled=progress)
-        tick = tenths(report, lo, hi, lambda w, count: f"omega = {w:.6g} rad/s, {count} points")
-        xs, omegas, iters, complete = continuation(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
-                                                   control=control, callback=tick)
+        describe = lambda w, count: f"omega = {w:.6g} rad/s, {count} points"  # noqa: E731
+        xs, omegas, iters, complete, stopped = follow(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
+                                                      control=control, report=report, describe=describe)
         result = _collect(hb, xs, omegas, iters, static, complete)
+        if stopped:
+            raise CurveInterrupted(f"interrupted at omega = {omegas[-1]:.6g} rad/s after {omegas.size} points, "
+                                   f"before the end of the range ({hi:.6g} rad/s)",
+                                   replace(result, elapsed=time.perf_counter() - start)) from None
         if stability:
-            result = _with_stability(result, hb, xs, omegas)
+            try:
+                result = _with_stability(result, hb, xs, omegas)
+            except KeyboardInterrupt:
+                raise CurveInterrupted("interrupted while assessing the stability of the curve's points (the curve "
+                                       "itself is complete; its stability is not known)",
+                                       replace(result, elapsed=time.perf_counter() - start)) from None
     report.done(f"frequency response: {omegas.size} points")
     if not complete:
         warnings.warn(incomplete_message(result, hi, control or StepControl()), IncompleteCurveWarning,
                       stacklevel=2)
     return replace(result, elapsed=time.perf_counter() - start)
+
+
+#: seconds of work after which progress says where a continuation has got to, when no tenth of its range was
+#: reached meanwhile
+PROGRESS_EVERY = 15.0
+
+
+class CurveInterrupted(KeyboardInterrupt):
+    """Ctrl-C (KeyboardInterrupt) during a computation along a curve.
+
+    A ``KeyboardInterrupt`` still (a script stops as before); ``partial`` holds
+    what was computed up to there, with ``complete`` False: the curve up to its
+    last accepted point (a :class:`FrequencyResponse`, a
+    :class:`~microslip.frequency.NonlinearModes`), or the loads finished of a
+    :class:`~microslip.frequency.DesignCurve`.
+    """
+
+    def __init__(self, message: str, partial=None):
+        super().__init__(message)
+        self.partial = partial
+
+
+class _Accepted:
+    """A continuation's problem that keeps each point the continuation accepts.
+
+    The continuation announces an accepted point to its callback right after the
+    corrector evaluated the problem there (or Newton's method, at the range's
+    edge); the point is kept when the parameter announced is the one of that
+    last evaluation. Every evaluation also calls ``heartbeat`` (progress in the
+    middle of slow steps).
+    """
+
+    def __init__(self, problem, callback=None, heartbeat=None):
+        self._problem = problem
+        self._callback = callback
+        self._heartbeat = heartbeat
+        self._last = None
+        self.xs: list = []
+        self.params: list = []
+
+    def __getattr__(self, name):
+        return getattr(self._problem, name)
+
+    def _evaluate(self, x, param, *, jacobian: bool = True):
+        self._last = (x, param)
+        if self._heartbeat is not None:
+            self._heartbeat()
+        return self._problem._evaluate(x, param, jacobian=jacobian)
+
+    def accepted(self, param, count) -> None:
+        if self._last is not None and self._last[1] == param:
+            self.xs.append(np.array(self._last[0], dtype=float))
+            self.params.append(float(param))
+        if self._callback is not None:
+            self._callback(param, count)
+
+
+def follow(problem, x0, start: float, end: float, *, x_scale: float, r_scale: float, control=None,
+           report: Progress | None = None, describe=None, branch_points: list | None = None):
+    """:func:`~microslip.frequency.numerics.continuation.continuation`, keeping what it has when interrupted.
+
+    ``(xs, params, iterations, complete, interrupted)``: on Ctrl-C the points
+    accepted so far (iterations 0, ``complete`` False) and ``interrupted`` True.
+    ``report`` announces each tenth of the range reached and, after
+    :data:`PROGRESS_EVERY` seconds without one, where the curve has got to, in
+    the words of ``describe(param, points)``. Trial points at which the problem
+    is not finite (a corrector diverging, refused and halved by the
+    continuation) raise no NumPy floating-point warnings.
+    """
+    where = [start, 1]
+
+    def tick(param, count):
+        where[:] = [param, count]
+        step(param, count)
+
+    step = tenths(report, start, end, describe) if report is not None else (lambda param, count: None)
+    heartbeat = None
+    if report is not None and report.enabled:
+        def heartbeat():
+            report.note(f"{describe(*where)} so far", every=PROGRESS_EVERY)
+    followed = _Accepted(problem, tick, heartbeat)
+    try:
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            xs, params, iters, complete = continuation(followed, x0, start, end, x_scale=x_scale, r_scale=r_scale,
+                                                       control=control, callback=followed.accepted,
+                                                       branch_points=branch_points)
+    except KeyboardInterrupt:
+        xs = np.array([np.asarray(x0, dtype=float)] + followed.xs)
+        params = np.array([start] + followed.params)
+        return xs, params, np.zeros(params.size, dtype=int), False, True
+    return xs, params, iters, complete, False
 
 
 def tenths(report: Progress, lo: float, hi: float, describe):

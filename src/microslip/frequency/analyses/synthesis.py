@@ -130,8 +130,26 @@ def resonance_band(response: SynthesizedResponse, dof=None, harmonic: int | None
 
 
 def _interpolate(mode, values, a) -> np.ndarray:
-    """``values`` (one per point of ``mode``) at modal amplitudes ``a``, monotone cubic in ``ln a``."""
-    return PchipInterpolator(np.log(mode.modal_amplitude), values)(np.log(a))
+    """``values`` (one per point of ``mode``) at modal amplitudes ``a``, monotone cubic in ``ln a`` (over the
+    points of :func:`rising`)."""
+    n = rising(mode.modal_amplitude)
+    return PchipInterpolator(np.log(mode.modal_amplitude[:n]), values[:n])(np.log(a))
+
+
+def rising(modal_amplitude) -> int:
+    """How many of a mode's first points have a rising modal amplitude: all of them, unless the mode turns
+    back in amplitude (a fold, usually an internal resonance), where it stops being a function of the amplitude."""
+    a = np.asarray(modal_amplitude, dtype=float)
+    falls = np.flatnonzero(np.diff(a) <= 0)
+    return int(falls[0]) + 1 if falls.size else a.size
+
+
+def _turn(a_mode, n: int) -> str:
+    """The clause saying where the mode turns back in amplitude, when it does (``n`` rising points of ``a_mode``)."""
+    if n == a_mode.size:
+        return ""
+    return (f", where the mode turns back (a fold in amplitude, usually an internal resonance: the mode is no "
+            f"function of its amplitude beyond, and the synthesis uses it up to there)")
 
 
 def _projection(mode, force) -> np.ndarray:
@@ -190,7 +208,14 @@ def synthesize(mode, force, omega=None, *, points: int = 400) -> SynthesizedResp
     TypeError, ValueError
         A parameter of the wrong type or out of range; a force that does not
         act on the mode (``psi^H F = 0``); a peak above the mode's amplitude
-        range (compute the mode to larger amplitudes).
+        range (compute the mode to larger amplitudes); an ``omega`` range
+        that holds no point of the response.
+
+    Notes
+    -----
+    Where the mode turns back in amplitude (a fold, usually an internal
+    resonance) it is no longer a function of its amplitude: the synthesis
+    uses its points up to the turn.
     """
     F = mode.structure.force_vector(force, "force").astype(complex)
     if not np.any(F):
@@ -199,12 +224,16 @@ def synthesize(mode, force, omega=None, *, points: int = 400) -> SynthesizedResp
         lo, hi = _checks.positive_pair("omega", omega, "(start, end) of excitation frequencies in rad/s")
         lo, hi = min(lo, hi), max(lo, hi)
     points = _checks.size("points", points, minimum=10, maximum=100_000)
-    a_mode = mode.modal_amplitude
-    proj = np.abs(_projection(mode, F))
+    n = rising(mode.modal_amplitude)
+    if n < 2:
+        raise ValueError(f"mode: its modal amplitude does not rise from its first point "
+                         f"({mode.modal_amplitude[0]:.3g} kg^1/2 m; {mode.points} points): nothing to synthesise from")
+    a_mode = mode.modal_amplitude[:n]
+    proj = np.abs(_projection(mode, F))[:n]
     if not np.any(proj > 1e-12 * np.max(np.abs(F)) * a_mode):
         raise ValueError("force does not act on the mode: its projection onto the mode's shape is zero")
-    funcs = [PchipInterpolator(np.log(a_mode), v) for v in (mode.modal_mass, mode.modal_damping, mode.omega, mode.xi,
-                                                             proj / a_mode)]
+    funcs = [PchipInterpolator(np.log(a_mode), v[:n]) for v in (mode.modal_mass, mode.modal_damping, mode.omega,
+                                                                 mode.xi, proj / a_mode)]
 
     def roots(a):  # |psi^H F| / a = |A [...]| / a
         m1, c1, w, xi, psiF = (float(f(np.log(a))) for f in funcs)
@@ -214,12 +243,14 @@ def synthesize(mode, force, omega=None, *, points: int = 400) -> SynthesizedResp
     found = [roots(a) for a in grid]
     has = np.array([r[0].size >= 2 for r in found])
     if not has.any():
-        raise ValueError("force: the synthesised response has no resonance within the mode's amplitude range "
-                         f"({a_mode[0]:.3g} to {a_mode[-1]:.3g} kg^1/2 m); compute the mode over a wider range")
+        raise ValueError(f"force: the synthesised peak lies below the mode's smallest amplitude ({a_mode[0]:.3g} "
+                         f"kg^1/2 m): the force is too small to reach the mode's range; compute the mode from smaller "
+                         f"amplitudes")
     last = int(np.flatnonzero(has)[-1])
     if last == points - 1:
+        advice = "compute the mode to larger amplitudes" if n == mode.points else "the synthesis cannot reach its peak"
         raise ValueError(f"force: the synthesised peak lies above the mode's largest amplitude "
-                         f"({a_mode[-1]:.3g} kg^1/2 m); compute the mode to larger amplitudes")
+                         f"({a_mode[-1]:.3g} kg^1/2 m){_turn(mode.modal_amplitude, n)}; {advice}")
     a_lo, a_hi = grid[last], grid[last + 1]
     for _ in range(60):  # the peak: where the two frequencies meet, between the last amplitude with them and the next
         mid = np.sqrt(a_lo * a_hi)
@@ -239,5 +270,9 @@ def synthesize(mode, force, omega=None, *, points: int = 400) -> SynthesizedResp
     theta = -np.angle(m1 * (w_mode ** 2 - Omega ** 2) + 1j * (w_mode * xi * m1 + (Omega - w_mode) * c1))
     if omega is not None:
         keep = (Omega >= lo) & (Omega <= hi)
+        if not keep.any():
+            raise ValueError(f"omega: the synthesised response has no point between {lo:.6g} and {hi:.6g} rad/s: it "
+                             f"spans {Omega.min():.6g} to {Omega.max():.6g} rad/s (its peak at {w_peak:.6g} rad/s); "
+                             f"give a range that overlaps it, or none")
         Omega, a, theta = Omega[keep], a[keep], theta[keep]
     return SynthesizedResponse(mode, F, Omega, a, theta, w_peak, float(a_peak))
