@@ -188,7 +188,7 @@ class FrequencyResponse:
         recovered from the contact solution at every point (a solve per point
         and harmonic with ``"exact"``, a modal sum with ``"modal"``).
         """
-        b = direction("dof", dof, self.structure.ndof)
+        b = direction("dof", dof, self.structure.ndof, dof_map=self.structure.dof_map)
         held = b[self.dofs]
         if np.count_nonzero(held) == np.count_nonzero(b):
             return self.coefficients @ held
