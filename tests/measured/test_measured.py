@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from microslip import Cylinder, MeasuredContact, MicroslipModel, Sphere, TuningError, fit_backbone, loops, tune
 from microslip.loops.synthetic import Specimen, dataset_files, normal_curve_file, specimen_model
+from microslip.measured._loop_checks import points_backlash
 from microslip.measured.contact import backlash, fit_mu
 
 SPHERE = Sphere.paper()
@@ -140,6 +141,17 @@ def test_backlash():
     with pytest.raises(TuningError, match=r"play.csv: the branches are not concave \(backlash\).*times stiffer"):
         MeasuredContact.from_loops(L, SPHERE, masing_tolerance=1.0)
     assert backlash(_sphere_loops())[0] < 1.2  # concave: it only softens (1 + binning noise)
+
+
+@pytest.mark.parametrize("rounding", [-1.0, 0.0, 1.0])
+def test_backlash_does_not_hang_on_the_rounding_of_the_dead_band(rounding):
+    # in a dead band the force stays at the reversal's to the last unit: y = T - T_r is 0 or +-1 ulp
+    # of the slip force depending on the platform's arithmetic; the dead band was missed for y <= 0
+    # (ratio 1.9 instead of 6 in test_backlash)
+    x = np.linspace(0.0, 2e-6, 2001)
+    y = np.where(x < 0.2e-6, rounding * np.spacing(15.0), np.minimum(2e7 * (x - 0.2e-6), 15.0))
+    ratio, soft, stiff, band = points_backlash(x, y)
+    assert ratio > 5 and band > 0.2e-6
 
 
 def test_far_from_masing():

@@ -43,7 +43,8 @@ def test_even_spacings_are_the_tune_models(small):
     assert res.model == tune(SPHERE, 37.5, elements=4) and res.spacing == "force"
     res = small.tune_spacing("displacement", 5)
     tgs = float(SPHERE.gross_slip_displacement(37.5))
-    assert res.model == tune(SPHERE, 37.5, displacements=tgs * np.arange(1, 6) / 5)
+    # t_j = (j / J) t_gs, in tune_fractions' order of operations: (t_gs j) / J may round the other way
+    assert res.model == tune(SPHERE, 37.5, displacements=np.arange(1, 6) / 5 * tgs)
     assert res.meets == (res.energy_error <= 0.02 and res.force_difference <= 0.02)
 
 

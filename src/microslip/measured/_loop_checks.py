@@ -88,9 +88,10 @@ def backlash(loops: Loops) -> tuple[float, float, float, float]:
     """How much the steady branches stiffen again after softening (backlash, a dead band).
 
     The rise of the backbone points up to 90 % of their top force is split
-    into 18 equal steps of force; the secant stiffness of each is measured
-    on the binned points. A concave branch only softens; with backlash it
-    softens (free play) and then stiffens again.
+    into 18 equal steps of force, the first from the reversal (``x = 0``);
+    the secant stiffness of each is measured on the binned points. A
+    concave branch only softens; with backlash it softens (free play) and
+    then stiffens again.
 
     Returns
     -------
@@ -117,6 +118,9 @@ def points_backlash(x, y) -> tuple[float, float, float, float]:
     xb, yb = xb[keep], np.maximum.accumulate(yb[keep])
     levels = np.linspace(0.0, 0.9 * yb.max(), 19)
     xl = np.interp(levels, yb, xb)  # first crossing of each force level (yb made non-decreasing)
+    # level 0 is the reversal, where every branch starts (x = y = 0): interpolating it would skip a
+    # dead band, whose points sit at y = +-1 ulp of the slip force, or not, by the sign of that rounding
+    xl[0] = 0.0
     dx = np.maximum(np.diff(xl), 1e-300)
     k = (levels[1] - levels[0]) / dx  # secant stiffness of backbone steps = of branch steps
     softest = np.minimum.accumulate(k)
