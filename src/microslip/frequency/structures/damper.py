@@ -66,6 +66,18 @@ class DamperContact:
     platform: dict
 
 
+@dataclass(frozen=True)
+class _Attachment:
+    """What :meth:`UnderPlatformDamper.attach` put on a structure: the damper's contacts, their names, its DOFs,
+    its ``arm`` (m) and its centrifugal load (N) then; the structure keeps it (``structure._dampers``)."""
+
+    contacts: tuple
+    names: tuple
+    dofs: tuple
+    arm: float
+    load: float
+
+
 def _platform_dof(name: str, value):
     if isinstance(value, NextDof):
         return value
@@ -205,6 +217,14 @@ class UnderPlatformDamper:
         the next: name the next sector's platform DOFs with ``disk.next(j)``).
         The damper's DOFs are ``new.ndof - 3 + (0, 1, 2)`` (:attr:`dofs` after the call):
         ``X``, ``Y`` (m) and ``R = arm * theta`` (m; the rotation is ``R / arm`` rad).
+        The new structure remembers the damper (its contacts, DOFs and load), so
+        that :meth:`static_balance` finds it in any result solved on it.
+
+        Raises
+        ------
+        ValueError
+            No interface; a platform DOF out of range, or of the next sector on a
+            plain structure.
         """
         if not isinstance(structure, Structure):
             raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
@@ -220,6 +240,7 @@ class UnderPlatformDamper:
                 if index >= structure.ndof:
                     raise ValueError(f"interface {c.interface!r}: platform DOF {index} is out of range for a structure "
                                      f"with {structure.ndof} DOFs")
+        load = self.centrifugal_load
         n = structure.ndof
         extra = np.array([self.mass, self.mass, self.inertia / self.arm**2])  # R = arm theta
         M, C, K = (_grow(A, d) for A, d in ((structure.M, extra), (structure.C, self.damping * extra),
@@ -239,35 +260,78 @@ class UnderPlatformDamper:
         for c, name in zip(self.contacts, self.names):
             out.add_contact(c.model, tangential=self._direction(c, c.tangent, self.dofs),
                             normal=self._direction(c, c.normal, self.dofs), approach=0.0, name=name)
-        load = np.zeros(out.ndof)
-        load[n + 1] = self.centrifugal_load
-        out.add_static_force(load)
+        force = np.zeros(out.ndof)
+        force[n + 1] = load
+        out.add_static_force(force)
+        out._dampers = getattr(structure, "_dampers", ()) + (
+            _Attachment(tuple(self.contacts), tuple(self.names), self.dofs, self.arm, load),)
         return out
 
     def static_balance(self, result) -> float:
-        """The static forces and moment on the damper, ``|sum|`` relative to the centrifugal load.
+        """The static forces and moment on the damper, ``|sum|`` relative to its centrifugal load.
 
         Parameters
         ----------
         result : FrequencyResponse
-            A result of the structure returned by :meth:`attach`.
+            A result solved on a structure this damper, or a copy of it with
+            the same interfaces, was attached to (:meth:`attach`;
+            :func:`~microslip.frequency.damper_design_curve`'s responses too).
+            The load is the one the damper had when attached to that structure.
 
         Returns
         -------
         float
-            ``max(|F_x|, |F_y|, |M_z| / arm) / load``, with :attr:`arm` the largest
-            distance of a contact from the centre of mass: zero at equilibrium.
+            ``max(|F_x|, |F_y|, |M_z| / arm) / load``: the centrifugal load (and
+            any static force on the damper's DOFs), the contacts' static forces and
+            the retention's spring force on the damper's static displacement,
+            with ``arm`` the largest distance of a contact from the centre of
+            mass: zero at equilibrium.
+
+        Raises
+        ------
+        TypeError
+            ``result`` is not a solved response.
+        ValueError
+            ``result``'s structure does not carry this damper, or (with a
+            retention) the result does not carry its static displacement.
         """
-        names = [c.name for c in result.structure.contacts]
-        F = np.array([0.0, self.centrifugal_load])
-        Mz = 0.0
-        for c, name in zip(self.contacts, self.names):
-            i = names.index(name)
-            N0, T0 = result.static_normal_force[i], result.static_tangential_force[i]
-            f = -(N0 * np.array(c.normal) + T0 * np.array(c.tangent))  # the platform pushes back on the damper
-            F += f
-            Mz += c.point[0] * f[1] - c.point[1] * f[0]
-        return float(max(abs(F[0]), abs(F[1]), abs(Mz) / self.arm) / max(self.centrifugal_load, 1e-300))
+        structure = getattr(result, "structure", None)
+        if not isinstance(structure, Structure) or not hasattr(result, "static_normal_force"):
+            raise TypeError(f"result must be a FrequencyResponse solved on a structure this damper was attached to, "
+                            f"got {type(result).__name__}")
+        found = [a for a in getattr(structure, "_dampers", ()) if a.contacts == tuple(self.contacts)]
+        if not found:
+            raise ValueError(f"result: its structure ({structure!r}) carries no damper with this damper's interfaces "
+                             f"({', '.join(dict.fromkeys(c.interface for c in self.contacts))}): pass a result "
+                             f"solved on the structure that attach() returned")
+        if len(found) > 1:
+            raise ValueError(f"result: its structure carries this damper {len(found)} times (DOFs "
+                             f"{', '.join(str(a.dofs) for a in found)}): its balance is ambiguous")
+        a = found[0]
+        names = [c.name for c in structure.contacts]
+        index = [names.index(name) for name in a.names]
+        N0 = np.asarray(result.static_normal_force, dtype=float)[index]
+        T0 = np.asarray(result.static_tangential_force, dtype=float)[index]
+        dofs = list(a.dofs)
+        g = structure.preload_force()[dofs]  # generalised forces on X, Y and R = arm theta (N)
+        for c, N, T in zip(a.contacts, N0, T0):
+            f = -(N * np.array(c.normal) + T * np.array(c.tangent))  # the platform pushes back on the damper
+            g += (f[0], f[1], (c.point[0] * f[1] - c.point[1] * f[0]) / a.arm)
+        K = structure.K[dofs][:, dofs]
+        K = K.toarray() if sp.issparse(K) else np.asarray(K)
+        if np.any(K):  # the retention's springs, on the damper's static displacement
+            g -= K @ _static_displacement(result, dofs)
+        return float(np.max(np.abs(g)) / a.load)
+
+
+def _static_displacement(result, dofs) -> np.ndarray:
+    """The static displacement (m) of ``dofs`` in ``result`` (its ``static_coefficients``)."""
+    q = getattr(result, "static_coefficients", None)
+    where = {int(d): i for i, d in enumerate(getattr(result, "dofs", ()))}
+    if q is None or not all(d in where for d in dofs):
+        raise ValueError("result: it does not carry the damper's static displacement (static_coefficients), which "
+                         "the retention's force needs: pass a result of frequency_response or frequency_point")
+    return np.real(np.asarray(q)[[where[d] for d in dofs]])
 
 
 def _grow(A, diagonal):
