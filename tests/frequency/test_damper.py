@@ -140,6 +140,10 @@ def test_a_retention_holds_the_damper_where_a_contact_stays_open_over_the_cycle(
     ({"centrifugal_load": 1.0, "retention": -1.0}, ValueError, "retention"),
     ({}, ValueError, "the damper needs its static load"),
     ({"centrifugal_load": 10.0, "speed": 100.0, "radius": 0.2}, ValueError, "not both"),
+    # unloaded, nothing presses the damper against its platforms: refused here, not by the solver's ConvergenceError
+    ({"centrifugal_load": 0.0}, ValueError, r"centrifugal_load must be > 0 N, got 0: only the "
+     r"centrifugal load presses the damper against its platforms"),
+    ({"speed": 0.0, "radius": 0.2}, ValueError, "speed must be positive, got 0.0"),
 ])
 def test_damper_arguments_are_checked(kwargs, error, message):
     with pytest.raises(error, match=message):
@@ -159,6 +163,13 @@ def test_interface_arguments_are_checked():
         d.attach(blade_pair())
     d.add_interface(FLAT, points=[(0, 0)], angle=0.0, platform={"x": 99, "y": 1}, name="side")
     with pytest.raises(ValueError, match="platform DOF 99 is out of range"):
+        d.attach(blade_pair())
+
+
+def test_a_load_set_to_zero_after_construction_is_refused_when_attached():
+    d = damper()
+    d.centrifugal_load = 0.0
+    with pytest.raises(ValueError, match=r"centrifugal_load must be > 0 N, got 0"):
         d.attach(blade_pair())
 
 

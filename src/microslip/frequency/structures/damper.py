@@ -100,6 +100,16 @@ def _platform_dof(name: str, value):
     return _checks.positive_int(name, value, minimum=0)
 
 
+def _load(value, source: str = "") -> float:
+    """The centrifugal load (N), > 0: an unloaded damper has no static state to vibrate about."""
+    load = _checks.positive_scalar("centrifugal_load", value, allow_zero=True)
+    if load == 0.0:
+        raise ValueError(f"centrifugal_load must be > 0 N, got 0{source}: only the centrifugal load presses the "
+                         f"damper against its platforms; unloaded, its contacts touch without force, every element "
+                         f"is open, and nothing holds the damper (it rattles in its pocket)")
+    return load
+
+
 class UnderPlatformDamper:
     """A rigid under-platform damper with its interfaces, to attach to a structure.
 
@@ -110,10 +120,11 @@ class UnderPlatformDamper:
     inertia : float
         Moment of inertia about the centre of mass, out of the plane (kg m^2).
     centrifugal_load : float, optional
-        The static radial load ``m r Omega^2`` (N), outwards (+y).
+        The static radial load ``m r Omega^2`` (N), outwards (+y), > 0: it is
+        what presses the damper against its platforms.
     speed, radius : float, optional
-        Or the rotation speed (rad/s) and the radius of the centre of mass (m):
-        ``centrifugal_load = mass * radius * speed**2``.
+        Or the rotation speed (rad/s, > 0) and the radius of the centre of mass
+        (m): ``centrifugal_load = mass * radius * speed**2``.
     damping : float, default 0
         Mass-proportional viscous damping of the damper body (1/s): ``C = damping
         * M`` on its DOFs. Without it a mode of the damper on its stuck contacts
@@ -150,11 +161,11 @@ class UnderPlatformDamper:
         if centrifugal_load is not None:
             if speed is not None or radius is not None:
                 raise ValueError("give centrifugal_load, or speed and radius, not both")
-            self.centrifugal_load = _checks.positive_scalar("centrifugal_load", centrifugal_load, allow_zero=True)
+            self.centrifugal_load = _load(centrifugal_load)
         elif speed is not None and radius is not None:
-            speed = _checks.positive_scalar("speed", speed, allow_zero=True)
+            speed = _checks.positive_scalar("speed", speed)
             radius = _checks.positive_scalar("radius", radius)
-            self.centrifugal_load = self.mass * radius * speed * speed
+            self.centrifugal_load = _load(self.mass * radius * speed * speed, " (mass * radius * speed**2 underflows)")
         else:
             raise ValueError("the damper needs its static load: centrifugal_load (N), or speed (rad/s) and radius (m)")
         self.contacts: list[DamperContact] = []
@@ -240,7 +251,7 @@ class UnderPlatformDamper:
         ------
         ValueError
             No interface; a platform DOF out of range, or of the next sector on a
-            plain structure.
+            plain structure; a :attr:`centrifugal_load` that is not > 0.
         """
         if not isinstance(structure, Structure):
             raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
@@ -256,7 +267,7 @@ class UnderPlatformDamper:
                 if index >= structure.ndof:
                     raise ValueError(f"interface {c.interface!r}: platform DOF {index} is out of range for a structure "
                                      f"with {structure.ndof} DOFs")
-        load = self.centrifugal_load
+        load = _load(self.centrifugal_load)
         n = structure.ndof
         extra = np.array([self.mass, self.mass, self.inertia / self.arm**2])  # R = arm theta
         M, C, K = (_grow(A, d) for A, d in ((structure.M, extra), (structure.C, self.damping * extra),
