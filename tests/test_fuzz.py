@@ -340,8 +340,10 @@ def damper():
 
 def damper_with_interface():
     d = damper()
-    d.add_interface(MicroslipModel([1e6], [1e8], [0.0], 0.5), points=[(-4e-3, 2e-3), (-2e-3, 4e-3)],
-                    angle=np.radians(135), platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}], name="flat")
+    law = MicroslipModel([1e6], [1e8], [0.0], 0.5)
+    d.add_interface(law, points=[(-4e-3, 2e-3), (-2e-3, 4e-3)], angle_deg=135.0,
+                    platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}], name="flat")
+    d.add_interface(law, points=[(3e-3, 3e-3)], angle_deg=45.0, platform={"x": 0, "y": 1}, name="curved")
     return d
 
 

@@ -8,7 +8,7 @@ from scipy.optimize import root
 
 from microslip import MicroslipModel, Sphere, tune
 from microslip.kernels.element import STICK
-from microslip.frequency import (Structure, UnderPlatformDamper, damper_design_curve, frequency_point,
+from microslip.frequency import (CyclicStructure, Structure, UnderPlatformDamper, damper_design_curve, frequency_point,
                                  frequency_response, steady_state, synthesise)
 
 SPHERE = Sphere.paper()
@@ -40,10 +40,9 @@ def damper(flat=FLAT, curved=CURVED, load=LOAD, damping=200.0, retention=0.0):
     a = np.radians(135.0)  # the flat face against blade 0's platform, normal up and to the left
     tau = np.array([-np.sin(a), np.cos(a)])
     centre = np.array([-3e-3, 2e-3])
-    d.add_interface(flat, points=[centre - 1.5e-3 * tau, centre + 1.5e-3 * tau], angle=a,
+    d.add_interface(flat, points=[centre - 1.5e-3 * tau, centre + 1.5e-3 * tau], angle_deg=135.0,
                     platform={"x": 0, "y": 1}, name="flat")
-    d.add_interface(curved, points=[(3e-3, 2e-3)], angle=np.radians(45.0), platform={"x": 3, "y": 4},
-                    name="curved")
+    d.add_interface(curved, points=[(3e-3, 2e-3)], angle_deg=45.0, platform={"x": 3, "y": 4}, name="curved")
     return d
 
 
@@ -248,6 +247,92 @@ def test_the_static_state_closes_each_contact_then_moves_it_tangentially():
                 assert dT < 1e-8 and dN < 1e-8  # measured 1e-12
             else:  # gapped elements stick: measured 1.5 % and 2.4 % of the load (the module's docstring)
                 assert 0.01 < dT < 0.02 and 0.02 < dN < 0.03
+
+
+def cylinder(retention=0.0, radius=3e-3):
+    """A cylindrical damper: one contact on each face, both normals through its centre of mass."""
+    d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=LOAD, damping=200.0, retention=retention)
+    for name, degrees, platform, law in (("left", 135.0, {"x": 0, "y": 1}, FLAT), ("right", 45.0, {"x": 3, "y": 4},
+                                                                                     CURVED)):
+        a = np.radians(degrees)
+        d.add_interface(law, points=[(radius * np.cos(a), radius * np.sin(a))], angle_deg=degrees, platform=platform,
+                        name=name)
+    return d
+
+
+def test_a_cylindrical_damper_rolls_without_a_retention_and_is_solved_with_one():
+    # one contact per face: the rotation about the centre changes no normal approach, only friction holds it (it
+    # met a singular Jacobian at the static solve, omega = 1 rad/s)
+    with pytest.raises(ValueError, match=r"the damper's contacts hold only 2 of its 3 motions by their normal "
+                                         r"stiffness: the rotation about the point \(0, 0\) mm of the damper changes "
+                                         r"no contact's normal approach .* give the damper a retention \(N/m; e.g. "
+                                         r"retention=2.3e\+03"):
+        cylinder().attach(blade_pair())
+    d = cylinder(retention=1e3)
+    s = d.attach(blade_pair())
+    f = np.zeros(s.ndof)
+    f[2], f[5] = 0.5, -0.5
+    r = frequency_response(s, f, (3000.0, 5000.0), harmonics=3, stability=False)
+    assert r.complete and d.static_balance(r) < 1e-10
+    assert r.contact_dissipation.max() > 0  # the contacts slide: a damper, not a spring
+
+
+def test_angles_are_degrees_with_angle_deg_and_radians_with_angle():
+    a, b = (UnderPlatformDamper(0.02, 1e-6, centrifugal_load=LOAD) for _ in range(2))
+    a.add_interface(FLAT, points=[(0.0, 1e-3)], angle_deg=135.0, platform={"x": 0, "y": 1})
+    b.add_interface(FLAT, points=[(0.0, 1e-3)], angle=np.radians(135.0), platform={"x": 0, "y": 1})  # as before
+    np.testing.assert_allclose(a.contacts[0].normal, b.contacts[0].normal, rtol=0, atol=1e-15)
+    d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=LOAD)
+    with pytest.raises(ValueError, match=r"angle is in radians, got 130.0 \(beyond 2 pi\): for an angle in degrees "
+                                         r"give angle_deg=130.0"):
+        d.add_interface(FLAT, points=[(0.0, 1e-3)], angle=130, platform={"x": 0, "y": 1})
+    with pytest.raises(TypeError, match="angle_deg: give the interface normal's angle from x, either angle_deg"):
+        d.add_interface(FLAT, points=[(0.0, 1e-3)], platform={"x": 0, "y": 1})
+    with pytest.raises(TypeError, match="got angle_deg=135 and angle=2.3"):
+        d.add_interface(FLAT, points=[(0.0, 1e-3)], angle_deg=135, angle=2.3, platform={"x": 0, "y": 1})
+    # 2.1 rad (120 degrees) where 45 degrees was meant: a normal no platform can push the load back along
+    wrong = damper()
+    wrong.contacts = [c for c in wrong.contacts if c.interface == "flat"]
+    wrong.add_interface(CURVED, points=[(3e-3, 2e-3)], angle=2.1, platform={"x": 3, "y": 4}, name="curved")
+    with pytest.raises(ValueError, match=r"the damper cannot be held against its platforms: .* \(normals 'flat' at "
+                                         r"135°, 'curved' at 120.3° from x, .*the angles' unit: add_interface takes "
+                                         r"angle_deg in degrees"):
+        wrong.attach(blade_pair())
+
+
+def test_a_platform_with_x_and_y_on_one_dof_is_refused():
+    d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=LOAD)
+    with pytest.raises(ValueError, match=r"platform\[1\]: 'x' and 'y' name the same DOF \(4\)"):
+        d.add_interface(FLAT, points=[(0.0, 1e-3), (1e-3, 1e-3)], angle_deg=135,
+                        platform=[{"x": 0, "y": 1}, {"x": 4, "y": 4}])
+    from test_cyclic import springs_matrix
+
+    disk = CyclicStructure(np.eye(5), None, springs_matrix(5, [(0, 1, 4e6), (0, None, 1e6), (1, None, 1e6)]) +
+                           np.eye(5), sectors=6, left=[0], right=[1])
+    with pytest.raises(ValueError, match=r"platform\[0\]: 'x' and 'y' name the same DOF \(NextDof\(dof=2\)\)"):
+        d.add_interface(FLAT, points=[(0.0, 1e-3)], angle_deg=45, platform={"x": disk.next(2), "y": disk.next(2)})
+
+
+def test_a_damper_with_both_faces_on_one_sector_of_a_disk_is_warned():
+    from test_cyclic import springs_matrix
+
+    K = springs_matrix(5, [(0, 1, 4e6), (0, 2, 3e6), (1, 2, 3e6), (2, 4, 1e6), (0, None, 1e6), (1, None, 1e6),
+                           (3, None, 2e7)])
+    disk = CyclicStructure(np.diag([0.05, 0.05, 0.1, 0.1, 0.05]), None, K, sectors=6, left=[0], right=[1])
+
+    def on(right):
+        d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=LOAD)
+        d.add_interface(FLAT, points=[(-3e-3, 1e-3), (-3e-3, 3e-3)], angle_deg=135, platform={"x": 2, "y": 3},
+                        name="flat")
+        d.add_interface(CURVED, points=[(3e-3, 2e-3)], angle_deg=45, platform=right, name="curved")
+        return d
+
+    with pytest.warns(UserWarning, match=r"every face of the damper \('flat', 'curved'\) touches this sector's "
+                                         r"platform: the damper joins a blade to itself"):
+        on({"x": 2, "y": 3}).attach(disk)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        on({"x": disk.next(2), "y": disk.next(3)}).attach(disk)  # between blades: no warning
 
 
 def test_a_damper_between_sectors_of_a_disk_equals_the_whole_disk_with_its_dampers():

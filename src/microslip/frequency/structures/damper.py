@@ -8,15 +8,18 @@ every unknown is then a length of the same order, so that the solver's one
 displacement scale fits the rotation too (in radians it would be ``1 / arm`` times
 larger, and its wanderings would dominate the continuation's steps). A point
 ``(px, py)`` of the damper (m, from its centre of mass) moves by
-``(X - theta py, Y + theta px)``. Each interface has a normal
-at the angle ``angle`` (rad, from ``x``), pointing from the damper into the
-platform, ``nu = (cos, sin)``, and the tangent ``tau = (-sin, cos)``; its contacts
-sit at given points of the damper, each a :class:`~microslip.model.MicroslipModel`
-whose normal approach is ``nu . (u_damper - u_platform)`` and tangential
-displacement ``tau . (u_damper - u_platform)``. A flat interface carries two or
-more contacts across its width, so that the damper's rotation and a partial
-lift-off (one contact's normal load reaching zero) appear; a curved one carries a
-single line contact.
+``(X - theta py, Y + theta px)``. Each interface has a normal at an angle from
+``x`` (``angle_deg`` in degrees, as the configuration's ``angle``, or ``angle`` in
+radians), pointing from the damper into the platform, ``nu = (cos, sin)``, and the
+tangent ``tau = (-sin, cos)``; its contacts sit at given points of the damper, each a
+:class:`~microslip.model.MicroslipModel` whose normal approach is
+``nu . (u_damper - u_platform)`` and tangential displacement
+``tau . (u_damper - u_platform)``. A flat interface carries two or more contacts
+across its width, so that the damper's rotation and a partial lift-off (one
+contact's normal load reaching zero) appear; a curved one carries a single line
+contact. A damper with one contact per face (a cylinder between two flat faces)
+can roll: no contact's normal approach changes in that motion, and only friction
+holds it, so it needs a ``retention`` (:meth:`UnderPlatformDamper.attach` says so).
 
 The centrifugal load ``m r Omega^2`` is a static force on ``Y``. The static state
 is the harmonic balance's for every contact (:mod:`microslip.frequency.aft`): each
@@ -41,11 +44,13 @@ the forces and the moment on the damper, its retention included, sum to zero.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.optimize import nnls
 
 from ...common import _checks
 from ...model import MicroslipModel
@@ -100,6 +105,25 @@ def _platform_dof(name: str, value):
     return _checks.positive_int(name, value, minimum=0)
 
 
+#: an angle given in radians (``angle``) larger than this is taken for degrees and refused
+_RADIANS_LIMIT = 2 * np.pi
+
+
+def _interface_angle(angle_deg, angle) -> float:
+    """The normal's angle (rad) from ``angle_deg`` (degrees) or ``angle`` (radians): exactly one of them."""
+    if (angle_deg is None) == (angle is None):
+        raise TypeError("angle_deg: give the interface normal's angle from x, either angle_deg (degrees, as the "
+                        "configuration's angle) or angle (radians), one of them"
+                        + (f"; got angle_deg={angle_deg!r} and angle={angle!r}" if angle is not None else ""))
+    if angle_deg is not None:
+        return float(np.radians(_checks.real_scalar("angle_deg", angle_deg)))
+    a = _checks.real_scalar("angle", angle)
+    if abs(a) > _RADIANS_LIMIT:
+        raise ValueError(f"angle is in radians, got {a!r} (beyond 2 pi): for an angle in degrees give "
+                         f"angle_deg={a!r}")
+    return a
+
+
 def _load(value, source: str = "") -> float:
     """The centrifugal load (N), > 0: an unloaded damper has no static state to vibrate about."""
     load = _checks.positive_scalar("centrifugal_load", value, allow_zero=True)
@@ -138,14 +162,16 @@ class UnderPlatformDamper:
         the damper's mean position, and the continuation creeps through nearly
         singular points; a retention far below the contacts' normal stiffness
         (1e3 N/m against 2.3e7 N/m in ``tests/frequency/test_damper.py``) holds
-        it without changing the response.
+        it without changing the response. A damper with one contact per face
+        (a cylinder between two flat faces) rolls, held by friction alone, and
+        needs one.
 
     Examples
     --------
     >>> from microslip import MicroslipModel
     >>> d = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=300.0)
     >>> law = MicroslipModel([1e6], [1e8], [0.0], 0.5)
-    >>> d.add_interface(law, points=[(-4e-3, 2e-3), (-2e-3, 4e-3)], angle=np.radians(135),
+    >>> d.add_interface(law, points=[(-4e-3, 2e-3), (-2e-3, 4e-3)], angle_deg=135,
     ...                 platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}], name="flat")
     >>> len(d.contacts)
     2
@@ -170,7 +196,8 @@ class UnderPlatformDamper:
             raise ValueError("the damper needs its static load: centrifugal_load (N), or speed (rad/s) and radius (m)")
         self.contacts: list[DamperContact] = []
 
-    def add_interface(self, models, *, points, angle: float, platform, name: str | None = None) -> None:
+    def add_interface(self, models, *, points, platform, angle_deg: float | None = None, angle: float | None = None,
+                      name: str | None = None) -> None:
         """Add an interface: its contacts' laws, positions on the damper, normal angle and platform DOFs.
 
         Parameters
@@ -179,13 +206,19 @@ class UnderPlatformDamper:
             One law for every point, or one per point.
         points : array_like, shape (k, 2)
             Contact positions on the damper from its centre of mass (m).
-        angle : float
-            Angle of the interface normal from the ``x`` axis (rad); the normal
-            points from the damper into the platform.
         platform : mapping or sequence of mappings
             The platform's DOFs at each point, ``{"x": dof, "y": dof}`` (one
-            mapping for all points, or one per point); a DOF is an index of the
-            structure, or ``disk.next(j)`` for the next sector's platform.
+            mapping for all points, or one per point), two different DOFs; a DOF
+            is an index of the structure, or ``disk.next(j)`` for the next
+            sector's platform.
+        angle_deg : float
+            Angle of the interface normal from the ``x`` axis (degrees, as the
+            configuration's ``angle``); the normal points from the damper into
+            the platform.
+        angle : float
+            Or that angle in radians (as before ``angle_deg``), ``|angle| <= 2 pi``:
+            a larger value is refused as degrees given by mistake. Give one of
+            ``angle_deg`` and ``angle``.
         name : str, optional
             Label of the interface (default ``interface<i>``); its contacts are
             named ``<name><k>``.
@@ -199,7 +232,7 @@ class UnderPlatformDamper:
         if not isinstance(models, Sequence) or len(models) != k or \
                 not all(isinstance(m, MicroslipModel) for m in models):
             raise TypeError(f"models must be a MicroslipModel or a list of {k} (one per point), got {models!r}")
-        a = _checks.real_scalar("angle", angle)
+        a = _interface_angle(angle_deg, angle)
         if isinstance(platform, Mapping):
             platform = [platform] * k
         if not isinstance(platform, Sequence) or len(platform) != k:
@@ -210,6 +243,9 @@ class UnderPlatformDamper:
                 raise ValueError(f"platform[{i}] must be a mapping with keys 'x' and 'y' (the platform's DOFs at "
                                  f"the point), got {p!r}")
             plats.append({ax: _platform_dof(f"platform[{i}]['{ax}']", p[ax]) for ax in _AXES})
+            if plats[-1]["x"] == plats[-1]["y"]:
+                raise ValueError(f"platform[{i}]: 'x' and 'y' name the same DOF ({p['x']!r}): the platform's "
+                                 f"circumferential and radial motions at the point are two DOFs")
         name = f"interface{len({c.interface for c in self.contacts})}" if name is None else name
         if not isinstance(name, str) or not name:
             raise TypeError(f"name must be a non-empty string, got {name!r}")
@@ -251,7 +287,19 @@ class UnderPlatformDamper:
         ------
         ValueError
             No interface; a platform DOF out of range, or of the next sector on a
-            plain structure; a :attr:`centrifugal_load` that is not > 0.
+            plain structure; a :attr:`centrifugal_load` that is not > 0. Without a
+            retention: a motion of the damper that changes no contact's normal
+            approach (one contact per face: the damper rolls, held by friction
+            alone), or interfaces whose normals and friction cannot hold the
+            centrifugal load (a normal pointing the wrong way, an angle in the
+            wrong unit).
+
+        Warns
+        -----
+        UserWarning
+            On a :class:`CyclicStructure`, when every face of the damper touches
+            the same sector (no face, or every face, names ``disk.next``): the
+            damper then joins a blade to itself.
         """
         if not isinstance(structure, Structure):
             raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
@@ -268,6 +316,10 @@ class UnderPlatformDamper:
                     raise ValueError(f"interface {c.interface!r}: platform DOF {index} is out of range for a structure "
                                      f"with {structure.ndof} DOFs")
         load = _load(self.centrifugal_load)
+        if self.retention == 0.0:
+            self._check_held()
+        if cyclic:
+            _warn_same_sector(self.contacts)
         n = structure.ndof
         extra = np.array([self.mass, self.mass, self.inertia / self.arm**2])  # R = arm theta
         M, C, K = (_grow(A, d) for A, d in ((structure.M, extra), (structure.C, self.damping * extra),
@@ -293,6 +345,48 @@ class UnderPlatformDamper:
         out._dampers = getattr(structure, "_dampers", ()) + (
             _Attachment(tuple(self.contacts), tuple(self.names), self.dofs, self.arm, load),)
         return out
+
+    def _check_held(self) -> None:
+        """Refuse a damper that its contacts cannot hold without a retention (a rolling one, or a wrong normal)."""
+        arm = self.arm
+        rows = np.array([(*c.normal, (c.normal[1] * c.point[0] - c.normal[0] * c.point[1]) / arm)
+                         for c in self.contacts])
+        _, sv, vt = np.linalg.svd(rows)
+        held = int(np.count_nonzero(sv > 1e-6 * sv[0]))
+        stiffest = max(float(c.model.kn.sum()) for c in self.contacts)
+        retain = f"give the damper a retention (N/m; e.g. retention={1e-4 * stiffest:.2g}, 1e-4 of its stiffest " \
+                 f"contact's normal stiffness, holds it without changing the response)"
+        if held < 3:
+            dX, dY, dR = vt[-1]
+            theta = dR / arm
+            if abs(dR) > 1e-6 * max(abs(dX), abs(dY)):
+                centre = np.round(np.array([-dY, dX]) / theta * 1e3, 6) + 0.0  # mm, rounded to 1 nm
+                motion = f"the rotation about the point ({centre[0]:.3g}, {centre[1]:.3g}) mm of the damper"
+            else:
+                motion = f"the translation along ({dX:.3g}, {dY:.3g})"
+            raise ValueError(f"the damper's contacts hold only {held} of its 3 motions by their normal stiffness: "
+                             f"{motion} changes no contact's normal approach ({len(self.contacts)} contacts; with one "
+                             f"per face the damper rolls, as a cylinder between two flat faces does), so only "
+                             f"friction holds it, and where its contacts slide nothing does: {retain}, or put two "
+                             f"contacts across a flat face")
+        # a push of the platform on the damper: along -nu, within the friction cone; their sum must balance the load
+        pushes = []
+        for c in self.contacts:
+            nu, tau, beta = np.array(c.normal), np.array(c.tangent), float(np.arctan(c.model.mu))
+            for side in (1.0, -1.0):
+                e = -(np.cos(beta) * nu + side * np.sin(beta) * tau)
+                pushes.append((e[0], e[1], (c.point[0] * e[1] - c.point[1] * e[0]) / arm))
+        _, residual = nnls(np.array(pushes).T, np.array([0.0, -1.0, 0.0]))
+        if residual > 1e-9:
+            faces = {}
+            for c in self.contacts:
+                faces.setdefault(c.interface, float(np.degrees(np.arctan2(c.normal[1], c.normal[0]))))
+            listed = ", ".join(f"{name!r} at {deg:.4g}°" for name, deg in faces.items())
+            raise ValueError(f"the damper cannot be held against its platforms: no normal forces on its interfaces "
+                             f"(normals {listed} from x, pointing from the damper into its platform) with friction "
+                             f"forces within mu N balance the centrifugal load (outwards, +y) and its moment. Check "
+                             f"the normals' directions and the angles' unit: add_interface takes angle_deg in "
+                             f"degrees (as the configuration's angle) or angle in radians; or {retain}")
 
     def static_balance(self, result) -> float:
         """The static forces and moment on the damper, ``|sum|`` relative to its centrifugal load.
@@ -359,6 +453,20 @@ def _static_displacement(result, dofs) -> np.ndarray:
         raise ValueError("result: it does not carry the damper's static displacement (static_coefficients), which "
                          "the retention's force needs: pass a result of frequency_response or frequency_point")
     return np.real(np.asarray(q)[[where[d] for d in dofs]])
+
+
+def _warn_same_sector(contacts) -> None:
+    """Warn when every face of a damper on a sector touches the same sector's platforms."""
+    faces: dict = {}
+    for c in contacts:
+        faces.setdefault(c.interface, set()).update(isinstance(d, NextDof) for d in c.platform.values())
+    kinds = set().union(*faces.values())
+    if len(kinds) == 1:
+        which = "the next sector's (disk.next)" if kinds == {True} else "this sector's"
+        warnings.warn(f"every face of the damper ({', '.join(map(repr, faces))}) touches {which} platform: the "
+                      f"damper joins a blade to itself; a damper between blades names the next sector's platform "
+                      f"DOFs on one face, with disk.next(j) (\"next:j\" in the configuration)", UserWarning,
+                      stacklevel=3)
 
 
 def _grow(A, diagonal):
