@@ -340,9 +340,20 @@ def damper():
 
 def damper_with_interface():
     d = damper()
-    d.add_interface(MicroslipModel([1e6], [1e8], [0.0], 0.5), points=[(-4e-3, 2e-3), (-2e-3, 4e-3)],
-                    angle=np.radians(135), platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}], name="flat")
+    law = MicroslipModel([1e6], [1e8], [0.0], 0.5)
+    d.add_interface(law, points=[(-4e-3, 2e-3), (-2e-3, 4e-3)], angle_deg=135.0,
+                    platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}], name="flat")
+    d.add_interface(law, points=[(3e-3, 3e-3)], angle_deg=45.0, platform={"x": 0, "y": 1}, name="curved")
     return d
+
+
+@cache
+def damper_point():
+    """A solved response of a structure with :func:`damper_with_interface` attached."""
+    s = damper_with_interface().attach(Structure(np.eye(2), None, np.eye(2) * 1e4))
+    f = np.zeros(s.ndof)
+    f[0] = 1.0
+    return frequency_point(s, f, 100.0, harmonics=1, stability=False)
 
 
 def three_dofs() -> Structure:
@@ -737,8 +748,13 @@ CASES += [
          centrifugal_load=300.0, retention=1e3),
     case("UnderPlatformDamper.add_interface", lambda: damper().add_interface,
          kinds={"platform": "object", "points": "array"}, models=L(lambda: MicroslipModel([1e6], [1e8], [0.0], 0.5)),
+         points=[[-4e-3, 2e-3], [-2e-3, 4e-3]], angle_deg=135.0, platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}],
+         name="flat"),
+    case("UnderPlatformDamper.add_interface [radians]", lambda: damper().add_interface,
+         kinds={"platform": "object", "points": "array"}, models=L(lambda: MicroslipModel([1e6], [1e8], [0.0], 0.5)),
          points=[[-4e-3, 2e-3], [-2e-3, 4e-3]], angle=2.356, platform=[{"x": 0, "y": 1}, {"x": 0, "y": 1}],
          name="flat"),
+    case("UnderPlatformDamper.static_balance", lambda: damper_with_interface().static_balance, result=L(damper_point)),
     case("UnderPlatformDamper.attach", lambda: damper_with_interface().attach,
          structure=L(lambda: Structure(np.eye(2), None, np.eye(2) * 1e4))),
     case("frequency.craig_bampton", lambda: microslip.frequency.craig_bampton, structure=L(three_dofs), keep=[0],
@@ -849,7 +865,6 @@ NOT_FUZZED = {
     "HarmonicBalance.solve": "a step of the solver on its own Jacobian (NaN for a singular one, by design)",
     "HarmonicBalance.augmented": "a step of the solver on its own Jacobian",
     "HarmonicBalance.curve_quantities": "a step of the solver on its own solutions",
-    "UnderPlatformDamper.static_balance": "checks a solved FrequencyResponse of an attached structure",
     "DesignCurve.plot": "draws",
     "ContactCycle.plot": "draws",
     "frequency.plot_contact_cycles": "draws",

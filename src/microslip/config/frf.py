@@ -45,9 +45,10 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # [[damper.interface]]              # one table per interface
     # model = "flat.json"               # the contacts' law (a list of files: one per point)
     # points = [[-2e-3, 1.5e-3], [-1e-3, 2.5e-3]]   # m, on the damper from its centre of mass
-    # angle = 120                       # degrees: the normal, from the damper into the platform
-    # platform = {x = 0, y = 1}         # the platform's DOFs at the points (a list: one per point;
-                                        # "next:4" for the next sector's)
+    # angle = 120                       # degrees: the normal, from the damper into the platform ("120deg";
+                                        # "2.1rad"; a bare number of magnitude up to 2 pi needs its unit)
+    # platform = {x = 0, y = 1}         # the platform's DOFs at the points, two different ones (a list: one
+                                        # per point; "next:4" for the next sector's)
 
     [excitation]                        # amplitudes per DOF (N); "static" for the static force
     h1 = [0.6, 0.0]                     # one per DOF, or a table of DOFs by name or index (the others 0 N):
@@ -92,6 +93,7 @@ accepts (with the closest one when a key looks misspelled).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
@@ -509,8 +511,8 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     # -- dampers ------------------------------------------------------------------------
     bare = structure  # without the dampers: what the design curve attaches its damper to
     dampers = [_damper(d, k, structure, base_dir=base, path=path, files=files) for k, d in enumerate(_tables(data, "damper", path))]
-    for d in dampers:
-        structure = d.attach(structure)
+    for k, d in enumerate(dampers):
+        structure = checked(path, f"[[damper]] {k + 1}: ", d.attach, structure)
     names = names + [f"damper{k} {axis}" for k in range(len(dampers)) for axis in ("X", "Y", "R")]
 
     # -- excitation ----------------------------------------------------------------------
@@ -722,14 +724,44 @@ def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path, 
             raise ConfigError(f"{path}: {here}: {exc}") from None
         points = np.array([[_quantity(v, "length", f"{here} points", path) for v in row]
                            for row in _get(face, "points", here, path)])
-        angle = np.radians(_quantity(_get(face, "angle", here, path), "dimensionless", f"{here} angle", path))
+        angle = _angle(_get(face, "angle", here, path), f"{here} angle", path)
         platform = _get(face, "platform", here, path)
         platform = [platform] if isinstance(platform, dict) else platform
         plats = [{axis: _platform_dof(p.get(axis) if isinstance(p, dict) else None, structure, f"{here} platform",
                                       path) for axis in ("x", "y")} for p in platform]
+        for p, dofs in zip(platform, plats):
+            if dofs["x"] == dofs["y"]:
+                raise ConfigError(f"{path}: {here} platform: x = {p['x']!r} and y = {p['y']!r} are the same DOF: "
+                                  f"the platform's circumferential (x) and radial (y) DOFs at a point must differ")
         checked(path, f"{here}: ", d.add_interface, models if len(models) > 1 else models[0], points=points,
-                 angle=angle, platform=plats if len(plats) > 1 else plats[0], name=face.get("name"))
+                 angle_deg=angle, platform=plats if len(plats) > 1 else plats[0], name=face.get("name"))
     return d
+
+
+#: an interface angle's units (factor to degrees); a bare number is in degrees
+_ANGLE_UNITS = {"deg": 1.0, "°": 1.0, "rad": 180.0 / np.pi}
+_ANGLE = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S*)\s*")
+
+
+def _angle(value, what: str, path) -> float:
+    """An interface normal's angle (degrees): a number in degrees, or a string with ``deg`` or ``rad``.
+
+    A bare number of magnitude up to ``2 pi`` that is not whole could be either
+    unit (``angle = 2.1`` meant as 120 degrees is a normal 2.1 degrees from x):
+    it is refused, and its unit asked for.
+    """
+    if isinstance(value, str):
+        match = _ANGLE.fullmatch(value)
+        if match is None or match[2] not in _ANGLE_UNITS:
+            raise ConfigError(f"{path}: {what} must be an angle: a number (degrees) or a string with a unit, "
+                              f"\"120deg\" or \"2.1rad\", got {value!r}")
+        return float(match[1]) * _ANGLE_UNITS[match[2]]
+    degrees = _quantity(value, "dimensionless", what, path)
+    if 0 < abs(degrees) <= 2 * np.pi and degrees != round(degrees):
+        raise ConfigError(f"{path}: {what} = {value!r} is read in degrees (a normal {degrees:g}° from x), but it "
+                          f"looks like radians ({np.degrees(degrees):.4g}°): write its unit, \"{value!r}deg\" or "
+                          f"\"{value!r}rad\"")
+    return degrees
 
 
 def _platform_dof(value, structure: Structure, what: str, path):

@@ -137,6 +137,9 @@ class FrequencyResponse:
         solution (harmonic balance conserves the energy of the harmonics
         kept), but it carries the AFT's sampling error, of either sign where a
         contact opens; :attr:`contact_dissipation` is the physical one.
+    static_coefficients : ndarray, shape (len(dofs),)
+        The static equilibrium's displacement of the DOFs in :attr:`dofs` (m),
+        at which the static forces above were taken (None where not solved).
     """
 
     structure: Structure
@@ -171,6 +174,7 @@ class FrequencyResponse:
     contact_t2: np.ndarray | None = field(default=None, repr=False)
     contact_T2: np.ndarray | None = field(default=None, repr=False)
     static_tangential_force2: np.ndarray | None = field(default=None, repr=False)
+    static_coefficients: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self):
         if self.dofs is None:
@@ -807,6 +811,7 @@ def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, redu
     r_scale = float(np.max(np.abs(hb.f)))
     x = np.zeros(hb.n)
     x[:hb.ndof], *static = _static_state(static_hb)
+    static.append(x[:hb.ndof].copy())  # the static displacement, for the result
     x_scale = _response_scale(hb, x, lo, hi, grid=1 if lo == hi else 24)
     x, _ = newton(hb, x, lo, r_scale=r_scale, x_scale=x_scale)
     return hb, x, max(x_scale, float(np.max(np.abs(x[hb.ndof:])))), r_scale, static
@@ -900,7 +905,7 @@ def _collect(hb: HarmonicBalance, xs, omegas, iters, static, complete: bool) -> 
     _check_resolution(q, hb.samples, hb.structure.contacts, omegas)
     reduced = isinstance(hb, ReducedHarmonicBalance)
     extra = {"contact_harmonic_work": q["contacts_harmonic"], "contact_t2": q["t2"], "contact_T2": q["T2"],
-             "static_tangential_force2": static[3]}
+             "static_tangential_force2": static[3], "static_coefficients": static[4]}
     if reduced:
         linear = hb.linear
         extra.update(dofs=hb.retained, reduction="modal" if hasattr(linear, "modes") else "exact",
