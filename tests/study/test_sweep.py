@@ -23,14 +23,6 @@ title = "Damper load and excitation level"
 '''
 
 
-@pytest.fixture(scope="module")
-def client():
-    """An in-process cluster of two single-threaded workers."""
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0") as c, \
-            distributed.Client(c) as cl:
-        yield cl
-
-
 def _one_by_one(study, case, tmp_path):
     """The case solved with frequency_response from a configuration file written with its values."""
     from threadpoolctl import threadpool_limits
