@@ -2,6 +2,7 @@
 
 import csv
 import io
+import json
 import shutil
 from pathlib import Path
 
@@ -56,3 +57,14 @@ def assert_same_results(out, reference):
         assert c.keys() == ref_curves[key].keys()
         for name, values in c.items():
             assert np.array_equal(values, ref_curves[key][name], equal_nan=True), (key, name)
+
+
+def rewrite_meta(path, change):
+    """Rewrite a case file with its metadata changed by ``change(meta)`` (a valid archive, the same curves)."""
+    with np.load(path) as f:
+        meta = json.loads(str(f["meta"]))
+        arrays = {k: np.array(f[k]) for k in f.files if k != "meta"}
+    change(meta)
+    buf = io.BytesIO()
+    np.savez(buf, meta=np.array(json.dumps(meta)), **arrays)
+    path.write_bytes(buf.getvalue())

@@ -1,12 +1,50 @@
 """Resuming from an earlier run's folder: damaged case files, leftovers, a second run, every case failing."""
 
+import numpy as np
 import pytest
-from _study_folder import write_block
+from _study_folder import assert_same_results, copy, rewrite_meta, write_block
 
 from microslip.cli import main
-from microslip.study import load_study
+from microslip.study import load_study, sweep
+from microslip.study.folder import StudyFolderWarning
+from microslip.study.store import case_file
 
 pytest.importorskip("dask.distributed")
+
+
+def _flip(path):
+    """Flip one bit in the middle of the file (inside the curves' data: their CRC no longer matches)."""
+    data = bytearray(path.read_bytes())
+    data[len(data) // 2] ^= 0x01
+    path.write_bytes(bytes(data))
+
+
+DAMAGES = {
+    "truncated": (lambda p, other: p.write_bytes(p.read_bytes()[:p.stat().st_size // 2]), "is damaged or truncated"),
+    "emptied": (lambda p, other: p.write_bytes(b""), "is empty"),
+    "bit flipped": (lambda p, other: _flip(p), "is damaged or truncated (Bad CRC-32"),
+    "without row": (lambda p, other: rewrite_meta(p, lambda m: m.pop("row")), "has metadata without 'row'"),
+    "another case's values": (lambda p, other: rewrite_meta(p, lambda m: m.update(values=other.values)),
+                              "not those of its key"),
+    "random bytes": (lambda p, other: p.write_bytes(np.random.default_rng(1).bytes(3000)), "is not a NumPy .npz"),
+}
+
+
+@pytest.mark.parametrize("damage", list(DAMAGES))
+def test_a_case_file_that_cannot_be_trusted_is_named_and_its_case_solved_again(finished, tmp_path, client, damage):
+    study_file, reference = finished
+    out = copy(reference, tmp_path / "out")
+    cases = load_study(study_file).cases()
+    path = case_file(out, cases[1])
+    make, why = DAMAGES[damage]
+    make(path, cases[2])
+    with pytest.warns(StudyFolderWarning) as caught:
+        result = sweep(study_file, client, out=out, report=False)
+    [message] = [str(w.message) for w in caught]
+    assert message.startswith(f"{path} ") and why in message
+    assert message.endswith(f"its case ({cases[1].label}) is solved again")
+    assert result.computed == 1 and not result.failed
+    assert_same_results(out, reference)
 
 
 def test_a_study_where_every_case_fails_exits_1_with_each_error_and_a_report_saying_so(tmp_path, client, capsys):

@@ -17,10 +17,11 @@ from pathlib import Path
 
 from ..common import _checks
 from ..common._optional import require
+from .folder import notice
 from .result import SweepResult
 from .solve import solve_case
 from .spec import Case, Study, load_study
-from .store import load_case, save_case
+from .store import case_file, read_case, save_case
 
 #: environment of each local worker process: one thread for BLAS and numba (one process per core)
 WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
@@ -48,7 +49,9 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     out : str or Path, default "microslip-sweep"
         Results folder: ``cases/`` (one file per finished case),
         ``summary.csv``, ``summary.parquet``, ``curves.zarr`` and, with
-        ``report``, ``report.html`` and its figures.
+        ``report``, ``report.html`` and its figures. A case file that cannot
+        be read, or holds values not those of its key, is solved again, said
+        in a :class:`~microslip.study.folder.StudyFolderWarning`.
     workers : int, optional
         Worker processes of the local cluster (default: one per core), each
         with one thread for BLAS and numba.
@@ -98,7 +101,9 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     if out.exists() and not out.is_dir():
         raise ValueError(f"out: {str(out)!r} is a file; give a folder for the results")
     cases = study.cases()
-    found = {c.key: load_case(out, c) for c in cases}
+    cfg = study.configuration(Case({}, ""))  # the base configuration's output DOFs
+    names = [cfg.dof_names[d] for d in cfg.plot_dofs]
+    found = _finished(out, study, cases, len(names))
     todo = [c for c in cases if found[c.key] is None or (retry_failed and found[c.key]["error"])]
     require("dask.distributed", "a design study", "sweep")
     start = time.perf_counter()
@@ -113,8 +118,6 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
                 found[case.key] = save_case(out, case, outcome)
     outcomes = [found[c.key] for c in cases]
     rows = summary_rows(study, cases, outcomes)
-    cfg = study.configuration(Case({}, ""))  # the base configuration's output DOFs
-    names = [cfg.dof_names[d] for d in cfg.plot_dofs]
     write_summary(out, rows)
     write_curves(out, study, cases, outcomes, names)
     result = SweepResult(study, cases, outcomes, rows, names, out, computed=len(todo),
@@ -122,6 +125,16 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     if report:
         write_report(result)
     return result
+
+
+def _finished(out: Path, study: Study, cases: list[Case], dofs: int) -> dict:
+    """Each case's stored outcome by key (None: to solve); a case file that cannot be trusted is named, and why."""
+    found = {}
+    for case in cases:
+        found[case.key], problem = read_case(out, case, study.solve, dofs)
+        if problem:
+            notice(f"{case_file(out, case)} {problem}: its case ({case.label}) is solved again")
+    return found
 
 
 def _solve(client, study: Study, todo: list[Case], progress: bool):
