@@ -1,12 +1,16 @@
 """Resuming from an earlier run's folder: damaged case files, leftovers, a second run, every case failing."""
 
+import json
+import os
+import re
+
 import numpy as np
 import pytest
 from _study_folder import assert_same_results, copy, rewrite_meta, write_block
 
 from microslip.cli import main
 from microslip.study import load_study, sweep
-from microslip.study.folder import StudyFolderWarning
+from microslip.study.folder import FolderInUseError, FolderLock, StudyFolderWarning
 from microslip.study.store import case_file
 
 pytest.importorskip("dask.distributed")
@@ -45,6 +49,26 @@ def test_a_case_file_that_cannot_be_trusted_is_named_and_its_case_solved_again(f
     assert message.endswith(f"its case ({cases[1].label}) is solved again")
     assert result.computed == 1 and not result.failed
     assert_same_results(out, reference)
+
+
+def test_a_second_run_on_a_folder_in_use_is_refused_naming_the_first(finished, tmp_path, client, capsys):
+    study_file, reference = finished
+    out = copy(reference, tmp_path / "out")
+    for path in (out / "cases").glob("*.npz"):
+        path.unlink()
+    with FolderLock(out):  # a run writing into out
+        record = json.loads((out / ".sweep.lock").read_text())
+        assert record["pid"] == os.getpid() and record["host"] == os.uname().nodename
+        with pytest.raises(FolderInUseError, match=re.escape(
+                f"{str(out)!r} is in use by another microslip sweep (pid {os.getpid()} on host "
+                f"{os.uname().nodename}, started {record['started']}): wait for it to finish, or give another "
+                "results folder")):
+            sweep(study_file, client, out=out, report=False)
+        assert main(["sweep", str(study_file), "-o", str(out), "--scheduler", client.scheduler.address]) == 2
+        assert "is in use by another microslip sweep (pid" in capsys.readouterr().err
+        assert not list((out / "cases").glob("*"))  # nothing solved, nothing written
+    assert not (out / ".sweep.lock").exists()
+    assert sweep(study_file, client, out=out, report=False).computed == 3
 
 
 def test_a_study_where_every_case_fails_exits_1_with_each_error_and_a_report_saying_so(tmp_path, client, capsys):

@@ -167,10 +167,14 @@ def test_a_killed_run_loses_only_the_cases_in_flight(block, tmp_path, capsys):
     finished = len(list((out / "cases").glob("*.npz")))
     assert finished >= 1, proc.stderr.read().decode()
     assert not list((out / "cases").glob(".*"))  # no half-written case file left behind
+    assert f'"pid": {proc.pid}' in (out / ".sweep.lock").read_text()  # the killed run's lock, with its record
     from microslip.cli import main
 
     assert main(["sweep", str(block), "-o", str(out), "--workers", "1"]) == 0
     err = capsys.readouterr().err
+    assert f"microslip sweep: warning: the run that last wrote into {str(out)!r} (pid {proc.pid} on host " in err
+    assert "ended without releasing its lock (it was killed): lock taken over" in err
+    assert not (out / ".sweep.lock").exists()
     assert f"6 cases: {finished} finished by an earlier run, {6 - finished} to solve on 1 worker" in err
     assert f"[{6 - finished}/{6 - finished}] done, 0 running, 0 failed" in err
     assert len(list((out / "cases").glob("*.npz"))) == 6

@@ -23,7 +23,9 @@ def add_parser(sub) -> None:
                     "curve; xarray.open_zarr) and OUT/report.html with the plots. A failed case is recorded with "
                     "its error and the others go on. Exit status: 0 when every case is solved and complete, 1 when "
                     "a case failed or stopped early (the rest is written, each failed case's error printed), 2 for an "
-                    "invalid study or an unreachable scheduler. Needs the sweep extra: pip install microslip[sweep].")
+                    "invalid study, an unreachable scheduler or a results folder in use by another run (one run at "
+                    "a time per folder: OUT/.sweep.lock names it). Needs the sweep extra: pip install "
+                    "microslip[sweep].")
     p.add_argument("study", help="study file (TOML)")
     add_output_folder(p, "microslip-sweep", "-o")
     engine = p.add_mutually_exclusive_group()

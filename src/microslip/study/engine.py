@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ..common import _checks
 from ..common._optional import require
-from .folder import notice
+from .folder import FolderLock, notice
 from .result import SweepResult
 from .solve import solve_case
 from .spec import Case, Study, load_study
@@ -49,9 +49,10 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     out : str or Path, default "microslip-sweep"
         Results folder: ``cases/`` (one file per finished case),
         ``summary.csv``, ``summary.parquet``, ``curves.zarr`` and, with
-        ``report``, ``report.html`` and its figures. A case file that cannot
-        be read, or holds values not those of its key, is solved again, said
-        in a :class:`~microslip.study.folder.StudyFolderWarning`.
+        ``report``, ``report.html`` and its figures. One run at a time
+        (:class:`~microslip.study.folder.FolderLock`): a case file that
+        cannot be read, or holds values not those of its key, is solved again,
+        said in a :class:`~microslip.study.folder.StudyFolderWarning`.
     workers : int, optional
         Worker processes of the local cluster (default: one per core), each
         with one thread for BLAS and numba.
@@ -77,7 +78,11 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
         An invalid study (before any case is solved).
     ConnectionError
         ``scheduler`` does not answer within :data:`CONNECT_TIMEOUT` seconds.
+    FolderInUseError
+        Another run is writing into ``out`` (its process id, host and start
+        time are named); nothing is solved.
     """
+    from ..common.report import plural
     from .report import write_report
     from .store import summary_rows, write_curves, write_summary
 
@@ -101,29 +106,30 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     if out.exists() and not out.is_dir():
         raise ValueError(f"out: {str(out)!r} is a file; give a folder for the results")
     cases = study.cases()
+    require("dask.distributed", "a design study", "sweep")
     cfg = study.configuration(Case({}, ""))  # the base configuration's output DOFs
     names = [cfg.dof_names[d] for d in cfg.plot_dofs]
-    found = _finished(out, study, cases, len(names))
-    todo = [c for c in cases if found[c.key] is None or (retry_failed and found[c.key]["error"])]
-    require("dask.distributed", "a design study", "sweep")
     start = time.perf_counter()
     with _client(client, workers, scheduler) as running:
-        if progress:
-            threads = _threads(running)
-            print(f"{len(cases)} cases: {len(cases) - len(todo)} finished by an earlier run, {len(todo)} to solve on "
-                  f"{threads} worker{'s' if threads != 1 else ''}", file=sys.stderr, flush=True)
         out.mkdir(parents=True, exist_ok=True)
-        if todo:
-            for case, outcome in _solve(running, study, todo, progress):
-                found[case.key] = save_case(out, case, outcome)
-    outcomes = [found[c.key] for c in cases]
-    rows = summary_rows(study, cases, outcomes)
-    write_summary(out, rows)
-    write_curves(out, study, cases, outcomes, names)
-    result = SweepResult(study, cases, outcomes, rows, names, out, computed=len(todo),
-                         elapsed=time.perf_counter() - start)
-    if report:
-        write_report(result)
+        with FolderLock(out):
+            found = _finished(out, study, cases, len(names))
+            todo = [c for c in cases if found[c.key] is None or (retry_failed and found[c.key]["error"])]
+            if progress:
+                threads = _threads(running)
+                print(f"{plural(len(cases), 'case')}: {len(cases) - len(todo)} finished by an earlier run, "
+                      f"{len(todo)} to solve on {plural(threads, 'worker')}", file=sys.stderr, flush=True)
+            if todo:
+                for case, outcome in _solve(running, study, todo, progress):
+                    found[case.key] = save_case(out, case, outcome)
+            outcomes = [found[c.key] for c in cases]
+            rows = summary_rows(study, cases, outcomes)
+            write_summary(out, rows)
+            write_curves(out, study, cases, outcomes, names)
+            result = SweepResult(study, cases, outcomes, rows, names, out, computed=len(todo),
+                                 elapsed=time.perf_counter() - start)
+            if report:
+                write_report(result)
     return result
 
 
