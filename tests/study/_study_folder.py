@@ -3,7 +3,10 @@
 import csv
 import io
 import json
+import os
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -68,3 +71,16 @@ def rewrite_meta(path, change):
     buf = io.BytesIO()
     np.savez(buf, meta=np.array(json.dumps(meta)), **arrays)
     path.write_bytes(buf.getvalue())
+
+
+def dead_pid():
+    """The process id of a process that has ended."""
+    proc = subprocess.Popen([sys.executable, "-c", "pass"])
+    proc.wait()
+    return proc.pid
+
+
+def stale_lock(out, pid):
+    """The lock file a run killed while it held ``out`` leaves: its record."""
+    (out / ".sweep.lock").write_text(json.dumps({"pid": pid, "host": os.uname().nodename,
+                                                 "started": "2024-05-01T10:00:00+00:00"}))

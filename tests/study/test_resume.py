@@ -3,10 +3,11 @@
 import json
 import os
 import re
+import time
 
 import numpy as np
 import pytest
-from _study_folder import assert_same_results, copy, rewrite_meta, write_block
+from _study_folder import assert_same_results, copy, dead_pid, rewrite_meta, stale_lock, write_block
 
 from microslip.cli import main
 from microslip.study import load_study, sweep
@@ -49,6 +50,57 @@ def test_a_case_file_that_cannot_be_trusted_is_named_and_its_case_solved_again(f
     assert message.endswith(f"its case ({cases[1].label}) is solved again")
     assert result.computed == 1 and not result.failed
     assert_same_results(out, reference)
+
+
+def test_a_rerun_removes_what_a_killed_run_left_and_says_so(finished, tmp_path, client):
+    """What SIGKILL leaves while atomic writes are in flight, and the killed run's lock file with its record."""
+    study_file, reference = finished
+    out = copy(reference, tmp_path / "out")
+    key = load_study(study_file).cases()[0].key
+    planted = [out / "cases" / f".{key}.npz.a1b2c3d4.tmp", out / ".summary.csv.k2j3h4_2.tmp",
+               out / ".summary.parquet.zz9yy8xx.tmp", out / ".against_x_tip.png.q1w2e3r4.tmp",
+               out / ".report.html.abcdefgh.tmp"]
+    for p in planted:
+        p.write_bytes(b"half written")
+    (out / ".curves.u7i8o9p0.tmp" / "store.zarr" / "omega").mkdir(parents=True)  # a Zarr store half written
+    (out / ".curves.zarr.old.4242" / "omega").mkdir(parents=True)  # the old store moved aside, not yet removed
+    mine = [out / ".notes.txt.tmp", out / "cases" / "notes.npz.tmp", out / ".summary.csv.swp"]  # not the writer's
+    for p in mine:
+        p.write_text("the user's")
+    pid = dead_pid()
+    stale_lock(out, pid)
+    with pytest.warns(StudyFolderWarning) as caught:
+        result = sweep(study_file, client, out=out, report=False)
+    said = [str(w.message) for w in caught]
+    assert len(said) == 2, said
+    assert f"({pid=} on host {os.uname().nodename}, started 2024-05-01T10:00:00+00:00) ended without releasing its " \
+           "lock (it was killed): lock taken over".replace("pid=", "pid ") in said[0]
+    assert said[1].startswith(f"removed what an interrupted run left in {str(out)!r}: ")
+    for name in [f"cases/.{key}.npz.a1b2c3d4.tmp", ".curves.u7i8o9p0.tmp/", ".curves.zarr.old.4242/",
+                 ".summary.csv.k2j3h4_2.tmp", ".against_x_tip.png.q1w2e3r4.tmp"]:
+        assert name in said[1]
+    assert result.computed == 0
+    left = sorted(p.name for d in (out, out / "cases") for p in d.iterdir()
+                  if p.name.startswith(".") or p.name.endswith(".tmp"))
+    assert left == sorted(p.name for p in mine)  # the lock file is gone after the run, the user's files are kept
+    assert_same_results(out, reference)
+
+
+def test_leftovers_without_a_killed_runs_lock_are_removed_only_when_old(finished, tmp_path, client):
+    study_file, reference = finished
+    out = copy(reference, tmp_path / "out")
+    old, young = out / ".summary.csv.oldoldol.tmp", out / ".report.md.youngyou.tmp"
+    for p in (old, young):
+        p.write_text("x")
+    two_hours_ago = time.time() - 7200
+    os.utime(old, (two_hours_ago, two_hours_ago))
+    with pytest.warns(StudyFolderWarning) as caught:
+        sweep(study_file, client, out=out, report=False)
+    said = [str(w.message) for w in caught]
+    assert said == [f"removed what an interrupted run left in {str(out)!r}: .summary.csv.oldoldol.tmp",
+                    f"left alone in {str(out)!r}, written less than 1 h ago by a run not known to have ended: "
+                    ".report.md.youngyou.tmp"]
+    assert not old.exists() and young.exists()
 
 
 def test_a_second_run_on_a_folder_in_use_is_refused_naming_the_first(finished, tmp_path, client, capsys):

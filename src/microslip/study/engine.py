@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ..common import _checks
 from ..common._optional import require
-from .folder import FolderLock, notice
+from .folder import LEFTOVER_AGE, FolderLock, notice, remove_leftovers
 from .result import SweepResult
 from .solve import solve_case
 from .spec import Case, Study, load_study
@@ -51,8 +51,9 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
         ``summary.csv``, ``summary.parquet``, ``curves.zarr`` and, with
         ``report``, ``report.html`` and its figures. One run at a time
         (:class:`~microslip.study.folder.FolderLock`): a case file that
-        cannot be read, or holds values not those of its key, is solved again,
-        said in a :class:`~microslip.study.folder.StudyFolderWarning`.
+        cannot be read, or holds values not those of its key, is solved again
+        and what a killed run left is removed, each said in a
+        :class:`~microslip.study.folder.StudyFolderWarning`.
     workers : int, optional
         Worker processes of the local cluster (default: one per core), each
         with one thread for BLAS and numba.
@@ -112,7 +113,8 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     start = time.perf_counter()
     with _client(client, workers, scheduler) as running:
         out.mkdir(parents=True, exist_ok=True)
-        with FolderLock(out):
+        with FolderLock(out) as lock:
+            _clean(out, lock)
             found = _finished(out, study, cases, len(names))
             todo = [c for c in cases if found[c.key] is None or (retry_failed and found[c.key]["error"])]
             if progress:
@@ -131,6 +133,20 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
             if report:
                 write_report(result)
     return result
+
+
+def _clean(out: Path, lock: FolderLock) -> None:
+    """Remove what an interrupted run left in ``out`` (holding its lock), and say so."""
+    removed, kept = remove_leftovers(out, owner_gone=lock.previous is not None)
+    if removed:
+        notice(f"removed what an interrupted run left in {str(out)!r}: {_names(removed)}")
+    if kept:
+        notice(f"left alone in {str(out)!r}, written less than {LEFTOVER_AGE / 3600:g} h ago by a run not known to "
+               f"have ended: {_names(kept)}")
+
+
+def _names(names: list, most: int = 10) -> str:
+    return ", ".join(names[:most]) + (f" and {len(names) - most} more" if len(names) > most else "")
 
 
 def _finished(out: Path, study: Study, cases: list[Case], dofs: int) -> dict:

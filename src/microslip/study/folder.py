@@ -1,10 +1,11 @@
-"""A study's results folder shared by its runs: one run at a time.
+"""A study's results folder shared by its runs: one run at a time, and what an interrupted run left behind.
 
 ``OUT/.sweep.lock`` is held (``flock``) by the run writing into ``OUT`` and
 holds its process id, host and start time; a second run on the same folder is
 refused with them. The kernel releases the lock when its process ends, so a
 lock file found still holding a record when the lock is taken was left by a
-run that was killed: its record names it.
+run that was killed: its record names it, and what it was writing (temporary
+files of atomic writes, a Zarr store half written or moved aside) is removed.
 """
 
 from __future__ import annotations
@@ -12,16 +13,32 @@ from __future__ import annotations
 import datetime
 import json
 import os
+import re
+import shutil
 import socket
+import time
 import warnings
 from pathlib import Path
 
+from ..common._io import temporary_names
+
 #: the lock file in the results folder
 LOCK = ".sweep.lock"
+#: seconds after which a temporary file of the patterns below is a leftover even without a lock to prove whose
+#: it is (another program writing it would have touched it since)
+LEFTOVER_AGE = 3600.0
+
+#: what a run killed while writing leaves, by folder (relative to OUT): temporary files of atomic writes (a case
+#: file, the summary, the report and its figures), write_curves's temporary folder and the old store it moves aside
+LEFTOVERS = {
+    "cases": (temporary_names(r"[0-9a-f]{16}\.npz"),),
+    ".": (temporary_names(r"summary\.csv|summary\.parquet|report\.html|report\.md|[A-Za-z0-9_]+\.png"),
+          re.compile(r"\.curves\.[a-z0-9_]+\.tmp"), re.compile(r"\.curves\.zarr\.old\.\d+")),
+}
 
 
 class StudyFolderWarning(UserWarning):
-    """The results folder was not as a finished run leaves it: a case file not trusted, a lock taken over."""
+    """The results folder was not as a finished run leaves it: a case file not trusted, leftovers, a lock taken over."""
 
 
 class FolderInUseError(OSError):
@@ -127,3 +144,64 @@ def describe(record: dict | None) -> str:
         return "which has not written its process id yet" if record is None else "whose lock file cannot be read"
     return (f"pid {record.get('pid', '?')} on host {record.get('host', '?')}, started "
             f"{record.get('started', 'at an unknown time')}")
+
+
+def leftovers(out) -> list[Path]:
+    """Every entry of ``out`` that a run killed while writing may have left (:data:`LEFTOVERS`)."""
+    found = []
+    for sub, patterns in LEFTOVERS.items():
+        folder = Path(out) / sub
+        try:
+            names = sorted(os.listdir(folder))
+        except (FileNotFoundError, NotADirectoryError):
+            continue
+        found += [folder / n for n in names if any(p.fullmatch(n) for p in patterns)]
+    return found
+
+
+def remove_leftovers(out, *, owner_gone: bool) -> tuple[list[str], list[str]]:
+    """Remove what an interrupted run left in ``out``; the entries removed and those left alone, named from ``out``.
+
+    To be called holding the folder's lock (no other run writes into it).
+    An entry is removed when the run that held the lock before was killed
+    (``owner_gone``: the lock file still held its record, so everything of
+    these patterns is that run's or an earlier one's), else when nothing has
+    touched it for :data:`LEFTOVER_AGE` seconds. Folders are named with a
+    trailing ``/``.
+    """
+    removed, kept = [], []
+    now = time.time()
+    for path in leftovers(out):
+        folder = path.is_dir() and not path.is_symlink()
+        name = path.relative_to(out).as_posix() + ("/" if folder else "")
+        if not owner_gone and now - _newest(path) < LEFTOVER_AGE:
+            kept.append(name)
+            continue
+        try:
+            if folder:
+                shutil.rmtree(path)
+            else:
+                path.unlink()
+        except FileNotFoundError:
+            continue
+        except OSError:
+            kept.append(name)
+            continue
+        removed.append(name)
+    return removed, kept
+
+
+def _newest(path: Path) -> float:
+    """The latest modification time in ``path`` (a file, or a folder and everything in it)."""
+    try:
+        newest = path.lstat().st_mtime
+    except FileNotFoundError:
+        return 0.0
+    if path.is_dir() and not path.is_symlink():
+        for root, dirs, files in os.walk(path):
+            for name in dirs + files:
+                try:
+                    newest = max(newest, os.lstat(os.path.join(root, name)).st_mtime)
+                except FileNotFoundError:
+                    pass
+    return newest
