@@ -145,3 +145,53 @@ def test_a_study_where_every_case_fails_exits_1_with_each_error_and_a_report_say
     report = (out / "report.md").read_text()
     assert "**Every case failed**" in report and "Failed cases" in report
     assert (out / "report.html").is_file()
+
+
+def _timed_solve(study, case):
+    """A stand-in for solve_case: the 25 N case at once, the others in 0.4 s."""
+    seconds = 0.0 if case.values["contact.sphere.preload"] == "25N" else 0.4
+    time.sleep(seconds)
+    return {"row": {"complete": True}, "curves": {}, "error": "", "warnings": "", "time": seconds}
+
+
+def test_progress_gives_no_time_left_from_one_fast_case_and_counts_the_cases_in_flight(tmp_path, client, capsys,
+                                                                                      monkeypatch):
+    from microslip.study import engine
+
+    monkeypatch.setattr(engine, "solve_case", _timed_solve)
+    monkeypatch.setattr(engine, "REFRESH", 0.25)
+    study_file = write_block(tmp_path, 'base = "inclined_block.toml"\n[vary]\n'
+                                       '"contact.sphere.preload" = ["25N", "30N", "35N", "40N", "45N", "50N"]\n')
+    sweep(study_file, client, out=tmp_path / "out", report=False, progress=True)
+    lines = capsys.readouterr().err.splitlines()
+    done = [line for line in lines if line.startswith("[")]
+    # the first case took no time: the others are not assumed to (the old estimate said "about 0 s left")
+    assert done[0].startswith("[1/6] done, 2 running, 0 failed, time left estimated after 3 cases (")
+    assert any(re.match(r"\[3/6\] done, 2 running, 0 failed, about \d+ s left \(estimate after 3 cases\) \(", line)
+               for line in done)
+    # the line is repeated while no case finishes: cases done, in flight, and the time left
+    assert any(re.fullmatch(r"\[\d/6\] done, \d running, 0 failed, (time left estimated after 3 cases|about \d+ s "
+                            r"left \(estimate after \d cases\))", line) for line in done)
+    assert done[-1].startswith("[6/6] done, 0 running, 0 failed, none left (")
+
+
+def test_the_time_left_rests_on_the_cases_finished_and_those_in_flight():
+    from microslip.common._progress import TimeLeft
+
+    now = [0.0]
+    clock = TimeLeft(20, 2, clock=lambda: now[0])
+    # a fast first case, then cases of 3 s: nothing is claimed from the first
+    now[0] = 0.1
+    clock.finished(0.1)
+    assert clock.seconds() is None and clock.text() == "time left estimated after 3 cases"
+    for t in (3.0, 3.1, 6.0):  # cases of 3 s end on each worker, the next ones start
+        now[0] = t
+        clock.finished(3.0)
+    # 14 cases wait, one in flight since 3.1 s and one just started: (14 * 3 + 0.1 + 3) / 2 s
+    assert clock.seconds() == pytest.approx((14 * 3.0 + 0.1 + 3.0) / 2)
+    assert clock.text() == "about 23 s left (estimate after 4 cases)"
+    # a case in flight that runs long raises the estimate before it ends
+    before = clock.seconds()
+    now[0] = 40.0
+    assert clock.seconds() > before
+    assert TimeLeft(1, 4).text() == "time left estimated after 1 case"

@@ -17,6 +17,7 @@ from pathlib import Path
 
 from ..common import _checks
 from ..common._optional import require
+from ..common._progress import TimeLeft
 from .folder import LEFTOVER_AGE, FolderLock, notice, remove_leftovers
 from .result import SweepResult
 from .solve import solve_case
@@ -60,7 +61,10 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     scheduler : str, optional
         Address of a running Dask scheduler, ``"tcp://HOST:PORT"``.
     progress : bool, default False
-        Report cases done, running and failed, and the time left, on standard error.
+        Report cases done, running and failed, and the time left, on standard
+        error: estimated once 3 cases have finished, from their durations and
+        the time the cases in flight have run (:class:`~microslip.common._progress.TimeLeft`),
+        and repeated every :data:`REFRESH` seconds without a case finishing.
     retry_failed : bool, default False
         Solve again the cases recorded as failed by an earlier run (finished
         cases are never solved again).
@@ -159,6 +163,13 @@ def _finished(out: Path, study: Study, cases: list[Case], dofs: int) -> dict:
     return found
 
 
+#: seconds without a case finishing after which the progress line is repeated (its estimate counts the cases in
+#: flight, so a case running long shows)
+REFRESH = 60.0
+#: seconds between looks for finished cases
+POLL = 0.1
+
+
 def _solve(client, study: Study, todo: list[Case], progress: bool):
     """``(case, outcome)`` as each case finishes; a worker lost while solving one is that case's error."""
     from dask.distributed import as_completed
@@ -166,41 +177,45 @@ def _solve(client, study: Study, todo: list[Case], progress: bool):
     shared = client.scatter(study, broadcast=True, hash=False)  # sent once to every worker
     futures = {client.submit(solve_case, shared, case, key=f"microslip-case-{case.key}-{time.time_ns()}",
                              pure=False): case for case in todo}
-    threads = _threads(client)
-    start, done, failed = time.perf_counter(), 0, 0
+    clock = TimeLeft(len(todo), _threads(client))
+    failed = 0
+    pending = as_completed(futures)
+    said = time.perf_counter()
     try:
-        for future in as_completed(futures):
-            case = futures[future]
-            try:
-                outcome = future.result()
-            except Exception as exc:  # noqa: BLE001 - a lost worker: the case failed, the others go on
-                outcome = {"row": {}, "curves": {}, "error": f"{type(exc).__name__}: {exc}", "warnings": "",
-                           "time": 0.0}
-            done += 1
-            failed += bool(outcome["error"])
-            if progress:
-                _report_progress(case, outcome, done, failed, len(todo), threads, time.perf_counter() - start)
-            yield case, outcome
+        while pending.count():
+            batch = pending.next_batch(block=False)
+            if not batch:
+                time.sleep(POLL)
+                if progress and time.perf_counter() - said >= REFRESH:
+                    _report_progress(clock, failed)
+                    said = time.perf_counter()
+                continue
+            for future in batch:
+                case = futures[future]
+                try:
+                    outcome = future.result()
+                except Exception as exc:  # noqa: BLE001 - a lost worker: the case failed, the others go on
+                    outcome = {"row": {}, "curves": {}, "error": f"{type(exc).__name__}: {exc}", "warnings": "",
+                               "time": 0.0}
+                clock.finished(outcome["time"])
+                failed += bool(outcome["error"])
+                if progress:
+                    _report_progress(clock, failed, case, outcome)
+                    said = time.perf_counter()
+                yield case, outcome
     finally:
         for future in futures:
             future.cancel()
 
 
-def _report_progress(case, outcome, done, failed, total, threads, elapsed) -> None:
-    left = total - done
-    running = min(left, threads)
-    eta = elapsed / done * left
-    state = "failed: " + outcome["error"] if outcome["error"] else f"{outcome['time']:.1f} s"
-    print(f"[{done}/{total}] done, {running} running, {failed} failed, about {_duration(eta)} left "
-          f"({case.label}: {state})", file=sys.stderr, flush=True)
-
-
-def _duration(seconds: float) -> str:
-    if seconds < 90:
-        return f"{seconds:.0f} s"
-    if seconds < 5400:
-        return f"{seconds / 60:.0f} min"
-    return f"{seconds / 3600:.1f} h"
+def _report_progress(clock: TimeLeft, failed: int, case=None, outcome=None) -> None:
+    """``[done/total] done, running, failed, time left``, and the case just finished with its time or error."""
+    line = (f"[{clock.finished_count}/{clock.total}] done, {clock.running} running, {failed} failed, "
+            f"{clock.text()}")
+    if case is not None:
+        state = "failed: " + outcome["error"] if outcome["error"] else f"{outcome['time']:.1f} s"
+        line += f" ({case.label}: {state})"
+    print(line, file=sys.stderr, flush=True)
 
 
 def _threads(client) -> int:
