@@ -84,3 +84,13 @@ def stale_lock(out, pid):
     """The lock file a run killed while it held ``out`` leaves: its record."""
     (out / ".sweep.lock").write_text(json.dumps({"pid": pid, "host": os.uname().nodename,
                                                  "started": "2024-05-01T10:00:00+00:00"}))
+
+
+def cli_command(study, out, *options):
+    """``microslip sweep`` run in a new Python process (the tests' sys.path)."""
+    return [sys.executable, "-c", "import sys; from microslip.cli import main; sys.exit(main())", "sweep", str(study),
+            "-o", str(out), *options]
+
+
+def cli_env():
+    return dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
