@@ -1,6 +1,5 @@
 """Configurations the study tests vary: the inclined block, and a blade pair with an under-platform damper."""
 
-import shutil
 import sys
 
 import numpy as np
@@ -10,16 +9,30 @@ from _paths import REPO
 
 sys.path.insert(0, str(REPO / "tests" / "frequency"))
 sys.path.insert(0, str(REPO / "tests" / "cli"))
+sys.path.insert(0, str(REPO / "tests" / "study"))
+
+from _study_folder import solved, write_block  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def client():
+    """An in-process cluster of two single-threaded workers."""
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0") as c, \
+            distributed.Client(c) as cl:
+        yield cl
+
+
+@pytest.fixture(scope="module")
+def finished(tmp_path_factory, client):
+    """``(study file, results folder)`` of three cases solved once; a test damages a copy of the folder."""
+    return solved(tmp_path_factory.mktemp("finished"), client)
 
 
 @pytest.fixture
 def block(tmp_path):
     """examples/inclined_block_study.toml (the smallest study) beside its base configuration and contact model."""
-    for name in ("inclined_block.toml", "sphere_4_elements.json"):
-        shutil.copy(REPO / "examples" / name, tmp_path / name)
-    study = tmp_path / "study.toml"
-    shutil.copy(REPO / "examples" / "inclined_block_study.toml", study)
-    return study
+    return write_block(tmp_path)
 
 
 @pytest.fixture

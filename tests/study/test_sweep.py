@@ -23,14 +23,6 @@ title = "Damper load and excitation level"
 '''
 
 
-@pytest.fixture(scope="module")
-def client():
-    """An in-process cluster of two single-threaded workers."""
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0") as c, \
-            distributed.Client(c) as cl:
-        yield cl
-
-
 def _one_by_one(study, case, tmp_path):
     """The case solved with frequency_response from a configuration file written with its values."""
     from threadpoolctl import threadpool_limits
@@ -176,10 +168,14 @@ def test_a_killed_run_loses_only_the_cases_in_flight(block, tmp_path, capsys):
     finished = len(list((out / "cases").glob("*.npz")))
     assert finished >= 1, proc.stderr.read().decode()
     assert not list((out / "cases").glob(".*"))  # no half-written case file left behind
+    assert f'"pid": {proc.pid}' in (out / ".sweep.lock").read_text()  # the killed run's lock, with its record
     from microslip.cli import main
 
     assert main(["sweep", str(block), "-o", str(out), "--workers", "1"]) == 0
     err = capsys.readouterr().err
+    assert f"microslip sweep: warning: the run that last wrote into {str(out)!r} (pid {proc.pid} on host " in err
+    assert "ended without releasing its lock (it was killed): lock taken over" in err
+    assert not (out / ".sweep.lock").exists()
     assert f"6 cases: {finished} finished by an earlier run, {6 - finished} to solve on 1 worker" in err
     assert f"[{6 - finished}/{6 - finished}] done, 0 running, 0 failed" in err
     assert len(list((out / "cases").glob("*.npz"))) == 6

@@ -17,13 +17,17 @@ def add_parser(sub) -> None:
                     "the base configuration before any case is solved. Cases run on Dask: a local cluster of "
                     "--workers processes (one thread each), or a running cluster with --scheduler (e.g. started on "
                     "SLURM with dask-jobqueue; see the README). Writes OUT/cases/ (one file per finished case: a "
-                    "rerun solves only the cases not finished yet), OUT/summary.csv and summary.parquet (one row "
+                    "rerun solves only the cases not finished yet, and again any whose file is damaged or not "
+                    "that case's, naming it; what a killed run left half written is removed, saying so), "
+                    "OUT/summary.csv and summary.parquet (one row "
                     "per case: its values, each output DOF's peak amplitude and frequency, the contacts' "
                     "dissipation at the peak and static state, complete, time, error), OUT/curves.zarr (every "
                     "curve; xarray.open_zarr) and OUT/report.html with the plots. A failed case is recorded with "
                     "its error and the others go on. Exit status: 0 when every case is solved and complete, 1 when "
-                    "a case failed or stopped early (the rest is written), 2 for an invalid study or an "
-                    "unreachable scheduler. Needs the sweep extra: pip install microslip[sweep].")
+                    "a case failed or stopped early (the rest is written, each failed case's error printed), 2 for an "
+                    "invalid study, an unreachable scheduler or a results folder in use by another run (one run at "
+                    "a time per folder: OUT/.sweep.lock names it). Needs the sweep extra: pip install "
+                    "microslip[sweep].")
     p.add_argument("study", help="study file (TOML)")
     add_output_folder(p, "microslip-sweep", "-o")
     engine = p.add_mutually_exclusive_group()
@@ -40,6 +44,7 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     import sys
 
+    from ..common.report import plural
     from ..study import sweep
     from ..study.spec import load_study
 
@@ -47,9 +52,13 @@ def run(args) -> int:
     result = sweep(study, out=args.out, workers=args.workers, scheduler=args.scheduler, progress=not args.quiet,
                    retry_failed=args.retry_failed)
     incomplete = sum(1 for r in result.rows if not r.get("complete") and not r.get("error"))
-    print(f"{len(result.cases)} cases ({result.computed} solved now, {len(result.failed)} failed, {incomplete} "
+    failed = result.failed
+    print(f"{plural(len(result.cases), 'case')} ({result.computed} solved now, {len(failed)} failed, {incomplete} "
           f"incomplete) in {result.elapsed:.1f} s: wrote {result.out / 'summary.csv'}, "
           f"{result.out / 'curves.zarr'} and {result.out / 'report.html'}")
-    for case, error in result.failed[:10]:
+    for case, error in failed:
         print(f"microslip sweep: case {case.key} ({case.label}) failed: {error}", file=sys.stderr)
-    return 1 if result.failed or incomplete else 0
+    if failed and len(failed) == len(result.cases):
+        print(f"microslip sweep: every case failed ({len(failed)} of {len(result.cases)}); the summary and the "
+              "report list their errors", file=sys.stderr)
+    return 1 if failed or incomplete else 0

@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import os
+import re
 import stat
 import tempfile
 from pathlib import Path
+
+#: the end of the name of :func:`atomic_write`'s temporary files, ``.NAME.RANDOM.tmp`` beside ``NAME``
+TEMPORARY_SUFFIX = ".tmp"
 
 
 def atomic_write(path, data: str | bytes) -> Path:
@@ -21,7 +25,7 @@ def atomic_write(path, data: str | bytes) -> Path:
         raise IsADirectoryError(f"{str(path)!r} is a folder: give the name of a file to write")
     path.parent.mkdir(parents=True, exist_ok=True)
     mode = "wb" if isinstance(data, bytes) else "w"
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=TEMPORARY_SUFFIX, dir=path.parent)
     try:
         os.chmod(tmp, _file_mode(path))  # mkstemp makes it 0600
         with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8"})) as fh:
@@ -34,6 +38,15 @@ def atomic_write(path, data: str | bytes) -> Path:
             pass
         raise
     return path
+
+
+def temporary_names(names: str) -> re.Pattern:
+    """The temporary files :func:`atomic_write` makes for the files whose names match the regular expression ``names``.
+
+    ``.NAME.RANDOM.tmp`` (``RANDOM``: :mod:`tempfile`'s letters, digits and
+    underscores): what a write interrupted by a kill leaves beside ``NAME``.
+    """
+    return re.compile(rf"\.(?:{names})\.[a-z0-9_]+{re.escape(TEMPORARY_SUFFIX)}")
 
 
 def _file_mode(path: Path) -> int:

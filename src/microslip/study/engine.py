@@ -17,10 +17,12 @@ from pathlib import Path
 
 from ..common import _checks
 from ..common._optional import require
+from ..common._progress import TimeLeft
+from .folder import LEFTOVER_AGE, FolderLock, notice, remove_leftovers
 from .result import SweepResult
 from .solve import solve_case
 from .spec import Case, Study, load_study
-from .store import load_case, save_case
+from .store import case_file, read_case, save_case
 
 #: environment of each local worker process: one thread for BLAS and numba (one process per core)
 WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
@@ -48,14 +50,21 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     out : str or Path, default "microslip-sweep"
         Results folder: ``cases/`` (one file per finished case),
         ``summary.csv``, ``summary.parquet``, ``curves.zarr`` and, with
-        ``report``, ``report.html`` and its figures.
+        ``report``, ``report.html`` and its figures. One run at a time
+        (:class:`~microslip.study.folder.FolderLock`): a case file that
+        cannot be read, or holds values not those of its key, is solved again
+        and what a killed run left is removed, each said in a
+        :class:`~microslip.study.folder.StudyFolderWarning`.
     workers : int, optional
         Worker processes of the local cluster (default: one per core), each
         with one thread for BLAS and numba.
     scheduler : str, optional
         Address of a running Dask scheduler, ``"tcp://HOST:PORT"``.
     progress : bool, default False
-        Report cases done, running and failed, and the time left, on standard error.
+        Report cases done, running and failed, and the time left, on standard
+        error: estimated once 3 cases have finished, from their durations and
+        the time the cases in flight have run (:class:`~microslip.common._progress.TimeLeft`),
+        and repeated every :data:`REFRESH` seconds without a case finishing.
     retry_failed : bool, default False
         Solve again the cases recorded as failed by an earlier run (finished
         cases are never solved again).
@@ -74,7 +83,11 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
         An invalid study (before any case is solved).
     ConnectionError
         ``scheduler`` does not answer within :data:`CONNECT_TIMEOUT` seconds.
+    FolderInUseError
+        Another run is writing into ``out`` (its process id, host and start
+        time are named); nothing is solved.
     """
+    from ..common.report import plural
     from .report import write_report
     from .store import summary_rows, write_curves, write_summary
 
@@ -98,30 +111,63 @@ def sweep(study, client=None, *, out="microslip-sweep", workers: int | None = No
     if out.exists() and not out.is_dir():
         raise ValueError(f"out: {str(out)!r} is a file; give a folder for the results")
     cases = study.cases()
-    found = {c.key: load_case(out, c) for c in cases}
-    todo = [c for c in cases if found[c.key] is None or (retry_failed and found[c.key]["error"])]
     require("dask.distributed", "a design study", "sweep")
-    start = time.perf_counter()
-    with _client(client, workers, scheduler) as running:
-        if progress:
-            threads = _threads(running)
-            print(f"{len(cases)} cases: {len(cases) - len(todo)} finished by an earlier run, {len(todo)} to solve on "
-                  f"{threads} worker{'s' if threads != 1 else ''}", file=sys.stderr, flush=True)
-        out.mkdir(parents=True, exist_ok=True)
-        if todo:
-            for case, outcome in _solve(running, study, todo, progress):
-                found[case.key] = save_case(out, case, outcome)
-    outcomes = [found[c.key] for c in cases]
-    rows = summary_rows(study, cases, outcomes)
     cfg = study.configuration(Case({}, ""))  # the base configuration's output DOFs
     names = [cfg.dof_names[d] for d in cfg.plot_dofs]
-    write_summary(out, rows)
-    write_curves(out, study, cases, outcomes, names)
-    result = SweepResult(study, cases, outcomes, rows, names, out, computed=len(todo),
-                         elapsed=time.perf_counter() - start)
-    if report:
-        write_report(result)
+    start = time.perf_counter()
+    with _client(client, workers, scheduler) as running:
+        out.mkdir(parents=True, exist_ok=True)
+        with FolderLock(out) as lock:
+            _clean(out, lock)
+            found = _finished(out, study, cases, len(names))
+            todo = [c for c in cases if found[c.key] is None or (retry_failed and found[c.key]["error"])]
+            if progress:
+                threads = _threads(running)
+                print(f"{plural(len(cases), 'case')}: {len(cases) - len(todo)} finished by an earlier run, "
+                      f"{len(todo)} to solve on {plural(threads, 'worker')}", file=sys.stderr, flush=True)
+            if todo:
+                for case, outcome in _solve(running, study, todo, progress):
+                    found[case.key] = save_case(out, case, outcome)
+            outcomes = [found[c.key] for c in cases]
+            rows = summary_rows(study, cases, outcomes)
+            write_summary(out, rows)
+            write_curves(out, study, cases, outcomes, names)
+            result = SweepResult(study, cases, outcomes, rows, names, out, computed=len(todo),
+                                 elapsed=time.perf_counter() - start)
+            if report:
+                write_report(result)
     return result
+
+
+def _clean(out: Path, lock: FolderLock) -> None:
+    """Remove what an interrupted run left in ``out`` (holding its lock), and say so."""
+    removed, kept = remove_leftovers(out, owner_gone=lock.previous is not None)
+    if removed:
+        notice(f"removed what an interrupted run left in {str(out)!r}: {_names(removed)}")
+    if kept:
+        notice(f"left alone in {str(out)!r}, written less than {LEFTOVER_AGE / 3600:g} h ago by a run not known to "
+               f"have ended: {_names(kept)}")
+
+
+def _names(names: list, most: int = 10) -> str:
+    return ", ".join(names[:most]) + (f" and {len(names) - most} more" if len(names) > most else "")
+
+
+def _finished(out: Path, study: Study, cases: list[Case], dofs: int) -> dict:
+    """Each case's stored outcome by key (None: to solve); a case file that cannot be trusted is named, and why."""
+    found = {}
+    for case in cases:
+        found[case.key], problem = read_case(out, case, study.solve, dofs)
+        if problem:
+            notice(f"{case_file(out, case)} {problem}: its case ({case.label}) is solved again")
+    return found
+
+
+#: seconds without a case finishing after which the progress line is repeated (its estimate counts the cases in
+#: flight, so a case running long shows)
+REFRESH = 60.0
+#: seconds between looks for finished cases
+POLL = 0.1
 
 
 def _solve(client, study: Study, todo: list[Case], progress: bool):
@@ -131,41 +177,45 @@ def _solve(client, study: Study, todo: list[Case], progress: bool):
     shared = client.scatter(study, broadcast=True, hash=False)  # sent once to every worker
     futures = {client.submit(solve_case, shared, case, key=f"microslip-case-{case.key}-{time.time_ns()}",
                              pure=False): case for case in todo}
-    threads = _threads(client)
-    start, done, failed = time.perf_counter(), 0, 0
+    clock = TimeLeft(len(todo), _threads(client))
+    failed = 0
+    pending = as_completed(futures)
+    said = time.perf_counter()
     try:
-        for future in as_completed(futures):
-            case = futures[future]
-            try:
-                outcome = future.result()
-            except Exception as exc:  # noqa: BLE001 - a lost worker: the case failed, the others go on
-                outcome = {"row": {}, "curves": {}, "error": f"{type(exc).__name__}: {exc}", "warnings": "",
-                           "time": 0.0}
-            done += 1
-            failed += bool(outcome["error"])
-            if progress:
-                _report_progress(case, outcome, done, failed, len(todo), threads, time.perf_counter() - start)
-            yield case, outcome
+        while pending.count():
+            batch = pending.next_batch(block=False)
+            if not batch:
+                time.sleep(POLL)
+                if progress and time.perf_counter() - said >= REFRESH:
+                    _report_progress(clock, failed)
+                    said = time.perf_counter()
+                continue
+            for future in batch:
+                case = futures[future]
+                try:
+                    outcome = future.result()
+                except Exception as exc:  # noqa: BLE001 - a lost worker: the case failed, the others go on
+                    outcome = {"row": {}, "curves": {}, "error": f"{type(exc).__name__}: {exc}", "warnings": "",
+                               "time": 0.0}
+                clock.finished(outcome["time"])
+                failed += bool(outcome["error"])
+                if progress:
+                    _report_progress(clock, failed, case, outcome)
+                    said = time.perf_counter()
+                yield case, outcome
     finally:
         for future in futures:
             future.cancel()
 
 
-def _report_progress(case, outcome, done, failed, total, threads, elapsed) -> None:
-    left = total - done
-    running = min(left, threads)
-    eta = elapsed / done * left
-    state = "failed: " + outcome["error"] if outcome["error"] else f"{outcome['time']:.1f} s"
-    print(f"[{done}/{total}] done, {running} running, {failed} failed, about {_duration(eta)} left "
-          f"({case.label}: {state})", file=sys.stderr, flush=True)
-
-
-def _duration(seconds: float) -> str:
-    if seconds < 90:
-        return f"{seconds:.0f} s"
-    if seconds < 5400:
-        return f"{seconds / 60:.0f} min"
-    return f"{seconds / 3600:.1f} h"
+def _report_progress(clock: TimeLeft, failed: int, case=None, outcome=None) -> None:
+    """``[done/total] done, running, failed, time left``, and the case just finished with its time or error."""
+    line = (f"[{clock.finished_count}/{clock.total}] done, {clock.running} running, {failed} failed, "
+            f"{clock.text()}")
+    if case is not None:
+        state = "failed: " + outcome["error"] if outcome["error"] else f"{outcome['time']:.1f} s"
+        line += f" ({case.label}: {state})"
+    print(line, file=sys.stderr, flush=True)
 
 
 def _threads(client) -> int:

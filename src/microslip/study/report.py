@@ -128,6 +128,12 @@ def write_report(result) -> None:
                   f"{result.computed} solved in this run ({result.elapsed:.1f} s). Every case's values and results: "
                   f"`summary.csv` (and `summary.parquet`); every curve: `curves.zarr` "
                   f"(`xarray.open_zarr`).")
+    if len(failed) == len(result.cases):
+        report.text(f"**Every case failed**: there is no result to plot. Each case's error is in the table below "
+                    f"and in the column `error` of `summary.csv`.")
+        report.table(["case", "values", "error"], [[c.key, c.label, e] for c, e in failed], caption="Failed cases")
+        report.write(out)
+        return
     for parameter in study.parameters:
         for dof in result.dof_names[:3] if study.solve == "frf" else result.dof_names[:1]:
             fig, ax = plt.subplots(figsize=(6.5, 4.2))

@@ -3,7 +3,9 @@
 ``OUT/cases/<key>.npz`` holds one case's curves and, as JSON, its values,
 summary row, error and time. It is written atomically when the case ends, so a
 killed run loses only the cases in flight, and a rerun finds the finished ones
-by their key (a hash of the base configuration and the case's values).
+by their key (a hash of the base configuration and the case's values); a file
+that cannot be read, or does not hold its key's case, is not trusted
+(:func:`read_case` says why) and its case is solved again.
 ``OUT/summary.csv``, ``OUT/summary.parquet`` and ``OUT/curves.zarr`` are
 rebuilt from the case files at the end of every run, each written whole to a
 temporary name and renamed.
@@ -16,6 +18,7 @@ import json
 import os
 import shutil
 import tempfile
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -50,17 +53,112 @@ def save_case(out: Path, case: Case, outcome: dict) -> dict:
 
 
 def load_case(out: Path, case: Case) -> dict | None:
-    """A finished case's outcome, or None when it has not finished (or its file cannot be read)."""
+    """A finished case's outcome, or None when it has not finished (or its file is not trusted: :func:`read_case`)."""
+    return read_case(out, case)[0]
+
+
+def read_case(out: Path, case: Case, solve: str | None = None, dofs: int | None = None) -> tuple[dict | None, str]:
+    """A case's stored outcome, and why its file cannot be trusted when it cannot.
+
+    Parameters
+    ----------
+    out : Path
+        The results folder.
+    case : Case
+        The case (its key names the file).
+    solve : {"frf", "modes"}, optional
+        The study's solve: a solved case must then hold its curves
+        (:data:`~microslip.study.solve.CURVES`).
+    dofs : int, optional
+        The output DOFs: the columns of its amplitude curve.
+
+    Returns
+    -------
+    record : dict or None
+        What :func:`save_case` wrote; None when there is no file or it cannot
+        be trusted.
+    problem : str
+        Empty, or what is wrong with the file (truncated, emptied, damaged,
+        metadata missing or of the wrong type, values not those of its key):
+        its case is to be solved again.
+    """
     path = case_file(out, case)
+    if not path.exists() and not path.is_symlink():
+        return None, ""
     if not path.is_file():
-        return None
+        return None, "is not a file"
+    if path.stat().st_size == 0:
+        return None, "is empty"
     try:
-        with np.load(path, allow_pickle=False) as f:
-            meta = json.loads(str(f["meta"]))
-            meta["curves"] = {k[6:]: np.array(f[k]) for k in f.files if k.startswith("curve_")}
-    except (OSError, ValueError, KeyError):
-        return None
-    return meta if meta.get("key") == case.key else None
+        with open(path, "rb") as fh:
+            if fh.read(4) != b"PK\x03\x04":
+                return None, "is not a NumPy .npz archive"
+            fh.seek(0)
+            with np.load(fh, allow_pickle=False) as f:
+                meta = f["meta"]
+                curves = {k[6:]: np.array(f[k]) for k in f.files if k.startswith("curve_")}
+    except zipfile.BadZipFile as exc:
+        return None, f"is damaged or truncated ({exc})"
+    except Exception as exc:  # noqa: BLE001 - whatever stops the file being read, the case is solved again
+        return None, f"cannot be read ({type(exc).__name__}: {exc})"
+    if meta.dtype.kind != "U" or meta.ndim != 0:
+        return None, f"holds no metadata text (its 'meta' is an array of {meta.dtype} and shape {meta.shape})"
+    try:
+        meta = json.loads(str(meta))
+    except ValueError as exc:
+        return None, f"holds metadata that is not JSON ({exc})"
+    problem = _meta_problem(meta, case) or _curves_problem(curves, meta, solve, dofs)
+    if problem:
+        return None, problem
+    meta["curves"] = curves
+    return meta, ""
+
+
+#: the metadata of a case file: each key and the JSON types its value may have
+_META = {"key": (str,), "values": (dict,), "mistuning_sample": (int, type(None)), "row": (dict,), "error": (str,),
+         "warnings": (str,), "time": (int, float)}
+
+
+def _meta_problem(meta, case: Case) -> str:
+    """What makes a case file's metadata unfit for ``case``, or ''."""
+    if not isinstance(meta, dict):
+        return f"holds metadata that is a JSON {type(meta).__name__}, not an object"
+    for name, types in _META.items():
+        if name not in meta:
+            return f"has metadata without {name!r}"
+        if not isinstance(meta[name], types) or (isinstance(meta[name], bool) and bool not in types):
+            return f"has metadata whose {name!r} is {meta[name]!r}"
+    if meta["key"] != case.key:
+        return f"holds case {meta['key']!r}, not {case.key!r}"
+    values = json.loads(json.dumps(case.values, default=str))
+    if meta["values"] != values or meta["mistuning_sample"] != case.mistuning_sample:
+        def show(v, sample):
+            return json.dumps(v) + ("" if sample is None else f", mistuned disk {sample}")
+
+        return (f"holds the values {show(meta['values'], meta['mistuning_sample'])}, not those of its key "
+                f"{show(values, case.mistuning_sample)}: not trusted")
+    bad = next((k for k, v in meta["row"].items() if not isinstance(v, (int, float, type(None)))), None)
+    if bad is not None:
+        return f"has a summary value {bad!r} that is not a number: {meta['row'][bad]!r}"
+    if not meta["error"] and not isinstance(meta["row"].get("complete"), bool):
+        return "has a solved case's summary without 'complete'"
+    return ""
+
+
+def _curves_problem(curves: dict, meta: dict, solve: str | None, dofs: int | None) -> str:
+    """What makes a solved case's curves unfit for a study solving ``solve`` with ``dofs`` output DOFs, or ''."""
+    if meta["error"] or solve is None:
+        return ""
+    specs = CURVES[solve]
+    if set(curves) != set(specs):
+        return f"holds the curves {sorted(curves)}, not {sorted(specs)}"
+    length = curves[next(iter(specs))].shape[:1]
+    for name, (dims, _, _) in specs.items():
+        c = curves[name]
+        shape = length + (() if not dims else (dofs,) if dofs is not None else c.shape[1:2])
+        if c.dtype.kind not in "biuf" or c.shape != shape:
+            return f"holds a curve {name!r} of {c.dtype} and shape {c.shape}, not numbers of shape {shape}"
+    return ""
 
 
 def parameter_value(value):
