@@ -8,9 +8,8 @@ from threadpoolctl import threadpool_info, threadpool_limits
 from microslip import MicroslipModel
 from microslip.frequency import Structure, frequency_response, nonlinear_modes
 
+# forced responses and nonlinear modes follow their curves through the response module's continuation
 response_module = importlib.import_module("microslip.frequency.analyses.response")
-# the function shadows the module's name
-nonlinear_modes_module = importlib.import_module("microslip.frequency.analyses.nonlinear_modes")
 
 
 def _blas_threads() -> list[int]:
@@ -36,7 +35,6 @@ def test_forced_responses_and_modes_of_small_structures_run_with_one_blas_thread
         monkeypatch.setattr(module, "continuation", continuation)
 
     recording(response_module)
-    recording(nonlinear_modes_module)
     with threadpool_limits(limits=2, user_api="blas"):  # as on a 2-core machine by default
         before = _blas_threads()
         assert max(before) == 2
