@@ -727,6 +727,11 @@ CASES += [
     case("FrequencyResponse.sector_coefficients", lambda: disk_point().sector_coefficients, dof=1, sector=2),
     case("CyclicStructure", lambda: microslip.frequency.CyclicStructure, M=np.eye(3) * 0.1, C=None,
          K=[[2e6, -1e6, 0.0], [-1e6, 2e6, -1e6], [0.0, -1e6, 1e6]], sectors=8, left=[0], right=[2]),
+    # in the global Cartesian frame: two nodes (x, y) and one between them, the right node the left one turned by 45 deg
+    case("CyclicStructure [cartesian]", lambda: microslip.frequency.CyclicStructure, M=np.eye(6) * 0.1, C=None,
+         K=np.kron([[2e6, -1e6, 0.0], [-1e6, 2e6, -1e6], [0.0, -1e6, 1e6]], np.eye(2)), sectors=8, left=[[0, 1]],
+         right=[[4, 5]], frame="cartesian", axis=[0.0, 0.0, 1.0], point=[0.0, 0.0],
+         coordinates=[[[0.1, 0.0]], [[0.1 * np.cos(np.pi / 4), 0.1 * np.sin(np.pi / 4)]]], nodes=[[2, 3]]),
     case("CyclicStructure.add_contact", lambda: disk().add_contact, model=MODEL, tangential=1, approach=1e-6),
     case("CyclicStructure.next", lambda: disk().next, dof=1),
     case("CyclicStructure.phase", lambda: disk().phase, harmonic=1, engine_order=1),

@@ -245,3 +245,63 @@ def test_an_interrupted_design_writes_the_loads_finished_and_exits_130(tmp_path,
     assert err.strip().splitlines()[-1].startswith("microslip design: interrupted: load 300 N: interrupted at omega")
     assert "Traceback" not in err
     assert "**Interrupted**" in (out / "report.md").read_text()
+
+
+# -- a sector in the global Cartesian frame (issue 25, item 2) --------------------------------------------------
+RIGHT_NODE = f"[{float(0.1 * np.cos(np.pi / 6))!r}, 0.05]"  # the left node (0.1, 0) turned by 2 pi / 12
+
+
+def cartesian(config, coordinates=f"[[[0.1, 0.0]], [{RIGHT_NODE}]]", frame='"cartesian"'):
+    """Make ``config`` a sector of 12 in the Cartesian frame: platform 0 (px0, py0) on the left boundary, platform 1
+    on the right, the curved interface on the next sector's platform 0."""
+    table = f'[cyclic]\nsectors = 12\nframe = {frame}\nleft = [["px0", "py0"]]\nright = [["px1", "py1"]]\n'
+    if coordinates is not None:
+        table += f"coordinates = {coordinates}\n"
+    text = config.read_text().replace("[excitation]", table + "engine_order = 2\n\n[excitation]")
+    config.write_text(text.replace("platform = {x = 3, y = 4}", 'platform = {x = "next:0", y = "next:1"}'))
+
+
+def test_a_cyclic_table_takes_the_cartesian_frame(config):
+    cartesian(config)
+    cfg = load_config(config)
+    c, s = np.cos(np.pi / 6), np.sin(np.pi / 6)
+    for sector in (cfg.bare, cfg.structure):  # the damper attached keeps the frame
+        assert isinstance(sector, CyclicStructure) and sector.frame == "cartesian"
+        np.testing.assert_allclose(sector.boundary_rotation.toarray(), [[c, -s], [s, c]], rtol=0, atol=1e-16)
+    given = cfg.structure.next_directions[-1][0][:2]  # the curved contact on the next sector's platform, global
+    np.testing.assert_allclose(cfg.structure.contact_directions_next()[0][:2, -1], given @ [[c, -s], [s, c]],
+                               rtol=0, atol=1e-15)  # R^T given: in this sector's frame
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"coordinates": "[[[0.1, 0.0]], [[0.0866, 0.06]]]"}, "\\[cyclic\\] coordinates: the right boundary's node 0 "
+     "\\(left DOFs \\[0, 1\\], right DOFs \\[3, 4\\]\\) at \\[0.0866, 0.06, 0\\] m is 0.01 m from its left node"),
+    ({"coordinates": None}, "\\[cyclic\\] coordinates must be given with frame='cartesian'"),
+    ({"coordinates": '"nodes.csv"'}, "\\[cyclic\\] coordinates file .*nodes.csv' does not exist"),
+    ({"coordinates": "[0.1, 0.0]"}, "\\[cyclic\\] coordinates must be a file name, a table"),
+    ({"frame": '"polar"'}, "\\[cyclic\\] frame must be one of 'cylindrical', 'cartesian', got 'polar'"),
+])
+def test_a_cartesian_cyclic_table_is_checked(config, change, message):
+    cartesian(config, **change)
+    with pytest.raises((ConfigError, FileNotFoundError), match=message):
+        load_config(config)
+
+
+def test_the_coordinates_may_come_from_the_dof_map_file(config):
+    """A DOF map with x, y columns names the boundaries' nodes and places them."""
+    rows = [(10, "x", 0.1, 0.0), (10, "y", 0.1, 0.0), (12, "z", 0.2, 0.0), (11, "x", 0.1 * np.cos(np.pi / 6), 0.05),
+            (11, "y", 0.1 * np.cos(np.pi / 6), 0.05), (13, "z", 0.17, 0.1)]
+    (config.parent / "dofs.csv").write_text("node,component,x,y\n" + "".join(f"{n},{c},{float(x)!r},{y!r}\n"
+                                                                              for n, c, x, y in rows))
+    config.write_text(config.read_text().replace('matrices = "pair.npz"', 'file = "pair.npz"\ndof_map = "dofs.csv"')
+                      .replace('dofs = ["px0", "py0", "tip0", "px1", "py1", "tip1"]\n', ""))
+    cartesian(config, coordinates='"dofs.csv"')
+    config.write_text(config.read_text().replace('[["px0", "py0"]]', '["10:x", "10:y"]')
+                      .replace('[["px1", "py1"]]', '["11:1", "11:2"]'))
+    cfg = load_config(config)
+    assert cfg.bare.frame == "cartesian" and list(cfg.bare.left) == [0, 1] and list(cfg.bare.right) == [3, 4]
+    np.testing.assert_allclose(cfg.bare.coordinates[1, 0], [0.1 * np.cos(np.pi / 6), 0.05, 0.0], rtol=0, atol=0)
+    (config.parent / "nodes.csv").write_text("node,x,y\n10,0.1,0\n# the same node elsewhere\n10,0.1,0.001\n")
+    config.write_text(config.read_text().replace('coordinates = "dofs.csv"', 'coordinates = "nodes.csv"'))
+    with pytest.raises(ConfigError, match="nodes.csv: line 4: node 10 at \\[0.1, 0.001\\] m, but at \\[0.1, 0.0\\] m"):
+        load_config(config)

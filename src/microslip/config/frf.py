@@ -30,10 +30,20 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
 
     # [cyclic]                          # one sector of a bladed disk (CyclicStructure)
     # sectors = 24
-    # left = [0]                        # boundary DOFs (indices or names): right[j] of a sector is left[j] of the next
-    # right = [1]
+    # left = [0]                        # boundary DOFs (indices or names): right[j] of a sector is left[j] of the next;
+    # right = [1]                       # a list is one node's DOFs: left = [[0, 1, 2]] or [["1014:x", "1014:y"]]
     # engine_order = 3                  # the travelling wave's engine order (or in [sweep])
                                         # contacts may then name the next sector's DOFs: {"next:4" = -1}
+    # frame = "cartesian"               # "cylindrical" (default: every DOF in a frame turning with the sector, as
+                                        # ANSYS CECYC/CPCYC, Nastran CYAX give them) or "cartesian" (the global frame:
+                                        # the right boundary is the left one turned by 2 pi / sectors about the axis,
+                                        # each node's [x, y(, z)] with it; "next:j" coefficients are global too)
+    # axis = [0, 0, 1]                  # the disk's axis (default z), through point (m, default the origin)
+    # point = [0, 0, 0]
+    # coordinates = "nodes.csv"         # the boundary nodes' positions (m; required with "cartesian"): a CSV with
+                                        # columns node, x, y(, z) (the DOF map's file may carry them), a table
+                                        # {"1014" = [0.1, 0, 0]}, or [[left nodes' [x, y(, z)]], [right nodes']]
+    # nodes = [[4, 5, 6]]               # "cartesian": the other nodes a "next:j" DOF is in (default: the DOF map's)
 
     # [[damper]]                        # an under-platform damper (UnderPlatformDamper), one table each
     # mass = 0.01                       # kg
@@ -121,7 +131,7 @@ KEYS = {
     "the file": ("title", "structure", "cyclic", "contact", "damper", "excitation", "sweep", "design", "continuation",
                  "output", "modes"),
     "[modes]": ("mode", "amplitude", "dof", "compare", "nodal_diameter"),
-    "[cyclic]": ("sectors", "left", "right", "engine_order"),
+    "[cyclic]": ("sectors", "left", "right", "engine_order", "frame", "axis", "point", "coordinates", "nodes"),
     "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
     "[[damper.interface]]": ("model", "points", "angle", "platform", "name"),
     "[design]": ("loads", "dof"),
@@ -377,6 +387,11 @@ class ConfigFiles:
         self.paths.add(Path(path))
         return self._once(("npz", str(path)), read)
 
+    def coordinates(self, path: Path) -> dict:
+        """``{node id: [x, y(, z)]}`` (m) from the CSV file ``path`` (columns ``node``, ``x``, ``y``, maybe ``z``)."""
+        self.paths.add(Path(path))
+        return self._once(("coordinates", str(path)), lambda: _node_coordinates(path))
+
     def matrices(self, file, **kwargs):
         """:func:`microslip.fe.read_matrices` of ``file`` and ``kwargs``."""
         from ..fe import read_matrices
@@ -484,7 +499,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         structure.dof_map.names if structure.dof_map is not None else [f"q{i}" for i in range(ndof)])
     engine_order = None
     if "cyclic" in data:
-        structure, engine_order = _cyclic(_table(data["cyclic"], "[cyclic]", path), structure, names, path)
+        structure, engine_order = _cyclic(_table(data["cyclic"], "[cyclic]", path), structure, names, path, files)
 
     # -- contacts ----------------------------------------------------------------------
     for i, c in enumerate(_tables(data, "contact", path)):
@@ -652,18 +667,32 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
     return out
 
 
-def _cyclic(table: dict, structure: Structure, names: list[str], path):
+def _cyclic(table: dict, structure: Structure, names: list[str], path, files: ConfigFiles):
     """The sector as a :class:`CyclicStructure`, and the engine order; the boundaries' DOFs as everywhere (an index,
-    a name of ``[structure] dofs`` or of the DOF map)."""
+    a name of ``[structure] dofs`` or of the DOF map), a list for one node's DOFs; its frame, axis and coordinates."""
     from ..frequency.structures.cyclic import CyclicStructure
 
-    def dofs(key):
-        value = _get(table, key, "[cyclic]", path)
+    def dofs(key, value):
         if isinstance(value, (str, int)):
             value = [value]
         if not isinstance(value, list):
-            raise ConfigError(f"{path}: [cyclic] {key} must be a list of DOFs (indices or names), got {value!r}")
-        return [_dof_key(v, names, path, f"[cyclic] {key}", structure.dof_map) for v in value]
+            raise ConfigError(f"{path}: [cyclic] {key} must be a list of DOFs (indices or names; a list of a node's "
+                              f"DOFs for one node), got {value!r}")
+        return [tuple(_dof_key(d, names, path, f"[cyclic] {key}[{j}]", structure.dof_map) for d in v)
+                if isinstance(v, list) else _dof_key(v, names, path, f"[cyclic] {key}", structure.dof_map)
+                for j, v in enumerate(value)]
+
+    frame = {}
+    if "frame" in table:
+        frame["frame"] = table["frame"]
+    if "axis" in table:
+        frame["axis"] = _numbers(table["axis"], "[cyclic] axis", path, "dimensionless")
+    if "point" in table:
+        frame["point"] = _numbers(table["point"], "[cyclic] point", path, "length")
+    if "nodes" in table:
+        frame["nodes"] = dofs("nodes", table["nodes"])
+    if "coordinates" in table:
+        frame["coordinates"] = _coordinates(table["coordinates"], path, files)
 
     sectors = checked(path, "", _checks.positive_int, "[cyclic] sectors", _get(table, "sectors", "[cyclic]", path),
                        minimum=3)
@@ -672,8 +701,66 @@ def _cyclic(table: dict, structure: Structure, names: list[str], path):
         engine_order = checked(path, "", _checks.positive_int, "[cyclic] engine_order", table["engine_order"],
                                 minimum=0)
     disk = checked(path, "[cyclic] ", CyclicStructure, structure.M, structure.C, structure.K, sectors=sectors,
-                    left=dofs("left"), right=dofs("right"), dof_map=structure.dof_map)
+                    left=dofs("left", _get(table, "left", "[cyclic]", path)),
+                    right=dofs("right", _get(table, "right", "[cyclic]", path)), dof_map=structure.dof_map, **frame)
     return disk, engine_order
+
+
+def _numbers(value, what: str, path, kind: str) -> np.ndarray:
+    """A list of numbers (or strings with units of ``kind``)."""
+    if not isinstance(value, list):
+        raise ConfigError(f"{path}: {what} must be a list of numbers, got {value!r}")
+    return _array(value, what, path, kind)
+
+
+def _coordinates(value, path, files: ConfigFiles):
+    """``[cyclic] coordinates``: a CSV file of node positions, a table ``{node id: [x, y(, z)]}``, or the left and
+    right nodes' positions ``[[[x, y(, z)], ...], [...]]`` (m; strings with a length unit)."""
+    what = "[cyclic] coordinates"
+    if isinstance(value, str):
+        file = Path(path).parent / value
+        if not file.is_file():
+            raise FileNotFoundError(f"{path}: {what} file {str(file)!r} does not exist")
+        return files.coordinates(file)
+    if isinstance(value, dict):
+        out = {}
+        for key, xyz in value.items():
+            if not str(key).strip().isdigit():
+                raise ConfigError(f"{path}: {what} keys must be node ids, got {key!r}")
+            out[int(key)] = _numbers(xyz, f"{what}[{key!r}]", path, "length")
+        return out
+    if not (isinstance(value, list) and all(isinstance(side, list) and all(isinstance(x, list) for x in side)
+                                            for side in value)):
+        raise ConfigError(f"{path}: {what} must be a file name, a table {{node id = [x, y, z]}} or the left and "
+                          f"right nodes' positions [[[x, y, z], ...], [[x, y, z], ...]] (m), got {value!r}")
+    return [[_numbers(x, what, path, "length") for x in side] for side in value]
+
+
+def _node_coordinates(file) -> dict:
+    """``{node id: [x, y(, z)]}`` (m) from a CSV file with a header naming ``node``, ``x``, ``y`` and optionally ``z``
+    (other columns ignored; a node on several rows, as in a DOF map, must have one position)."""
+    import csv
+
+    with open(file, newline="", encoding="utf-8-sig") as fh:
+        lines = [(no, line) for no, line in enumerate(fh, start=1)
+                 if line.strip() and not line.lstrip().startswith("#")]
+    rows = list(csv.reader(line for _, line in lines))
+    header = [h.strip().lower() for h in rows[0]] if rows else []
+    missing = [c for c in ("node", "x", "y") if c not in header]
+    if missing:
+        raise ConfigError(f"{file}: the first line must be a header naming the columns node, x, y (and z) of the "
+                          f"[cyclic] coordinates; missing {', '.join(missing)}")
+    cols = [header.index(c) for c in ("node", "x", "y", "z") if c in header]
+    out: dict = {}
+    for (no, _), cells in zip(lines[1:], rows[1:]):
+        try:
+            node = int(cells[cols[0]])
+            xyz = [float(cells[c]) for c in cols[1:]]
+        except (ValueError, IndexError):
+            raise ConfigError(f"{file}: line {no}: expected a node id and its coordinates (m), got {cells}") from None
+        if out.setdefault(node, xyz) != xyz:
+            raise ConfigError(f"{file}: line {no}: node {node} at {xyz} m, but at {out[node]} m on an earlier line")
+    return out
 
 
 def _next_keys(spec, structure: Structure, what: str, path):

@@ -43,16 +43,15 @@ def blade_amplitudes(result: FrequencyResponse, sector: CyclicStructure, dof, *,
                          + (f" solved as a sector (engine_order = {result.engine_order})"
                             if result.engine_order is not None else ""))
     b = direction("dof", dof, sector.ndof, dof_map=sector.dof_map)
-    used = np.flatnonzero(b)
     if harmonic is not None:
         h = _checks.positive_int("harmonic", harmonic, minimum=1)
         if h > result.harmonics:
             raise ValueError(f"harmonic must be at most harmonics = {result.harmonics}, got {h}")
-    full = _holding(result, np.concatenate([sector._whole_index(s, used) for s in range(sector.sectors)]))
+    # the DOF of blade s in its own frame, on the whole disk's DOFs (turned into the global frame in a Cartesian one)
+    ws = [sector._sector_map(s).T @ b for s in range(sector.sectors)]
+    full = _holding(result, np.concatenate([np.flatnonzero(w) for w in ws]))
     out = np.empty((result.points, sector.sectors))
-    for s in range(sector.sectors):
-        w = np.zeros(whole)
-        np.add.at(w, sector._whole_index(s, used), b[used])
+    for s, w in enumerate(ws):
         out[:, s] = full.amplitude(w, harmonic)
     return out
 

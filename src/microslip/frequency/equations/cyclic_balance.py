@@ -110,12 +110,14 @@ class CyclicHarmonicBalance(ReducedHarmonicBalance):
         return K
 
     def _full(self, x, omega: float) -> np.ndarray:
-        """Coefficients of every sector DOF ``(2H+1, ndof)`` (m), the right boundary from the left one."""
+        """Coefficients of every sector DOF ``(2H+1, ndof)`` (m), the right boundary from the left one (``P``, then
+        :attr:`~.cyclic.CyclicStructure.boundary_rotation`)."""
         disk = self.structure
         ind = self._independent(x, omega)
         out = np.zeros((self.nb, disk.ndof))
         out[:, disk.independent] = ind
-        out[:, disk.right] = self.P @ ind[:, np.searchsorted(disk.independent, disk.left)]
+        left = self.P @ ind[:, np.searchsorted(disk.independent, disk.left)]
+        out[:, disk.right] = (disk.boundary_rotation @ left.T).T  # turned by R in the Cartesian frame
         return out
 
     def _independent(self, x, omega: float) -> np.ndarray:

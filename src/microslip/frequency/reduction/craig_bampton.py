@@ -71,8 +71,7 @@ class CraigBampton:
             tangential, normal = contact_terms(s, i)
             contacts.append({"model": c.model.to_dict(), "tangential": tangential, "normal": normal,
                              "preload": c.preload, "approach": c.approach, "name": c.name})
-        cyclic = ({"sectors": s.sectors, "left": s.left.tolist(), "right": s.right.tolist()}
-                  if isinstance(s, CyclicStructure) else None)
+        cyclic = s._cyclic_arguments() if isinstance(s, CyclicStructure) else None
         import io
 
         buffer = io.BytesIO()
@@ -213,8 +212,7 @@ def _carry_over(structure: Structure, reduced, keep) -> Structure:
     """The reduced structure (cyclic when ``structure`` is) with the contacts and static forces on the kept DOFs."""
     position = {int(d): k for k, d in enumerate(keep)}
     if isinstance(structure, CyclicStructure):
-        out = CyclicStructure(*reduced, sectors=structure.sectors, left=[position[int(d)] for d in structure.left],
-                              right=[position[int(d)] for d in structure.right])
+        out = CyclicStructure(*reduced, **structure._cyclic_arguments(position))
     else:
         out = Structure(*reduced)
     for i, c in enumerate(structure.contacts):

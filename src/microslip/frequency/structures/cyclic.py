@@ -11,12 +11,16 @@ so harmonic ``h`` of the response lives in nodal diameter ``h EO mod N``: its
 complex amplitude (``z = a - i b`` of ``a cos + b sin``) on sector ``s + 1`` is
 ``z_s exp(-i phi_h)`` with ``phi_h = 2 pi h EO / N``. The static term is the
 zero-diameter one (centrifugal preloads). For each harmonic the right boundary
-is eliminated, ``q_R = exp(-i phi_h) q_L``, and the sector's matrices become the
+is eliminated, ``q_R = exp(-i phi_h) R q_L``, and the sector's matrices become the
 complex Hermitian ``T_h^H A T_h`` on the sector's independent DOFs (all but the
-right boundary). Contacts may join a sector to the next one
-(:meth:`CyclicStructure.next`): their displacement takes the next sector's DOFs
-through the same phase, and their force acts back on this sector's DOFs through
-the previous sector's contact (the transpose of that map).
+right boundary). ``R`` is the identity when the DOFs are in frames that turn
+with the sector (``frame="cylindrical"``, the default) and the rotation by
+``2 pi / N`` about the disk's axis on each boundary node's ``(x, y(, z))`` when
+they are in the global Cartesian frame (``frame="cartesian"``, :mod:`.frames`).
+Contacts may join a sector to the next one (:meth:`CyclicStructure.next`):
+their displacement takes the next sector's DOFs through the same phase (and
+``R^T`` in the Cartesian frame), and their force acts back on this sector's
+DOFs through the previous sector's contact (the transpose of that map).
 """
 
 from __future__ import annotations
@@ -30,6 +34,7 @@ import scipy.sparse as sp
 from ...common import _checks
 from ...model import MicroslipModel
 from ...fe.files import read_matrices
+from . import frames
 from .structure import Contact, Structure, direction, dof_index, dof_indices, lists_two_directions
 
 
@@ -54,15 +59,60 @@ class CyclicStructure(Structure):
         including its left and right boundary DOFs; ``C`` may be None.
     sectors : int
         Number of sectors ``N`` of the whole disk (at least 3).
-    left, right : array_like of int or of str, shape (k,)
-        The boundary DOFs: ``right[j]`` of sector ``s`` is ``left[j]`` of
-        sector ``s + 1`` (same direction in the sector's own frame); indices,
-        or names ``"node:component"`` with a ``dof_map``.
+    left, right : sequence, length k
+        The boundaries: ``right[j]`` of sector ``s`` is ``left[j]`` of sector
+        ``s + 1``. Each entry is a DOF (an index, or a name ``"node:component"``
+        with a ``dof_map``) or a tuple of one node's DOFs: in the Cartesian
+        frame its translation (or rotation) ``(x, y)`` or ``(x, y, z)``, which
+        the rotation turns together, or ``(j,)`` for a DOF that does not turn.
+        With a DOF map, DOFs given one by one are grouped by node.
     dof_map : microslip.fe.DofMap, optional
         Names of the sector's DOFs (``"node:component"``), as for :class:`Structure`.
+    frame : {"cylindrical", "cartesian"}, default "cylindrical"
+        The frame of the sector's DOFs. ``"cylindrical"``: every DOF in a
+        frame that turns with the sector (the nodal cylindrical frames
+        ``(r, theta, z)`` of ANSYS ``CECYC``/``CPCYC`` or Nastran ``CYAX``), so
+        ``right[j]`` equals the next sector's ``left[j]`` as it is.
+        ``"cartesian"``: every DOF in the global Cartesian frame (a sector
+        exported without cyclic coordinates): the right boundary is the left
+        one turned by ``R``, the rotation by ``2 pi / N`` about the axis, and
+        each boundary node's tuple turns with it, ``u_right = R u_left``.
+    axis : array_like, shape (3,), default (0, 0, 1)
+        The disk's axis of rotation (any length), through ``point``; the
+        next sector is this one turned by ``+2 pi / N`` about it (right hand).
+        With 2-D nodes (tuples ``(x, y)``) it must lie along z.
+    point : array_like, shape (2,) or (3,), optional
+        A point of the axis (m); default the origin.
+    coordinates : array_like or mapping, optional
+        The boundary nodes' positions (m), to check that each right node is
+        its left node turned by ``R``: an array ``(2, nodes, 2 or 3)``
+        (``[0]`` the left nodes', ``[1]`` the right nodes', one node per tuple
+        of ``left``, or per DOF given alone) or, with a ``dof_map``,
+        ``{node id: (x, y(, z))}``. A right node farther than
+        :data:`~.frames.GEOMETRY_TOLERANCE` (1e-6) times the largest boundary
+        radius from its left node turned is refused, naming the node and the
+        distance. Required with ``frame="cartesian"``.
+    nodes : sequence of tuples, optional
+        Cartesian frame only: the sector's other nodes' tuples ``(x, y(, z))``
+        (or ``(j,)``), which turn with the sector. A contact naming a DOF of
+        the next sector (:meth:`next`) needs that DOF in a tuple of ``left``
+        or of ``nodes``; :meth:`assembled` turns them into the global frame.
+        Default: with a ``dof_map``, every node's x, y(, z) and rx, ry(, rz)
+        off the boundaries; else none.
 
     Notes
     -----
+    What is in which frame. A sector's DOFs, its excitation, its contacts'
+    directions on its own DOFs and the result's coefficients are in the frame
+    the DOFs are given in (``frame``). A direction's coefficients on the next
+    sector's DOFs (``disk.next(j)``) are in that sector's frame as it lies:
+    in the Cartesian frame the global components (turned back by ``R^T``
+    inside, :meth:`contact_directions_next`), in the cylindrical frame the
+    next sector's own nodal components (a direction ``d`` known in global
+    components at the next sector's node ``j`` is ``R^T d`` in this sector's
+    frame at node ``j``). :meth:`FrequencyResponse.sector_coefficients` gives
+    sector ``k``'s DOFs in its own frame (this sector's turned ``k`` times).
+
     The sector's matrices must not couple its left and right boundary
     directly to each other beyond what one sector's elements do (the
     usual FE sector). Solve with :func:`~microslip.frequency.frequency_response`
@@ -81,31 +131,110 @@ class CyclicStructure(Structure):
     ...                      approach=1e-6)
     >>> disk.independent.size
     2
+
+    In the global Cartesian frame, two nodes (x, y) per sector, the right one
+    the left one turned by 45 degrees about z:
+
+    >>> r = 0.1 * np.array([[1.0, 0.0], [np.cos(np.pi / 4), np.sin(np.pi / 4)]])
+    >>> K4 = np.kron(np.array([[2e6, -1e6], [-1e6, 2e6]]), np.eye(2))
+    >>> disk = CyclicStructure(np.eye(4) * 0.1, None, K4, sectors=8, left=[(0, 1)], right=[(2, 3)],
+    ...                        frame="cartesian", coordinates=[r[:1], r[1:]])
+    >>> disk.boundary_rotation.toarray().round(3)
+    array([[ 0.707, -0.707],
+           [ 0.707,  0.707]])
     """
 
-    def __init__(self, M, C, K, *, sectors: int, left, right, dof_map=None):
+    def __init__(self, M, C, K, *, sectors: int, left, right, dof_map=None, frame: str = "cylindrical",
+                 axis=(0.0, 0.0, 1.0), point=None, coordinates=None, nodes=None):
         super().__init__(M, C, K, dof_map=dof_map)
         self.sectors = _checks.positive_int("sectors", sectors, minimum=3)
-        self.left = _dof_list("left", left, self.ndof, self.dof_map)
-        self.right = _dof_list("right", right, self.ndof, self.dof_map)
-        if self.left.size != self.right.size:
-            raise ValueError(f"left and right must pair the boundary DOFs one to one, got {self.left.size} and "
-                             f"{self.right.size} DOFs")
+        self.frame = _checks.one_of("frame", frame, frames.FRAMES)
+        self.axis = frames.unit_axis(axis)
+        self.point = frames.axis_point(point)
+        boundary = frames.pair(frames.boundary_elements("left", left, self.ndof, self.dof_map),
+                               frames.boundary_elements("right", right, self.ndof, self.dof_map), self.frame,
+                               self.dof_map)
+        self.left, self.right = boundary.left, boundary.right
         both = np.intersect1d(self.left, self.right)
         if both.size:
             raise ValueError(f"a DOF cannot be on both boundaries: DOF {int(both[0])} is in left and right")
+        self._boundary = boundary
+        if self.frame == "cartesian" and self._planar() and abs(self.axis[2]) < 1.0 - 1e-12:
+            raise ValueError(f"axis must lie along z for 2-D nodes (x, y), got axis = {frames.xyz_text(self.axis)}")
+        #: the boundary nodes' positions (m), ``(2, nodes, 3)``: left, right; None when not given
+        self.coordinates = (None if coordinates is None
+                            else frames.boundary_coordinates(coordinates, boundary, self.dof_map))
+        if self.coordinates is None and self.frame == "cartesian":
+            raise ValueError("coordinates must be given with frame='cartesian' (the boundary nodes' positions, "
+                             "(2, nodes, 2 or 3) m), to check that the right boundary is the left one turned by "
+                             f"2 pi / {self.sectors} about the axis")
+        if self.coordinates is not None:
+            if (self.coordinates[..., 2].any() or self.point[2]) and self._planar():
+                raise ValueError("coordinates: 2-D nodes (x, y) turn about an axis along z, in the plane z = 0")
+            frames.check_geometry(self.coordinates, boundary, self.axis, self.point, self.sectors)
+        if nodes is not None and self.frame != "cartesian":
+            raise ValueError("nodes is for frame='cartesian' (the nodes whose DOFs turn with the sector); in the "
+                             "cylindrical frame every DOF already turns with its sector")
+        #: the rotation ``R`` (3, 3) from this sector to the next (identity in the cylindrical frame)
+        self.rotation = (frames.rotation(self.axis, 2 * np.pi / self.sectors) if self.frame == "cartesian"
+                         else np.eye(3))
+        self._vectors = [] if self.frame != "cartesian" else (
+            [v for pair in boundary.vectors for v in pair]
+            + frames.node_vectors(nodes, self.ndof, self.dof_map, np.concatenate([self.left, self.right]),
+                                  self.rotation))
+        self._next_parts = frames.blocks(self._vectors, self.rotation, "nodes")
+        #: ``(k, k)`` sparse: the right boundary from the left one, ``u_right = boundary_rotation @ u_left``
+        #: in the order of :attr:`left` and :attr:`right` (identity in the cylindrical frame)
+        self.boundary_rotation = frames.boundary_rotation(boundary, self.rotation)
         mask = np.ones(self.ndof, dtype=bool)
         mask[self.right] = False
         self.independent = np.flatnonzero(mask)
-        #: each contact's direction on the next sector's DOFs, ``(tangential, normal)``, shape (ndof,) each
+        #: each contact's direction on the next sector's DOFs as given (in its frame), ``(tangential, normal)``
         self.next_directions: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def _planar(self) -> bool:
+        """Nodes given as 2-D tuples ``(x, y)`` (the Cartesian frame's vectors all of two components)."""
+        comps = {len(v.components) for pair in self._boundary.vectors for v in pair} - {0}
+        return comps == {2}
+
+    def _cyclic_arguments(self, position=None) -> dict:
+        """The keyword arguments (plain lists) that give another sector this one's symmetry and frame.
+
+        ``position`` maps this sector's DOFs to the other's (a Craig--Bampton
+        model's kept DOFs); None keeps the numbers (a damper's DOFs appended).
+        A tuple of ``nodes`` the other lacks is left out (its z only: kept as
+        ``(x, y)``).
+        """
+        where = (lambda d: int(d)) if position is None else (lambda d: int(position[int(d)]))
+        b = self._boundary
+        if self.frame == "cartesian":
+            pairs = [(vl.dofs, vr.dofs, vl.node) for vl, vr in b.vectors]
+        else:
+            pairs = [(dl, dr, j) for j, (dl, dr, _) in enumerate(b.nodes)]
+        out = {"sectors": self.sectors, "frame": self.frame, "axis": self.axis.tolist(), "point": self.point.tolist(),
+               "left": [[where(d) for d in dl] for dl, _, _ in pairs],
+               "right": [[where(d) for d in dr] for _, dr, _ in pairs]}
+        if self.coordinates is not None:
+            out["coordinates"] = self.coordinates[:, [j for _, _, j in pairs]].tolist()
+        if self.frame == "cartesian":
+            out["nodes"] = []
+            taken = set(np.concatenate([self.left, self.right]).tolist())
+            for v in self._vectors:
+                if set(v.dofs) & taken:
+                    continue
+                kept = [d for d in v.dofs if position is None or int(d) in position]
+                if len(kept) == len(v.dofs) or (len(v.dofs) == 3 and kept == list(v.dofs[:2])):
+                    out["nodes"].append([where(d) for d in kept])
+        return out
 
     @classmethod
     def from_files(cls, path=None, *, sectors: int, left, right, M=None, K=None, C=None, dof_map=None,
-                   names=None) -> CyclicStructure:
+                   names=None, frame: str = "cylindrical", axis=(0.0, 0.0, 1.0), point=None, coordinates=None,
+                   nodes=None) -> CyclicStructure:
         """One sector from finite-element matrix files, as :meth:`Structure.from_files
-        <microslip.frequency.Structure.from_files>`; ``sectors``, ``left`` and ``right`` as in the class (the
-        boundaries may be named ``"node:component"`` with a ``dof_map``).
+        <microslip.frequency.Structure.from_files>`; ``sectors``, ``left``, ``right``, ``frame``, ``axis``,
+        ``point``, ``coordinates`` and ``nodes`` as in the class (the boundaries may be named ``"node:component"``
+        with a ``dof_map``).
 
         Examples
         --------
@@ -113,11 +242,12 @@ class CyclicStructure(Structure):
         ...                                   left=["1014:x", "1014:y"], right=["2014:x", "2014:y"])  # doctest: +SKIP
         """
         m = read_matrices(path, M=M, K=K, C=C, dof_map=dof_map, names=names)
-        return cls(m.M, m.C, m.K, sectors=sectors, left=left, right=right, dof_map=m.dof_map)
+        return cls(m.M, m.C, m.K, sectors=sectors, left=left, right=right, dof_map=m.dof_map, frame=frame, axis=axis,
+                   point=point, coordinates=coordinates, nodes=nodes)
 
     def __repr__(self) -> str:
         return (f"CyclicStructure(ndof={self.ndof}, sectors={self.sectors}, boundary={self.left.size}, "
-                f"contacts={len(self.contacts)})")
+                f"frame={self.frame!r}, contacts={len(self.contacts)})")
 
     def next(self, dof) -> NextDof:
         """DOF ``dof`` (an index, or a name ``"node:component"`` with a DOF map) of the next sector, for a contact's
@@ -146,6 +276,14 @@ class CyclicStructure(Structure):
                 j = int(np.flatnonzero(self.right == on_right[0])[0])
                 raise ValueError(f"{name}: DOF {int(on_right[0])}{where} is on the right boundary, which is the next "
                                  f"sector's left boundary: name it as left DOF {int(self.left[j])} of the sector after")
+        if self.frame == "cartesian":
+            known = np.concatenate([v.dofs for v in self._vectors]) if self._vectors else np.zeros(0, np.int64)
+            loose = np.setdiff1d(np.flatnonzero(b_next), known)
+            if loose.size:
+                raise ValueError(f"{name}: DOF {int(loose[0])} of the next sector is in no node's tuple: in the "
+                                 f"Cartesian frame the next sector's DOFs are turned by 2 pi / {self.sectors}, so "
+                                 f"its node must be known: a tuple of left, or of nodes=[(x, y(, z)), ...] (or a DOF "
+                                 f"map); (j,) for a DOF that does not turn")
         return b_own, b_next
 
     def add_contact(self, model: MicroslipModel, *, tangential, normal=None, preload: float | None = None,
@@ -179,14 +317,17 @@ class CyclicStructure(Structure):
         """Static force on the sector (N), ``(ndof,)``: preloads along own and next-sector normals, static forces."""
         f = self.static_force.copy()
         for c, (_, bn_next) in zip(self.contacts, self.next_directions):
-            f += c.preload * (c.normal + bn_next)
+            f += c.preload * (c.normal + frames.turn_back(bn_next, self._next_parts))
         return f
 
     def contact_directions_next(self) -> tuple[np.ndarray, np.ndarray]:
-        """The contacts' next-sector directions ``(Bt_next, Bn_next)``, shape ``(ndof, nc)`` each."""
+        """The contacts' next-sector directions ``(Bt_next, Bn_next)``, shape ``(ndof, nc)`` each, on the next
+        sector's DOFs in its own frame (the frame of this sector's: the given ones turned back by ``R^T`` in the
+        Cartesian frame)."""
         nc = len(self.contacts)
-        Bt = np.array([t for t, _ in self.next_directions]).T.reshape(self.ndof, nc)
-        Bn = np.array([n for _, n in self.next_directions]).T.reshape(self.ndof, nc)
+        turned = [[frames.turn_back(b, self._next_parts) for b in pair] for pair in self.next_directions]
+        Bt = np.array([t for t, _ in turned]).T.reshape(self.ndof, nc)
+        Bn = np.array([n for _, n in turned]).T.reshape(self.ndof, nc)
         return Bt, Bn
 
     def stuck_stiffness(self):
@@ -202,15 +343,17 @@ class CyclicStructure(Structure):
         return 2.0 * np.pi * ((h * eo) % self.sectors) / self.sectors
 
     def constraint(self, phi: float):
-        """``T`` (sparse, ``(ndof, len(independent))``): every DOF from the independent ones, ``q_R = e^{-i phi} q_L``."""
+        """``T`` (sparse, ``(ndof, len(independent))``): every DOF from the independent ones,
+        ``q_R = e^{-i phi} R q_L`` (``R`` :attr:`boundary_rotation`, the identity in the cylindrical frame)."""
         phi = _checks.real_scalar("phi", phi)
-        col = {int(d): k for k, d in enumerate(self.independent)}
-        rows = list(self.independent) + list(self.right)
-        cols = [col[int(d)] for d in self.independent] + [col[int(d)] for d in self.left]
+        col = np.empty(self.ndof, dtype=np.int64)
+        col[self.independent] = np.arange(self.independent.size)
+        Rb = self.boundary_rotation.tocoo()
+        rows = np.concatenate([self.independent, self.right[Rb.row]])
+        cols = np.concatenate([col[self.independent], col[self.left[Rb.col]]])
         shift = np.exp(-1j * phi) if phi else 1.0
-        vals = [1.0] * self.independent.size + [shift] * self.right.size
-        return sp.csr_matrix((np.array(vals, dtype=complex if phi else float), (rows, cols)),
-                             shape=(self.ndof, self.independent.size))
+        vals = np.concatenate([np.ones(self.independent.size), Rb.data * shift])
+        return sp.csr_matrix((vals, (rows, cols)), shape=(self.ndof, self.independent.size))
 
     def matrices(self, phi: float):
         """``(M, C, K)`` on the independent DOFs for the phase ``phi`` (complex Hermitian; real for 0)."""
@@ -225,7 +368,8 @@ class CyclicStructure(Structure):
 
     # -- the whole disk, assembled (to check a sector solution against) -----------------------
     def _whole_index(self, sector: int, dofs) -> np.ndarray:
-        """DOF numbers in :meth:`assembled` of this sector's ``dofs`` placed in sector ``sector``."""
+        """DOF numbers in :meth:`assembled` of this sector's ``dofs`` placed in sector ``sector`` (in the Cartesian
+        frame a node's tuple there is turned: :meth:`_sector_map`)."""
         ni = self.independent.size
         local = np.empty(self.ndof, dtype=np.int64)
         local[self.independent] = np.arange(ni)
@@ -235,16 +379,49 @@ class CyclicStructure(Structure):
         dofs = np.asarray(dofs, dtype=np.int64)
         return ((sector + owner[dofs]) % self.sectors) * ni + local[dofs]
 
+    def _sector_map(self, sector: int) -> sp.csr_matrix:
+        """``A_s`` (sparse, ``(ndof, sectors * len(independent))``): sector ``sector``'s DOFs, in its own frame,
+        from the whole disk's of :meth:`assembled` (``u_s = A_s w``).
+
+        Sector ``s``'s independent DOFs are ``s * n + k`` (``n = len(independent)``), its right boundary is sector
+        ``s + 1``'s left one; in the Cartesian frame every node's tuple is turned by ``s 2 pi / N`` into the global
+        frame (``w = R^s u``), so ``u_s = (R^s)^T w`` on it.
+        """
+        N, ni = self.sectors, self.independent.size
+        col = self._whole_index(sector, np.arange(self.ndof))
+        turned = np.zeros(self.ndof, dtype=bool)
+        rows, cols, vals = [], [], []
+        if self.frame == "cartesian" and sector % N:
+            R = frames.rotation(self.axis, 2 * np.pi * (sector % N) / N)
+            for dofs, B in frames.blocks(self._vectors, R, "nodes"):
+                c = B.shape[0]
+                for a in range(c):  # u[dofs[:, a]] = sum_b B[b, a] w[col[dofs[:, b]]]
+                    for b in range(c):
+                        if B[b, a]:
+                            rows.append(dofs[:, a])
+                            cols.append(col[dofs[:, b]])
+                            vals.append(np.full(dofs.shape[0], B[b, a]))
+                turned[dofs] = True
+        rest = np.flatnonzero(~turned)
+        rows, cols = np.concatenate(rows + [rest]), np.concatenate(cols + [col[rest]])
+        vals = np.concatenate(vals + [np.ones(rest.size)])
+        return sp.csr_matrix((vals, (rows, cols)), shape=(self.ndof, N * ni))
+
     def assembled(self, stiffness_scale=None, *, scaled_dofs=None) -> Structure:
         """The whole disk as one :class:`Structure`: every sector's matrices, contacts and static forces.
 
         Sector ``s``'s independent DOFs (:attr:`independent`, in order) are
         DOFs ``s * n + k`` (``n = len(independent)``); its right boundary is
-        sector ``s + 1``'s left one. Contact ``c`` of sector ``s`` is named
-        ``"<name>@<s>"``. Sparse when the sector's matrices are, else dense.
-        Solved with the force of :meth:`travelling_wave`, it gives the response
-        a sector solution with ``engine_order`` stands for, at ``N`` times the
-        cost (a check, or a baseline).
+        sector ``s + 1``'s left one. In the Cartesian frame the disk is in the
+        global frame: sector ``s`` turned by ``s 2 pi / N`` about the axis,
+        every node's tuple (of ``left``, ``right`` and ``nodes``) turned with
+        it (a DOF in no tuple stays in its sector's frame); in the
+        cylindrical frame each sector's DOFs stay in their own frames.
+        Contact ``c`` of sector ``s`` is named ``"<name>@<s>"``. Sparse when
+        the sector's matrices are, else dense. Solved with the force of
+        :meth:`travelling_wave`, it gives the response a sector solution with
+        ``engine_order`` stands for, at ``N`` times the cost (a check, or a
+        baseline).
 
         Parameters
         ----------
@@ -257,30 +434,35 @@ class CyclicStructure(Structure):
             The sector's DOFs (indices into its ``ndof``) whose stiffness
             ``stiffness_scale`` scales; default every DOF.
         """
-        N, ni = self.sectors, self.independent.size
+        N = self.sectors
         scale = self._stiffness_scale(stiffness_scale, scaled_dofs)
+        maps = [self._sector_map(s) for s in range(N)]
         mats = []
         for which, A in enumerate((self.M, self.C, self.K)):
-            A = sp.coo_matrix(A)
-            rows = np.concatenate([self._whole_index(s, A.row) for s in range(N)])
-            cols = np.concatenate([self._whole_index(s, A.col) for s in range(N)])
-            if which == 2 and scale is not None:
-                factors, inside = scale
-                scaled = inside[A.row] & inside[A.col]
-                data = np.concatenate([np.where(scaled, A.data * f, A.data) for f in factors])
-            else:
-                data = np.tile(A.data, N)
-            whole = sp.csr_matrix((data, (rows, cols)), shape=(N * ni, N * ni))
+            A = sp.csr_matrix(A)
+            whole = None
+            for s, As in enumerate(maps):
+                if which == 2 and scale is not None:
+                    factors, inside = scale
+                    Ac = A.tocoo()
+                    scaled = inside[Ac.row] & inside[Ac.col]
+                    A_s = sp.csr_matrix((np.where(scaled, Ac.data * factors[s], Ac.data), (Ac.row, Ac.col)),
+                                        shape=A.shape)
+                else:
+                    A_s = A
+                part = As.T @ A_s @ As
+                whole = part if whole is None else whole + part
+            whole = whole.tocsr()
             mats.append(whole if self.sparse else whole.toarray())
         out = Structure(*mats)
-        everything = np.arange(self.ndof)
-        for s in range(N):
-            np.add.at(out.static_force, self._whole_index(s, everything), self.static_force)
-            for i, c in enumerate(self.contacts):
-                tangential, normal = contact_terms(self, i)
-                out.add_contact(c.model, tangential=self._whole_terms(s, tangential),
-                                normal=self._whole_terms(s, normal) or None, preload=c.preload or None,
-                                approach=c.approach, name=f"{c.name}@{s}")
+        for s, As in enumerate(maps):
+            out.static_force += As.T @ self.static_force
+            for c, (t_next, n_next) in zip(self.contacts, self.next_directions):
+                nxt = maps[(s + 1) % N].T
+                tangential = As.T @ c.tangential + nxt @ frames.turn_back(t_next, self._next_parts)
+                normal = As.T @ c.normal + nxt @ frames.turn_back(n_next, self._next_parts)
+                out.add_contact(c.model, tangential=_terms(tangential), normal=_terms(normal) or None,
+                                preload=c.preload or None, approach=c.approach, name=f"{c.name}@{s}")
         return out
 
     def _stiffness_scale(self, stiffness_scale, scaled_dofs):
@@ -297,14 +479,6 @@ class CyclicStructure(Structure):
             inside[:] = False
             inside[_dof_list("scaled_dofs", scaled_dofs, self.ndof, self.dof_map)] = True
         return factors, inside
-
-    def _whole_terms(self, sector: int, terms) -> dict:
-        """``{whole-disk DOF: coefficient}`` of :func:`contact_terms` ``terms`` of a contact of sector ``sector``."""
-        out: dict = {}
-        for dof, coef, nxt in terms:
-            key = int(self._whole_index(sector + 1 if nxt else sector, [dof])[0])
-            out[key] = out.get(key, 0.0) + coef
-        return out
 
     def travelling_wave(self, force, engine_order: int) -> dict:
         """The force on every sector of :meth:`assembled` for this sector's ``force`` and an engine order.
@@ -325,16 +499,21 @@ class CyclicStructure(Structure):
         eo = _checks.positive_int("engine_order", engine_order, minimum=0)
         spec = force if isinstance(force, Mapping) else {1: force}
         out = {}
-        everything = np.arange(self.ndof)
+        maps = [self._sector_map(s) for s in range(self.sectors)]
         for h, f in spec.items():
             h = _checks.positive_int("force (a harmonic as key)", h, minimum=0)
             f = self.force_vector(f, f"force[{h}]")
             whole = np.zeros(self.sectors * self.independent.size, dtype=complex)
             phi = self.phase(h, eo)
-            for s in range(self.sectors):
-                np.add.at(whole, self._whole_index(s, everything), f * np.exp(-1j * s * phi))
+            for s, As in enumerate(maps):
+                whole += As.T @ (f * np.exp(-1j * s * phi))
             out[h] = whole
         return out
+
+
+def _terms(b: np.ndarray) -> dict:
+    """``{DOF: coefficient}`` of a direction's non-zero entries."""
+    return {int(i): float(b[i]) for i in np.flatnonzero(b)}
 
 
 def contact_terms(structure: Structure, index: int) -> tuple[list, list]:

@@ -325,7 +325,7 @@ class UnderPlatformDamper:
         M, C, K = (_grow(A, d) for A, d in ((structure.M, extra), (structure.C, self.damping * extra),
                                             (structure.K, np.full(3, self.retention))))
         if cyclic:
-            out = CyclicStructure(M, C, K, sectors=structure.sectors, left=structure.left, right=structure.right)
+            out = CyclicStructure(M, C, K, **structure._cyclic_arguments())  # the same symmetry and frame
         else:
             out = Structure(M, C, K)
         _copy_contacts(structure, out)
