@@ -216,3 +216,37 @@ def sphere_from(args):
     from ..reference import Sphere
 
     return Sphere(radius=args.radius, E=args.E, nu=args.nu, mu=args.mu)
+
+
+def poisson_ratio(text):
+    """An argparse ``type`` for a Poisson's ratio in ``(-1, 0.5]`` (``0.3``)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a Poisson's ratio such as 0.3, got {text!r}") from None
+    if not -1.0 < value <= 0.5:
+        raise argparse.ArgumentTypeError(f"must be a Poisson's ratio in (-1, 0.5] such as 0.3, got {text!r}")
+    return value
+
+
+def add_second_body_options(parser) -> None:
+    """``--E2``, ``--nu2``: the second body (the plane, the flat) when it is of another material (both or neither)."""
+    g = parser.add_argument_group("second body of another material (both or neither; default: the same material "
+                                  "as the first, --E and --nu)")
+    g.add_argument("--E2", dest="E2", type=quantity("pressure", sign="positive"), default=None,
+                   help="Young's modulus of the second body (the plane or flat the reference presses on), "
+                        "e.g. 210GPa; give --nu2 with it")
+    g.add_argument("--nu2", dest="nu2", type=poisson_ratio, default=None,
+                   help="Poisson's ratio of the second body, in (-1, 0.5], e.g. 0.29; give --E2 with it")
+
+
+def second_body_from(args) -> dict:
+    """``{"E2": ..., "nu2": ...}`` of the command line (empty for identical bodies); one without the other is
+    refused naming the missing option."""
+    if args.E2 is None and args.nu2 is None:
+        return {}
+    if args.nu2 is None:
+        raise ValueError("--E2 needs --nu2: give the second body's Poisson's ratio too (e.g. --nu2 0.3)")
+    if args.E2 is None:
+        raise ValueError("--nu2 needs --E2: give the second body's Young's modulus too (e.g. --E2 210GPa)")
+    return {"E2": args.E2, "nu2": args.nu2}

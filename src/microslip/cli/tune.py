@@ -1,6 +1,10 @@
 """``microslip tune``: tune the paper's array on a reference contact and save it as JSON.
 
-Without loop files the reference is a sphere (Hertz + Cattaneo--Mindlin).
+Without loop files the reference is a sphere (Hertz + Cattaneo--Mindlin), or
+with ``--reference punch`` a flat punch with rounded edges (the flat face of a
+damper; ``--flat-radius``, ``--edge-radius``), exact through the method of
+dimensionality reduction, the same path as ``tune(mdr(...).as_reference())``.
+``--E2``/``--nu2`` give the second body another material.
 With loop files (``microslip tune LOOPS... --normal-law palmgren --length 10mm
 --radius 5mm --elements 6 -o model.json``) the reference is built from the
 measured loops and a cylinder's normal law, and a report (HTML + Markdown)
@@ -14,8 +18,19 @@ import json
 from dataclasses import replace
 from pathlib import Path
 
-from ._args import (add_sphere_options, load_range, output_file, output_folder, percent, quantity, quantity_list,
-                    sphere_from)
+from ._args import (add_second_body_options, add_sphere_options, load_range, output_file, output_folder, percent,
+                    positive_int, quantity, quantity_list, second_body_from)
+
+#: the references of the command line: what each is, and the geometry options it takes (dest -> option)
+_KINDS = {"sphere": "sphere on a plane", "cylinder": "cylinder on a flat (measured LOOPS)",
+          "punch": "flat punch with rounded edges"}
+_GEOMETRY = {"radius": "--radius", "length": "--length", "normal_law": "--normal-law",
+             "flat_radius": "--flat-radius", "edge_radius": "--edge-radius", "mdr_elements": "--mdr-elements"}
+_USES = {"sphere": ("radius",), "cylinder": ("radius", "length", "normal_law"),
+         "punch": ("flat_radius", "edge_radius", "mdr_elements")}
+_NEEDS = {"sphere": (), "cylinder": (), "punch": ("flat_radius", "edge_radius")}
+_DEFAULTS = {"radius": 5e-3, "length": 10e-3, "normal_law": "palmgren", "mdr_elements": 2000}
+_EXAMPLES = {"flat_radius": "1mm", "edge_radius": "5mm"}
 
 
 def add_parser(sub) -> None:
@@ -32,12 +47,27 @@ def add_parser(sub) -> None:
                    help="loop files: CSV/text whose header names columns with units (e.g. 'time [s], t [um], "
                         "T [N], N [N]'), or the ARTS-Lab damper JSON; append @LOAD to give a file's normal load, "
                         "e.g. run1.csv@36.6N (else a '# normal load = ...' comment or the mean of its N column)")
-    p.add_argument("--reference", choices=["sphere"], default="sphere",
-                   help="the reference contact without LOOPS (default: sphere, Hertz + Cattaneo-Mindlin)")
+    p.add_argument("--reference", choices=list(_KINDS), default=None,
+                   help="the reference contact: sphere (on a plane, Hertz + Cattaneo-Mindlin; --radius), punch "
+                        "(a flat punch with rounded edges, the flat face of a damper, exact through the method of "
+                        "dimensionality reduction; --flat-radius, --edge-radius, --mdr-elements) or cylinder (on "
+                        "a flat: needs LOOPS, which give its tangential law; --radius, --length, --normal-law). "
+                        "--E, --nu, --mu, --E2, --nu2 apply to all. An option a reference does not use is refused. "
+                        "Default: sphere without LOOPS, cylinder with LOOPS")
     add_sphere_options(p)
-    p.set_defaults(mu=None)
+    p.set_defaults(mu=None, radius=None)  # None: not given (refused for the punch); 5mm for a sphere, a cylinder
+    add_second_body_options(p)
+    k = p.add_argument_group("flat punch with rounded edges (--reference punch)")
+    k.add_argument("--flat-radius", type=quantity("length", sign="positive"), default=None,
+                   help="with --reference punch (required): radius of the flat face, e.g. 1mm")
+    k.add_argument("--edge-radius", type=quantity("length", sign="positive"), default=None,
+                   help="with --reference punch (required): radius of the rounded edge, e.g. 5mm")
+    k.add_argument("--mdr-elements", type=positive_int, default=None,
+                   help="with --reference punch: elements of the exact MDR array the model is tuned on, built up "
+                        "to --load (default 2000)")
     p.add_argument("--load", type=quantity("force", sign="positive"), default=None,
-                   help="normal load N_tot to tune at, e.g. 37.5N (default: 37.5N for the sphere, the highest "
+                   help="normal load N_tot to tune at, e.g. 37.5N (default: 37.5N for the sphere and the punch, "
+                        "the highest "
                         "measured load with LOOPS)")
     pts = p.add_mutually_exclusive_group()
     pts.add_argument("--elements", type=int, default=None,
@@ -52,10 +82,10 @@ def add_parser(sub) -> None:
                         "defaults to N_hi. The paper's sphere over 7.5N,37.5N reuses stored points (instant); "
                         "other problems are searched afresh (minutes)")
     g = p.add_argument_group("measured loops (with LOOPS): cylinder on a plane; --radius, --E, --nu above apply")
-    g.add_argument("--normal-law", default="palmgren",
+    g.add_argument("--normal-law", default=None,
                    help="normal force-approach law: 'palmgren' (Harris), 'lundberg' (Lundberg-Sjovall), or a "
                         "table file with columns 'n [unit]' and 'N [unit]' (monotone) (default palmgren)")
-    g.add_argument("--length", type=quantity("length", sign="positive"), default=10e-3,
+    g.add_argument("--length", type=quantity("length", sign="positive"), default=None,
                    help="length of the line of contact, e.g. 10mm (default 10mm)")
     g.add_argument("--t-column", metavar="DISP_COLUMN", default=None,
                    help="name of the tangential displacement column (default: t, x, u or displacement)")
@@ -78,19 +108,59 @@ def add_parser(sub) -> None:
     p.set_defaults(func=run)
 
 
+def reference_kind(args) -> str:
+    """The reference of the command line, its options checked: a missing one named, one it does not use refused
+    naming the reference; the options it uses and were not given get their defaults (in ``args``)."""
+    kind = args.reference or ("cylinder" if args.loops else "sphere")
+    if args.loops and kind != "cylinder":
+        raise ValueError(f"measured LOOPS are tuned on a cylinder on a flat (--reference cylinder), not on a "
+                         f"{_KINDS[kind]} (--reference {kind}): drop --reference {kind} or the loop files")
+    if kind == "cylinder" and not args.loops:
+        raise ValueError("--reference cylinder needs measured LOOPS: a cylinder on a flat has a normal law "
+                         "(--normal-law) but no closed-form tangential law, so its tangential branch is fitted to "
+                         "loop files (microslip tune LOOPS... --reference cylinder --length 10mm)")
+    for name, option in _GEOMETRY.items():
+        if getattr(args, name) is not None and name not in _USES[kind]:
+            users = [k for k in _KINDS if name in _USES[k]]
+            raise ValueError(f"{option} does not apply to the {_KINDS[kind]} (--reference {kind}); it is an option "
+                             f"of --reference {' or '.join(users)}")
+    for name in _NEEDS[kind]:
+        if getattr(args, name) is None:
+            raise ValueError(f"--reference {kind} needs {_GEOMETRY[name]} (e.g. {_GEOMETRY[name]} "
+                             f"{_EXAMPLES[name]}): the {_KINDS[kind]} has no default")
+    for name in _USES[kind]:
+        if getattr(args, name) is None and name in _DEFAULTS:
+            setattr(args, name, _DEFAULTS[name])
+    return kind
+
+
+def reference_from(args, kind: str, load: float):
+    """The reference contact of the command line, exactly as the Python API builds it (``kind`` checked)."""
+    from ..reference import RoundedPunch, Sphere, mdr
+
+    second = second_body_from(args)
+    if kind == "sphere":
+        return Sphere(radius=args.radius, E=args.E, nu=args.nu, mu=args.mu, **second)
+    # the punch: its material carried by a sphere whose radius the profile replaces (microslip.mdr's reference)
+    material = Sphere(radius=args.edge_radius, E=args.E, nu=args.nu, mu=args.mu, **second)
+    return mdr(material, max_load=load, elements=args.mdr_elements,
+               profile=RoundedPunch(args.flat_radius, args.edge_radius)).as_reference()
+
+
 def run(args) -> int:
     if args.loops and args.load_range is not None:
-        raise ValueError("--load-range applies to the sphere only, not to measured LOOPS")
+        raise ValueError("--load-range applies to the sphere and the punch, not to measured LOOPS")
+    kind = reference_kind(args)
     if args.loops:
         return _run_loops(args)
     if args.report is not None:
-        raise ValueError("--out is the folder of the report on measured LOOPS; the sphere's model goes to -o FILE")
+        raise ValueError(f"--out is the folder of the report on measured LOOPS; the {kind}'s model goes to -o FILE")
     from ..tuning import tune
 
     mu_source = "given (--mu)" if args.mu is not None else "the default --mu 0.4 (the paper's)"
     if args.mu is None:
         args.mu = 0.4
-    reference = sphere_from(args)
+    second_body_from(args)  # before the load's default: both or neither
     points_given = args.forces is not None or args.displacements is not None
     load = 37.5 if args.load is None else args.load
     extra = {}
@@ -100,9 +170,15 @@ def run(args) -> int:
                              "--displacements")
         load = args.load_range[1] if args.load is None else args.load
         extra = {"load_range": args.load_range, "progress": not args.quiet}
+    reference = reference_from(args, kind, load)
     model = tune(reference, load, forces=args.forces, displacements=args.displacements,
                  elements=None if points_given else (4 if args.elements is None else args.elements), **extra)
-    model = model.with_provenance(replace(model.provenance, mu_source=mu_source))
+    tuned = model.provenance
+    notes = {}
+    if kind == "punch":  # the MDR array records its profile and mu; the material is kept here
+        notes = {"reference": "punch", "E": args.E, "nu": args.nu, "mdr_elements": args.mdr_elements,
+                 **second_body_from(args)}
+    model = model.with_provenance(replace(tuned, mu_source=mu_source, notes={**tuned.notes, **notes}))
     model.save(args.output)
     print(json.dumps({"written": args.output, "elements": model.elements, "mu": model.mu}))
     return 0
@@ -120,9 +196,10 @@ def normal_law(args):
 
     law = args.normal_law
     _check_normal_law(law)
+    second = second_body_from(args)
     if law in ("palmgren", "lundberg"):
-        return Cylinder(length=args.length, radius=args.radius, E=args.E, nu=args.nu, mu=args.mu, law=law)
-    return Cylinder.from_file(law, args.length, args.radius, args.E, args.nu, args.mu)
+        return Cylinder(length=args.length, radius=args.radius, E=args.E, nu=args.nu, mu=args.mu, law=law, **second)
+    return Cylinder.from_file(law, args.length, args.radius, args.E, args.nu, args.mu, **second)
 
 
 def _split_load(item: str):
@@ -152,6 +229,7 @@ def _run_loops(args) -> int:
     from ..measured.loop_tuning import tune_on_loops
 
     _check_normal_law(args.normal_law)
+    second_body_from(args)  # both or neither, before any file is read
     for item in args.loops:  # every file named exists before the first is read
         path, _ = _split_load(item)
         if not Path(path).is_file():
