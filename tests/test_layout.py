@@ -20,7 +20,7 @@ ROOT = PACKAGE.parent
 #: the allowed direction of the arrows: a module may import from its own top-level package or from
 #: one of lower rank, never from one of higher rank
 RANKS = {"common": 0, "kernels": 0, "model": 1, "reference": 2, "fe": 2, "accuracy": 3, "frequency": 3,
-         "tuning": 4, "config": 4, "measured": 5, "figures": 6, "study": 6, "cli": 7, "": 8}
+         "tuning": 4, "config": 5, "measured": 5, "figures": 6, "study": 6, "cli": 7, "": 8}
 
 #: the same inside ``frequency/``: numerics without physics, the AFT's public wrappers, structures, their
 #: reductions, the equations built on both, the analyses users run

@@ -114,7 +114,7 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
      "structure, cyclic, contact, damper, excitation, sweep, design, continuation, output, modes\\)"),
     # a misspelled key used to be ignored: the contact carried 0 N, H fell back to 5, the damping vanished
     ('preload = "37.5N"', 'pre_load = "37.5N"', "\\[\\[contact\\]\\] has an unknown key 'pre_load'; did you mean "
-     "'preload'\\? \\(it accepts model, tangential, normal, preload, approach, name\\)"),
+     "'preload'\\? \\(it accepts model, reference, load, elements, tangential, normal, preload, approach, name\\)"),
     ("harmonics = 7", "harmonicz = 7", "\\[sweep\\] has an unknown key 'harmonicz'; did you mean 'harmonics'"),
     ("C = [[17.32, 0.0], [0.0, 17.32]]", "Cx = [[17.32, 0.0], [0.0, 17.32]]",
      "\\[structure\\] has an unknown key 'Cx'; did you mean 'C'"),

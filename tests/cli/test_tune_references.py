@@ -140,3 +140,48 @@ def test_tune_help_lists_the_references_and_their_options(capsys):
         assert option in text, option
     assert "radius of the flat face" in text and "radius of the rounded edge" in text
     assert "Young's modulus of the second body" in text and "Poisson's ratio of the second body" in text
+
+
+# -- [[damper.interface]] and [[contact]] may name the reference instead of a model file ----------------------------
+
+PUNCH = 'reference = {kind = "punch", flat_radius = "1mm", edge_radius = "5mm", mdr_elements = 1000}\nload = "40N"'
+
+
+def test_tune_in_the_configuration_equals_the_python_tune(tmp_path):
+    from microslip.config import load_config
+    from test_design_cli import write_config
+
+    cfg = load_config(write_config(tmp_path, lambda t: t.replace('model = "flat.json"', PUNCH + "\nelements = 4")))
+    reference = mdr(Sphere(radius=5e-3, E=200e9, nu=0.3, mu=0.4), max_load=40.0, elements=1000,
+                    profile=RoundedPunch(1e-3, 5e-3)).as_reference()
+    api = tune(reference, 40.0, elements=4)
+    flat = [c.model for c in cfg.dampers[0].contacts if c.interface == cfg.dampers[0].contacts[0].interface]
+    assert len(flat) == 2
+    for model in flat:
+        same(model, api)
+
+
+@pytest.mark.parametrize("text, message", [
+    ('reference = {kind = "punch", flat_radius = "1mm"}\nload = "40N"',
+     "reference: kind = 'punch' needs edge_radius (e.g. edge_radius = \"5mm\")"),
+    ('reference = {kind = "sphere", flat_radius = "1mm"}\nload = "40N"',
+     "reference: flat_radius does not apply to the sphere on a plane (kind = 'sphere')"),
+    ('reference = {kind = "cylinder"}\nload = "40N"', "reference: a cylinder on a flat has no closed-form tangential"),
+    ('reference = {kind = "punch", flat_radius = "1mm", edge_radius = "5mm", E2 = "210GPa"}\nload = "40N"',
+     "reference: E2 needs nu2"),
+    ('reference = {kind = "sphere"}', "needs the key 'load'"),
+    ('reference = {kind = "sphere"}\nload = "-4N"', "load must be a positive force"),
+    ('model = "flat.json"\nload = "4N"', "load goes with reference = {kind = ...}"),
+    ('model = "flat.json"\nreference = {kind = "sphere"}\nload = "4N"', "gives both model and reference"),
+    ('reference = {kind = "sphere", radus = "1mm"}\nload = "4N"', "reference has an unknown key 'radus'"),
+    ('reference = {kind = "sphere", E = "200GN"}\nload = "4N"', "unknown pressure unit 'GN'"),
+])
+def test_tune_in_the_configuration_refuses_by_name(tmp_path, text, message):
+    import re
+
+    from microslip.config import ConfigError, load_config
+    from test_design_cli import write_config
+
+    path = write_config(tmp_path, lambda t: t.replace('model = "flat.json"', text))
+    with pytest.raises(ConfigError, match=re.escape(f"{path}: [[damper]] 1 interface 1") + ".*" + re.escape(message)):
+        load_config(path)

@@ -16,7 +16,11 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     dofs = ["x", "y"]                   # optional names of the DOFs
 
     [[contact]]                         # one table per contact
-    model = "contact.json"              # from 'microslip tune' (MicroslipModel.save)
+    model = "contact.json"              # from 'microslip tune' (MicroslipModel.save); or a reference tuned when
+                                        # the configuration is read, as 'microslip tune --reference' tunes it:
+                                        # reference = {kind = "punch", flat_radius = "1mm", edge_radius = "5mm"}
+                                        # (kind "sphere": radius; both: E, nu, mu, E2, nu2; the punch's
+                                        # mdr_elements), load = "37.5N" (the tuning load), elements = 4
     tangential = [0.866, 0.5]           # t = b_t . q: a DOF index, a list per DOF, or {"0" = 1, "1" = -1};
                                         # two directions for a contact moving on its plane: [dir1, dir2], e.g.
                                         # [{"0" = 1}, {"1" = 1}], ["12:x", "12:y"] or [[1.0, 0.0], [0.0, 1.0]]
@@ -53,7 +57,8 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
     # retention = "1e3N/m"              # N/m: the features keeping the damper in its pocket, a spring from
                                         # each of X, Y and the arc R to the disk (optional, default 0)
     # [[damper.interface]]              # one table per interface
-    # model = "flat.json"               # the contacts' law (a list of files: one per point)
+    # model = "flat.json"               # the contacts' law (a list of files: one per point), or reference,
+                                        # load and elements as in [[contact]]
     # points = [[-2e-3, 1.5e-3], [-1e-3, 2.5e-3]]   # m, on the damper from its centre of mass
     # angle = 120                       # degrees: the normal, from the damper into the platform ("120deg";
                                         # "2.1rad"; a bare number of magnitude up to 2 pi needs its unit)
@@ -133,10 +138,10 @@ KEYS = {
     "[modes]": ("mode", "amplitude", "dof", "compare", "nodal_diameter"),
     "[cyclic]": ("sectors", "left", "right", "engine_order", "frame", "axis", "point", "coordinates", "nodes"),
     "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
-    "[[damper.interface]]": ("model", "points", "angle", "platform", "name"),
+    "[[damper.interface]]": ("model", "reference", "load", "elements", "points", "angle", "platform", "name"),
     "[design]": ("loads", "dof"),
     "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names"),
-    "[[contact]]": ("model", "tangential", "normal", "preload", "approach", "name"),
+    "[[contact]]": ("model", "reference", "load", "elements", "tangential", "normal", "preload", "approach", "name"),
     "[sweep]": ("omega", "frequency", "harmonics", "samples", "reduction", "modes", "engine_order"),
     "[continuation]": tuple(sorted(_CONTROL_KEYS)),
     "[output]": ("plot", "harmonic", "frequency_unit"),
@@ -149,6 +154,108 @@ EXCITATION_EXAMPLES = ("static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phas
 
 class ConfigError(ValueError):
     """A configuration file that cannot be used; the message names the file and the key."""
+
+
+#: the references a contact may be tuned on when the configuration is read ('microslip tune --reference'), their
+#: keys (besides kind) and the defaults of the command line
+_REFERENCES = {"sphere": "sphere on a plane", "punch": "flat punch with rounded edges"}
+_REFERENCE_KEYS = {"sphere": ("radius", "E", "nu", "mu", "E2", "nu2"),
+                   "punch": ("flat_radius", "edge_radius", "mdr_elements", "E", "nu", "mu", "E2", "nu2")}
+_REFERENCE_NEEDS = {"sphere": (), "punch": ("flat_radius", "edge_radius")}
+_REFERENCE_DEFAULTS = {"radius": 5e-3, "E": 200e9, "nu": 0.3, "mu": 0.4, "mdr_elements": 2000}
+_REFERENCE_KINDS = {"radius": "length", "flat_radius": "length", "edge_radius": "length", "E": "pressure",
+                    "E2": "pressure", "nu": "dimensionless", "nu2": "dimensionless", "mu": "dimensionless"}
+_REFERENCE_EXAMPLES = {"flat_radius": '"1mm"', "edge_radius": '"5mm"', "E2": '"210GPa"', "nu2": "0.3"}
+
+
+def _whole(value, what: str, path, default: int) -> int:
+    if value is None:
+        return default
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise ConfigError(f"{path}: {what} must be a positive whole number such as {default}, got {value!r}")
+    return value
+
+
+def _contact_models(table: dict, where: str, path, base: Path, files: "ConfigFiles", *, many: bool) -> list:
+    """A contact's law: the model file(s) of ``model``, or the model tuned on ``reference`` at ``load``.
+
+    ``reference = {kind = "sphere" | "punch", ...}`` is tuned as ``microslip tune --reference`` tunes it (the same
+    defaults, the same code path: :func:`microslip.tune`, through :func:`microslip.mdr` for the punch), with
+    ``load`` (required) and ``elements`` (default 4). ``many``: ``model`` may list one file per point.
+    """
+    if "reference" not in table:
+        for key in ("load", "elements"):
+            if key in table:
+                raise ConfigError(f"{path}: {where} {key} goes with reference = {{kind = ...}} (a contact tuned when "
+                                  f"the configuration is read); the model file of model = ... is tuned already")
+        names = _get(table, "model", where, path)
+        names = names if many and isinstance(names, list) else [names]
+        try:
+            return [files.model(base / f) for f in names]
+        except (ValueError, TypeError) as exc:
+            raise ConfigError(f"{path}: {where}: {exc}") from None
+    if "model" in table:
+        raise ConfigError(f"{path}: {where} gives both model and reference: the contact's law is one of them, a "
+                          f"model file or a reference tuned when the configuration is read")
+    here = f"{where} reference"
+    spec = table["reference"]
+    if not isinstance(spec, dict):
+        raise ConfigError(f"{path}: {here} must be a table such as {{kind = \"punch\", flat_radius = \"1mm\", "
+                          f"edge_radius = \"5mm\"}}, got {spec!r}")
+    kind = spec.get("kind")
+    if kind == "cylinder":
+        raise ConfigError(f"{path}: {here}: a cylinder on a flat has no closed-form tangential law: it is tuned on "
+                          f"measured loops (microslip tune LOOPS... --reference cylinder); give that model's file, "
+                          f"model = \"cylinder.json\"")
+    if kind not in _REFERENCES:
+        raise ConfigError(f"{path}: {here} kind must be one of {list(_REFERENCES)}, got {kind!r}")
+    accepted = _REFERENCE_KEYS[kind]
+    for key in spec:
+        if key == "kind" or key in accepted:
+            continue
+        users = [k for k in _REFERENCES if key in _REFERENCE_KEYS[k]]
+        if users:
+            raise ConfigError(f"{path}: {here}: {key} does not apply to the {_REFERENCES[kind]} (kind = {kind!r}); "
+                              f"it is a key of kind = {users[0]!r}")
+        raise ConfigError(f"{path}: {here} has an unknown key {key!r}{close_spelling(key, accepted)} (kind = "
+                          f"{kind!r} accepts kind, {', '.join(accepted)})")
+    for key in _REFERENCE_NEEDS[kind]:
+        if key not in spec:
+            raise ConfigError(f"{path}: {here}: kind = {kind!r} needs {key} (e.g. {key} = "
+                              f"{_REFERENCE_EXAMPLES[key]}): the {_REFERENCES[kind]} has no default")
+    for key, other in (("E2", "nu2"), ("nu2", "E2")):
+        if key in spec and other not in spec:
+            raise ConfigError(f"{path}: {here}: {key} needs {other}: the second body's material is both or neither "
+                              f"(e.g. {other} = {_REFERENCE_EXAMPLES[other]})")
+    values = {}
+    for key in accepted:
+        if key == "mdr_elements":
+            values[key] = _whole(spec.get(key), f"{here} mdr_elements", path, _REFERENCE_DEFAULTS[key])
+        elif key in spec:
+            values[key] = _quantity(spec[key], _REFERENCE_KINDS[key], f"{here} {key}", path)
+        elif key in _REFERENCE_DEFAULTS:
+            values[key] = _REFERENCE_DEFAULTS[key]
+    load = _quantity(_get(table, "load", where, path), "force", f"{where} load", path)
+    if not (np.isfinite(load) and load > 0):
+        raise ConfigError(f"{path}: {where} load must be a positive force such as \"37.5N\", got {table['load']!r}")
+    elements = _whole(table.get("elements"), f"{where} elements", path, 4)
+    key = ("tuned", kind, tuple(sorted(values.items())), load, elements)
+    return [checked(path, f"{here}: ", files._once, key, lambda: _tune_reference(kind, values, load, elements))]
+
+
+def _tune_reference(kind: str, values: dict, load: float, elements: int) -> MicroslipModel:
+    """``tune`` on the reference, built as 'microslip tune --reference' builds it."""
+    from ..reference import RoundedPunch, Sphere, mdr
+    from ..tuning import tune
+
+    second = {k: values[k] for k in ("E2", "nu2") if k in values}
+    if kind == "sphere":
+        reference = Sphere(radius=values["radius"], E=values["E"], nu=values["nu"], mu=values["mu"], **second)
+    else:  # the punch's material carried by a sphere whose radius the profile replaces (microslip.mdr's reference)
+        material = Sphere(radius=values["edge_radius"], E=values["E"], nu=values["nu"], mu=values["mu"], **second)
+        reference = mdr(material, max_load=load, elements=values["mdr_elements"],
+                        profile=RoundedPunch(values["flat_radius"], values["edge_radius"])).as_reference()
+    return tune(reference, load, elements=elements)
 
 
 @dataclass
@@ -505,11 +612,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     for i, c in enumerate(_tables(data, "contact", path)):
         where = f"[[contact]] {i + 1}"
         _table(c, "[[contact]]", path, where)
-        model_path = base / _get(c, "model", where, path)
-        try:
-            model = files.model(model_path)
-        except (ValueError, TypeError) as exc:
-            raise ConfigError(f"{path}: {where}: {exc}") from None
+        model, = _contact_models(c, where, path, base, files, many=False)
         kwargs = {"tangential": _next_keys(_direction(_get(c, "tangential", where, path), f"{where} tangential",
                                                       path), structure, f"{where} tangential", path),
                   "normal": _next_keys(_direction(c.get("normal"), f"{where} normal", path), structure,
@@ -803,12 +906,7 @@ def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path, 
     for i, face in enumerate(_get(table, "interface", where, path)):
         here = f"{where} interface {i + 1}"
         _table(face, "[[damper.interface]]", path, here)
-        names = _get(face, "model", here, path)
-        names = names if isinstance(names, list) else [names]
-        try:
-            models = [files.model(base_dir / f) for f in names]
-        except (ValueError, TypeError) as exc:
-            raise ConfigError(f"{path}: {here}: {exc}") from None
+        models = _contact_models(face, here, path, base_dir, files, many=True)
         points = np.array([[_quantity(v, "length", f"{here} points", path) for v in row]
                            for row in _get(face, "points", here, path)])
         angle = _angle(_get(face, "angle", here, path), f"{here} angle", path)
