@@ -92,7 +92,7 @@ class SpeedModel:
             for j in range(i):
                 if x[i] == x[j]:
                     raise ValueError(f"speeds must be distinct: speeds[{j}] and speeds[{i}] are both "
-                                     f"{self.speeds[i]!r} rad/s")
+                                     f"{float(self.speeds[i])!r} rad/s")
         if isinstance(stiffness, (str, bytes)) or not hasattr(stiffness, "__len__"):
             raise TypeError(f"stiffness must be a sequence of {self.speeds.size} matrices, got "
                             f"{type(stiffness).__name__}")
