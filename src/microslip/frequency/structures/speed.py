@@ -23,6 +23,10 @@ from .damper import UnderPlatformDamper
 from .structure import Structure, check_symmetric
 
 
+#: the largest rotation speed accepted (rad/s): ``Omega^4`` stays finite
+MAX_SPEED = 1e75
+
+
 def _speed(name: str, value) -> float:
     """A rotation speed (rad/s), a number or a string with a unit (``"3000 rpm"``), >= 0."""
     if isinstance(value, str):
@@ -30,7 +34,10 @@ def _speed(name: str, value) -> float:
     elif isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise TypeError(f"{name} must be a rotation speed (rad/s, or a string such as '3000 rpm'), got "
                         f"{type(value).__name__}")
-    return _checks.positive_scalar(name, value, allow_zero=True)
+    value = _checks.positive_scalar(name, value, allow_zero=True)
+    if value > MAX_SPEED:
+        raise ValueError(f"{name} must be at most {MAX_SPEED:g} rad/s (its fourth power stays finite), got {value!r}")
+    return value
 
 
 def rotation_speeds(name: str, values) -> np.ndarray:
@@ -98,16 +105,21 @@ class SpeedModel:
                             f"{type(stiffness).__name__}")
         if len(stiffness) != self.speeds.size:
             raise ValueError(f"stiffness must hold one matrix per speed ({self.speeds.size}), got {len(stiffness)}")
-        self._cyclic = None if cyclic is None else dict(_checks.mapping("cyclic", cyclic))
-        # each matrix checked as a structure's K (square, finite, symmetric, of M's size)
-        self._base = Structure(M, C, stiffness[0], dof_map=dof_map)
-        self.M, self.C, self.dof_map = self._base.M, self._base.C, dof_map
-        mats = [self._base.K]
-        for i, K in enumerate(stiffness[1:], start=1):
+        # M and C checked as a structure's (square, finite, symmetric, M positive definite), each K as its K
+        base = Structure(M, C, M, dof_map=dof_map)
+        self.M, self.C, self.dof_map = base.M, base.C, dof_map
+        mats = []
+        for i, K in enumerate(stiffness):
             try:
                 mats.append(Structure(self.M, None, K).K)
             except (ValueError, TypeError) as exc:
                 raise type(exc)(f"stiffness[{i}]: {exc}") from None
+        self._cyclic = None if cyclic is None else dict(_checks.mapping("cyclic", cyclic))
+        if self._cyclic is not None:  # the symmetry checked once, on M
+            try:
+                CyclicStructure(self.M, None, self.M, dof_map=dof_map, **self._cyclic)
+            except (ValueError, TypeError) as exc:
+                raise type(exc)(f"cyclic: {exc}") from None
         for i, K in enumerate(mats):
             check_symmetric(f"stiffness[{i}]", K, dof_map)
         self.matrices = mats
@@ -157,11 +169,15 @@ class SpeedModel:
 
     def stiffness(self, omega_rot):
         """``K(omega_rot)`` (N/m), ``(ndof, ndof)``, dense or sparse like the given matrices."""
-        w = self.weights(omega_rot)
+        omega = _speed("omega_rot", omega_rot)
+        w = self.weights(omega)
         K = w[0] * self.matrices[0]
         for wi, Ki in zip(w[1:], self.matrices[1:]):
             K = K + wi * Ki
-        return K.tocsr() if sp.issparse(K) else np.asarray(K)
+        K = K.tocsr() if sp.issparse(K) else np.asarray(K)
+        if not np.isfinite(K.data if sp.issparse(K) else K).all():
+            raise ValueError(f"omega_rot = {omega!r} rad/s is too large: K(omega_rot) overflows")
+        return K
 
     def at(self, omega_rot, *, contacts: bool = True, damper: bool = True) -> Structure:
         """The structure at the rotation speed ``omega_rot`` (rad/s, or ``"3000 rpm"``).
