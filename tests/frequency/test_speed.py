@@ -15,6 +15,7 @@ import scipy.sparse as sp
 from microslip import MicroslipModel
 from microslip.frequency import (CampbellDiagram, CyclicStructure, SpeedCurve, SpeedModel, Structure, campbell,
                                  damper_design_curve, damper_speed_curve)
+from microslip.frequency.analyses.response import PeakOnEdgeWarning
 from test_damper import blade_pair, damper  # the blade pair with its damper
 from test_design import antiphase
 
@@ -96,6 +97,10 @@ def test_the_speed_model_refuses_by_name():
         SpeedModel(M, None, [A, B], [0.0, 1.0], damper=damper())
     with pytest.raises(TypeError, match="contacts must be a Structure"):
         SpeedModel(M, None, [A, B], [0.0, 1.0], contacts=3)
+    with pytest.raises(ValueError, match="cyclic: .*sectors"):
+        SpeedModel(M, None, [A, B], [0.0, 1.0], cyclic=dict(sectors=2, left=[0], right=[3]))
+    with pytest.raises(ValueError, match="omega_rot must be at most 1e\\+75 rad/s"):
+        model3().at(1e80)
 
 
 def test_contacts_are_copied_from_a_template_or_added_by_a_callback():
@@ -208,6 +213,11 @@ def test_the_damper_speed_curve_is_the_design_curve_at_each_speeds_load(tmp_path
     rows = list(csv.DictReader(open(curve.to_csv(tmp_path / "speed.csv"))))
     assert float(rows[1]["speed [rad/s]"]) == speeds[1] and rows[0]["status"] == "peak"
     assert curve.plot().get_xlabel() == "rotation speed (rpm)"
+    # a range per speed: the second one ends below the stuck resonance, its peak on the edge, flagged with its speed
+    with pytest.warns(PeakOnEdgeWarning, match=f"speed {speeds[1]:.6g} rad/s .*rpm.*load 300 N: .*range"):
+        edge = damper_speed_curve(m, speeds, antiphase(), [(3000.0, 5000.0), (3000.0, 4200.0)], dof=2,
+                                  harmonics=1)
+    assert edge.status == ["peak", "peak on the range's edge"] and edge.peak_amplitude[0] == curve.peak_amplitude[0]
     with pytest.raises(ValueError, match=r"omega must be a frequency range \(2,\) or one per speed"):
         damper_speed_curve(m, speeds, antiphase(), [1.0, 2.0, 3.0], dof=2)
     with pytest.raises(ValueError, match="model must carry a damper"):
