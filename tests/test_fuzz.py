@@ -362,6 +362,21 @@ def three_dofs() -> Structure:
     return s
 
 
+def speed_model(**kwargs):
+    K = np.array([[2e4, -1e4, 0.0], [-1e4, 2e4, -1e4], [0.0, -1e4, 1e4]])
+    return microslip.frequency.SpeedModel(np.eye(3), None, [K, K + 1e-2 * np.eye(3)], [0.0, 500.0], **kwargs)
+
+
+@cache
+def speed_model_with_contact():
+    return speed_model(contacts=three_dofs())
+
+
+@cache
+def a_campbell():
+    return microslip.frequency.campbell(speed_model_with_contact(), [0.0, 100.0, 200.0], modes=2, engine_orders=[1])
+
+
 @cache
 def design_curve():
     loads = np.array([100.0, 300.0])
@@ -773,6 +788,18 @@ CASES += [
          kinds={"damper": "object", "force": "array"}, structure=L(lambda: Structure(np.eye(2), None, np.eye(2) * 1e4)),
          damper=L(damper_with_interface), loads=[100.0, 300.0], force=[1.0, 0.0], omega=(50.0, 150.0), dof=0),
     case("DesignCurve.to_csv", lambda: design_curve().to_csv, kinds=PATH, path="design.csv"),
+    case("SpeedModel", lambda: microslip.frequency.SpeedModel, M=np.eye(2), C=None,
+         stiffness=[np.diag([2e4, 1e4]), np.diag([2.1e4, 1.2e4])], speeds=[0.0, 500.0]),
+    case("SpeedModel.weights", lambda: speed_model().weights, omega_rot=300.0),
+    case("SpeedModel.stiffness", lambda: speed_model().stiffness, omega_rot=300.0),
+    case("SpeedModel.at", lambda: speed_model_with_contact().at, omega_rot=300.0, contacts=True, damper=True),
+    case("frequency.campbell", lambda: microslip.frequency.campbell, model=L(speed_model_with_contact),
+         speeds=[0.0, 100.0, 200.0], modes=2, engine_orders=[1, 2], contacts="both"),
+    case("CampbellDiagram.hertz", lambda: a_campbell().hertz, system="stuck"),
+    case("CampbellDiagram.to_csv", lambda: a_campbell().to_csv, kinds=PATH, path="campbell.csv"),
+    case("frequency.damper_speed_curve", lambda: microslip.frequency.damper_speed_curve, refused_only=True,
+         kinds={"force": "array"}, model=L(lambda: speed_model(damper=damper_with_interface(), radius=0.2)),
+         speeds=[100.0, 200.0], force=[1.0, 0.0, 0.0], omega=(50.0, 150.0), dof=0),
     case("CraigBampton.save", lambda: reduced().save, kinds=PATH, path="saved.npz"),
     case("CraigBampton.load", lambda: microslip.frequency.CraigBampton.load, kinds=PATH, path=L(reduced_file)),
 
@@ -871,6 +898,8 @@ NOT_FUZZED = {
     "HarmonicBalance.augmented": "a step of the solver on its own Jacobian",
     "HarmonicBalance.curve_quantities": "a step of the solver on its own solutions",
     "DesignCurve.plot": "draws",
+    "CampbellDiagram.plot": "draws",
+    "SpeedCurve.plot": "draws",
     "ContactCycle.plot": "draws",
     "frequency.plot_contact_cycles": "draws",
     "NonlinearModes.plot": "draws",
@@ -883,7 +912,7 @@ NOT_FUZZED = {
 RESULTS = {"AccuracyReport", "AFTResult", "PlaneAFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
-           "DesignCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes", "SynthesizedResponse",
+           "DesignCurve", "CampbellDiagram", "SpeedCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes", "SynthesizedResponse",
            "SweepResult", "Study", "Case", "Mistuning"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",

@@ -20,6 +20,10 @@
   engine-order excitation (``engine_order=`` of the solvers);
 * :class:`UnderPlatformDamper` -- a rigid damper body between two platforms,
   its interfaces given by geometry, attached to a structure or a sector;
+* :class:`SpeedModel` -- stiffness at 2 or 3 rotation speeds fitted as
+  ``K0 + Omega^2 K1 (+ Omega^4 K2)``, the damper's load ``m r Omega^2``;
+  :func:`campbell` its Campbell diagram (stuck and free systems, engine-order
+  crossings), :func:`damper_speed_curve` the peak response against speed;
 * :func:`damper_design_curve` -- peak response against the damper's
   centrifugal load, the curve used to choose a damper;
 * :func:`blade_scatter`, :func:`mistuned_disk`, :func:`blade_peaks`,
@@ -44,6 +48,8 @@ from .reduction.craig_bampton import CraigBampton, craig_bampton
 from .structures.cyclic import CyclicStructure
 from .structures.damper import DamperContact, UnderPlatformDamper
 from .analyses.design import DesignCurve, damper_design_curve
+from .structures.speed import SpeedModel
+from .analyses.campbell import CampbellDiagram, SpeedCurve, campbell, damper_speed_curve
 from .reduction.condensation import SingularInteriorError
 from .analyses.contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
 from .equations.hbm import HarmonicBalance
@@ -72,6 +78,11 @@ del _old, _new
 
 __all__ = [
     "AFTResult",
+    "CampbellDiagram",
+    "SpeedCurve",
+    "SpeedModel",
+    "campbell",
+    "damper_speed_curve",
     "BranchPointWarning",
     "Contact",
     "ContactCycle",
