@@ -99,7 +99,11 @@ class PressureLaw:
     def model(self, area: float) -> MicroslipModel:
         """The one-element :class:`~microslip.MicroslipModel` of a pair of tributary area ``area`` (m²)."""
         a = _checks.positive_scalar("area", area)
-        return MicroslipModel(kt=[self.kt_per_area * a], kn=[self.kn_per_area * a], gaps=[self.gap], mu=self.mu)
+        kt, kn = self.kt_per_area * a, self.kn_per_area * a
+        if not (0.0 < kt < np.inf and 0.0 < kn < np.inf):
+            raise ValueError(f"area = {a!r} m² gives stiffnesses kt = {kt!r}, kn = {kn!r} N/m outside the "
+                             "positive floating-point range")
+        return MicroslipModel(kt=[kt], kn=[kn], gaps=[self.gap], mu=self.mu)
 
 
 # -- geometry --------------------------------------------------------------------------------------------
@@ -132,7 +136,8 @@ def _points(mesh_or_points) -> dict:
 
 def _faces(name: str, faces) -> list[tuple[int, ...]]:
     """The faces of a surface: sequences of 3 (triangle) or 4 (quad) node ids."""
-    if isinstance(faces, (str, bytes, Mapping)) or np.ndim(faces) == 0:
+    if isinstance(faces, (str, bytes, Mapping)) or not hasattr(faces, "__len__") or (
+            isinstance(faces, np.ndarray) and faces.ndim != 2):
         raise TypeError(f"{name} must be a sequence of faces (3 or 4 node ids each), got {_checks._show(faces)}")
     out = []
     for k, face in enumerate(faces):
@@ -169,7 +174,8 @@ def _surface(name: str, faces, points: dict):
             va = 0.5 * np.cross(p[2] - p[0], p[3] - p[1])
         a = float(np.linalg.norm(va))
         if not a > 0.0 or not np.isfinite(a):
-            raise ValueError(f"{name}[{k}] (nodes {list(f)}) has zero or non-finite area, got {a!r} m²")
+            raise ValueError(f"{name}[{k}] (nodes {list(f)}) has zero or non-finite area at the positions of "
+                             f"mesh_or_points, got {a!r} m²")
         for v in f:
             area[row[v]] += a / len(f)
             vector[row[v]] += va
