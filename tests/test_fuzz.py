@@ -446,6 +446,10 @@ def patch_structure() -> Structure:
     return Structure(np.eye(36), np.zeros((36, 36)), 1e6 * np.eye(36), dof_map=dof_map)
 
 
+def table_patch():
+    return microslip.fe.patch_from_tables([3, 8], [1e-4, 2e-4], [[0.0, 0.0, 1.0], [0.6, 0.0, 0.8]])
+
+
 PRESSURE_LAW = microslip.fe.PressureLaw(kn_per_area=1e12, kt_per_area=5e11, mu=0.5, gap=0.0)
 
 
@@ -840,6 +844,13 @@ CASES += [
     case("fe.add_patch", lambda: microslip.fe.add_patch, kinds={"dofs": "mapping"}, structure=L(patch_structure),
          patch=L(a_patch), law=PRESSURE_LAW, dofs={k: (3 * k, 3 * k + 1, 3 * k + 2) for k in range(12)},
          name="patch"),
+    case("fe.add_patch [relative]", lambda: microslip.fe.add_patch, kinds={"dofs": "mapping"},
+         structure=L(lambda: Structure(np.eye(6), np.zeros((6, 6)), np.eye(6))), patch=L(table_patch),
+         law=PRESSURE_LAW, dofs={3: (0, 1, 2), 8: (3, 4, 5)}, relative=True),
+    # interface tables: node ids of zero and negative areas are refused, a zero normal has no unit length
+    case("fe.patch_from_tables", lambda: microslip.fe.patch_from_tables, nodes_a=[3, 8], area=[1e-4, 2e-4],
+         normal=[[0.0, 0.0, 1.0], [0.6, 0.0, 0.8]], nodes_b=[13, 18], tangent1=[[1.0, 0.0, 0.0], [0.8, 0.0, -0.6]],
+         tangent2=[[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]),
     case("PressureLaw", lambda: microslip.fe.PressureLaw, kn_per_area=1e12, kt_per_area=5e11, mu=0.5, gap=0.0),
     case("PressureLaw.model", lambda: PRESSURE_LAW.model, area=1e-4),
 ]

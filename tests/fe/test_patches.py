@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from microslip import MicroslipModel
-from microslip.fe import ContactPatch, DofMap, PressureLaw, add_patch, contact_patch, patch_from_mesh
+from microslip.fe import (ContactPatch, DofMap, PressureLaw, add_patch, contact_patch, patch_from_mesh,
+                          patch_from_tables)
 from microslip.frequency import Structure, static_solution
 
 meshio = pytest.importorskip("meshio")
@@ -255,3 +256,40 @@ def test_pressure_law_is_checked_by_name():
         PressureLaw(kn_per_area=1e12, kt_per_area=1e12, mu=0.1).model(1e300)
     m = PressureLaw(kn_per_area=2e12, kt_per_area=1e12, mu=0.1, gap=1e-7).model(1e-4)
     assert m == MicroslipModel(kt=[1e8], kn=[2e8], gaps=[1e-7], mu=0.1)
+
+
+# -- a reduced model's interface tables ------------------------------------------------------------------
+
+
+def test_tables_of_relative_coordinates_give_the_same_contacts_as_the_nodes():
+    """A pair's relative displacement r = u_b - u_a as the reduced model's DOFs: the contacts' directions are
+    those on the nodes' DOFs mapped through r."""
+    points, fa, fb = flat_mesh(nx=2, ny=1)
+    patch = contact_patch(points, fa, fb, tolerance=1e-9)
+    tables = patch_from_tables(patch.nodes_a, patch.area, patch.normal)
+    np.testing.assert_array_equal(tables.tangent1, patch.tangent1)
+    np.testing.assert_array_equal(tables.nodes_b, tables.nodes_a)
+    P = len(patch)
+    s = Structure(np.eye(3 * P), np.zeros((3 * P, 3 * P)), np.eye(3 * P))
+    dofs = {int(n): (3 * p, 3 * p + 1, 3 * p + 2) for p, n in enumerate(patch.nodes_a)}
+    law = PressureLaw(kn_per_area=1e12, kt_per_area=1e11, mu=0.3)
+    contacts = add_patch(s, tables, law, dofs=dofs, relative=True)
+    for p, c in enumerate(contacts):
+        r = dofs[int(patch.nodes_a[p])]
+        np.testing.assert_allclose(c.normal[list(r)], -patch.normal[p], atol=1e-15)  # n = -normal . r
+        np.testing.assert_allclose(c.tangential[list(r)], patch.tangent1[p], atol=1e-15)
+        np.testing.assert_allclose(c.tangential2[list(r)], patch.tangent2[p], atol=1e-15)
+        assert c.model.kn[0] == pytest.approx(1e12 * patch.area[p], rel=1e-15)
+
+
+def test_tables_are_checked_by_name():
+    n = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 2.0]])
+    with pytest.raises(ValueError, match=r"normal\[1\] must be a unit vector"):
+        patch_from_tables([1, 2], [1e-4, 1e-4], n)
+    with pytest.raises(ValueError, match=r"tangent1\[0\] must be perpendicular to normal\[0\]"):
+        patch_from_tables([1], [1e-4], [[0.0, 0.0, 1.0]], tangent1=[[0.0, 0.6, 0.8]])
+    with pytest.raises(ValueError, match="area must have one value per pair"):
+        patch_from_tables([1, 2], [1e-4], [[0.0, 0.0, 1.0]] * 2)
+    p = patch_from_tables([1], [1e-4], [[0.0, 0.0, 1.0]], tangent1=[[0.0, 1.0, 0.0]], nodes_b=[7])
+    np.testing.assert_allclose(p.tangent2, [[-1.0, 0.0, 0.0]])
+    assert p.nodes_b.tolist() == [7]

@@ -30,7 +30,7 @@ from ..common import _checks
 from ..model import MicroslipModel
 from ._optional import require
 
-__all__ = ["ContactPatch", "PressureLaw", "add_patch", "contact_patch", "patch_from_mesh"]
+__all__ = ["ContactPatch", "PressureLaw", "add_patch", "contact_patch", "patch_from_mesh", "patch_from_tables"]
 
 
 @dataclass(frozen=True)
@@ -48,7 +48,8 @@ class ContactPatch:
     tangent1, tangent2 : ndarray, shape (P, 3)
         Unit tangents; ``(tangent1, tangent2, normal)`` is right-handed and orthonormal.
     distance : ndarray, shape (P,)
-        Distance between the two nodes of each pair (m).
+        Distance between the two nodes of each pair (m); zero for a patch read from tables
+        (:func:`patch_from_tables`).
     """
 
     nodes_a: np.ndarray
@@ -259,6 +260,76 @@ def contact_patch(mesh_or_points, surface_a, surface_b, *, tolerance: float) -> 
     return ContactPatch(ids_a, ids_b[j], area, n, t1, t2, dist)
 
 
+def _unit_rows(name: str, value, P: int) -> np.ndarray:
+    v = _checks.real_array(name, value, ndim=2)
+    if v.shape != (P, 3):
+        raise ValueError(f"{name} must have shape (P, 3) = ({P}, 3), one unit vector per pair, got {v.shape}")
+    norm = np.linalg.norm(v, axis=1)
+    bad = np.flatnonzero(~(np.abs(norm - 1.0) <= 1e-6))
+    if bad.size:
+        raise ValueError(f"{name}[{int(bad[0])}] must be a unit vector (within 1e-6), got length {float(norm[bad[0]])!r}")
+    return v / norm[:, None]
+
+
+def patch_from_tables(nodes_a, area, normal, *, nodes_b=None, tangent1=None, tangent2=None) -> ContactPatch:
+    """A :class:`ContactPatch` from the tables a reduced model's interface carries.
+
+    Parameters
+    ----------
+    nodes_a : array_like of int, shape (P,)
+        Node (or interface point) id of each pair.
+    area : array_like, shape (P,)
+        Tributary area of each pair (m²), positive.
+    normal : array_like, shape (P, 3)
+        Unit normal of each pair, from side ``a`` to side ``b`` (unit within 1e-6; normalised).
+    nodes_b : array_like of int, shape (P,), optional
+        The partner of each pair; default ``nodes_a`` (relative-displacement coordinates: use
+        ``add_patch(..., relative=True)``).
+    tangent1, tangent2 : array_like, shape (P, 3), optional
+        Unit tangents, perpendicular to ``normal`` (within 1e-6); ``tangent2`` defaults to
+        ``normal x tangent1`` and both default to the rule of :func:`contact_patch`.
+
+    Returns
+    -------
+    ContactPatch
+        With ``distance`` zero.
+    """
+    ids = _checks.real_array("nodes_a", nodes_a, ndim=1, min_size=1)
+    if ids.size > _checks.MAX_SIZE:
+        raise ValueError(f"nodes_a must have at most {_checks.MAX_SIZE} pairs, got {ids.size}")
+    P = ids.size
+    tables = {"nodes_a": nodes_a, "nodes_b": nodes_a if nodes_b is None else nodes_b}
+    out = {}
+    for name, value in tables.items():
+        arr = np.asarray(value)
+        if arr.dtype.kind not in "iu" or arr.shape != (P,) or (arr < 0).any():
+            raise ValueError(f"{name} must be {P} non-negative integer node ids, got {_checks._show(value)}")
+        out[name] = arr.astype(np.int64)
+    a = _checks.positive_array("area", area, ndim=1)
+    if a.size != P:
+        raise ValueError(f"area must have one value per pair ({P}), got {a.size}")
+    n = _unit_rows("normal", normal, P)
+    if tangent1 is None:
+        if tangent2 is not None:
+            raise ValueError("tangent2 must be None when tangent1 is: give tangent1 (tangent2 = normal x tangent1)")
+        n, t1, t2 = _frames(n, out["nodes_a"])
+    else:
+        t1 = _unit_rows("tangent1", tangent1, P)
+        t2 = np.cross(n, t1) if tangent2 is None else _unit_rows("tangent2", tangent2, P)
+        for name, t in (("tangent1", t1), ("tangent2", t2)):
+            off = np.abs(np.sum(t * n, axis=1))
+            if not (off <= 1e-6).all():
+                k = int(np.argmax(off))
+                raise ValueError(f"{name}[{k}] must be perpendicular to normal[{k}] (within 1e-6), got a cosine "
+                                 f"{float(off[k])!r}")
+        off = np.abs(np.sum(t1 * t2, axis=1))
+        if not (off <= 1e-6).all():
+            k = int(np.argmax(off))
+            raise ValueError(f"tangent2[{k}] must be perpendicular to tangent1[{k}] (within 1e-6), got a cosine "
+                             f"{float(off[k])!r}")
+    return ContactPatch(out["nodes_a"], out["nodes_b"], a, n, t1, t2, np.zeros(P))
+
+
 # -- from a mesh file ------------------------------------------------------------------------------------
 
 #: meshio's names of the surface cells and their corner counts
@@ -368,7 +439,7 @@ def _node_dofs(node: int, dofs, structure) -> list:
     return out
 
 
-def add_patch(structure, patch: ContactPatch, law, *, dofs=None, name: str = "patch") -> list:
+def add_patch(structure, patch: ContactPatch, law, *, dofs=None, name: str = "patch", relative: bool = False) -> list:
     """Attach one contact per node pair of ``patch`` to ``structure``.
 
     Parameters
@@ -386,6 +457,10 @@ def add_patch(structure, patch: ContactPatch, law, *, dofs=None, name: str = "pa
         the structure's DOF map (``"node:x"``, ``"node:y"``, ``"node:z"``).
     name : str
         Contact ``p`` is named ``f"{name}{p}"``.
+    relative : bool
+        True: the structure's DOFs of ``nodes_a[p]`` are the pair's relative displacement
+        ``r = u_b - u_a`` (x, y, z; the interface coordinates of a reduced model), and ``nodes_b`` is
+        not used: ``t_k = tangent_k . r``, ``n = -normal . r``.
 
     Returns
     -------
@@ -402,17 +477,23 @@ def add_patch(structure, patch: ContactPatch, law, *, dofs=None, name: str = "pa
     if dofs is not None:
         dofs = _checks.mapping("dofs", dofs)
     _checks.text("name", name)
+    relative = _checks.flag("relative", relative)
     contacts = []
     for p in range(len(patch)):
         a, b = int(patch.nodes_a[p]), int(patch.nodes_b[p])
-        da, db = _node_dofs(a, dofs, structure), _node_dofs(b, dofs, structure)
+        da = _node_dofs(a, dofs, structure)
+        db = None if relative else _node_dofs(b, dofs, structure)
         directions = []
         for vec, sign in ((patch.tangent1[p], -1.0), (patch.tangent2[p], -1.0), (patch.normal[p], 1.0)):
             d = {}
-            for dof_a, dof_b, c in zip(da, db, vec):
-                if c != 0.0:
-                    d[dof_a] = d.get(dof_a, 0.0) + sign * float(c)
-                    d[dof_b] = d.get(dof_b, 0.0) - sign * float(c)
+            for k, c in enumerate(vec.tolist()):
+                if c == 0.0:
+                    continue
+                if relative:  # r = u_b - u_a
+                    d[da[k]] = d.get(da[k], 0.0) - sign * c
+                else:
+                    d[da[k]] = d.get(da[k], 0.0) + sign * c
+                    d[db[k]] = d.get(db[k], 0.0) - sign * c
             directions.append(d)
         contacts.append(structure.add_contact(_pair_model(law, float(patch.area[p])),
                                               tangential=directions[:2], normal=directions[2], name=f"{name}{p}"))
