@@ -435,6 +435,39 @@ def fe_blade():
     return microslip.fe.blade(300)
 
 
+#: a contact patch: a 2 x 1 grid of 1 cm quads (side a, z = 0, nodes 0-5) under its copy 0.1 µm above (nodes 6-11)
+PATCH_POINTS = np.array([[0.01 * i, 0.01 * j, z] for z in (0.0, 1e-7) for i in range(3) for j in range(2)])
+PATCH_A = np.array([[0, 2, 3, 1], [2, 4, 5, 3]])
+PATCH_B = PATCH_A[:, ::-1] + 6
+PATCH_INP = ("*NODE\n" + "".join(f"{k + 1}, {x:.17g}, {y:.17g}, {z:.17g}\n" for k, (x, y, z) in enumerate(PATCH_POINTS))
+             + "*ELEMENT, TYPE=S4, ELSET=LOWER\n1, 1, 3, 4, 2\n2, 3, 5, 6, 4\n"
+             + "*ELEMENT, TYPE=S4, ELSET=UPPER\n3, 8, 10, 9, 7\n4, 10, 12, 11, 9\n")
+
+
+def a_patch():
+    return microslip.fe.contact_patch(PATCH_POINTS, PATCH_A, PATCH_B, tolerance=1e-6)
+
+
+@cache
+def patch_file() -> str:
+    with open("patch.inp", "w") as f:
+        f.write(PATCH_INP)
+    return "patch.inp"
+
+
+def patch_structure() -> Structure:
+    """The patch's 12 nodes, 3 DOFs each, on springs (a fresh structure: add_patch adds contacts)."""
+    dof_map = microslip.fe.DofMap([k for k in range(12) for _ in "xyz"], [c for _ in range(12) for c in "xyz"])
+    return Structure(np.eye(36), np.zeros((36, 36)), 1e6 * np.eye(36), dof_map=dof_map)
+
+
+def table_patch():
+    return microslip.fe.patch_from_tables([3, 8], [1e-4, 2e-4], [[0.0, 0.0, 1.0], [0.6, 0.0, 0.8]])
+
+
+PRESSURE_LAW = microslip.fe.PressureLaw(kn_per_area=1e12, kt_per_area=5e11, mu=0.5, gap=0.0)
+
+
 N_APP = float(SPHERE.approach(N_TOT))
 NO_RISE = ("negative", "zero", "1e300", "1e-300")  # data values that make a curve flat or falling
 UNCHECKED = ("nan", "inf", "string", "dict")
@@ -830,6 +863,23 @@ CASES += [
     case("fe.read_matrices [per matrix]", lambda: microslip.fe.read_matrices,
          kinds={"M": "path", "K": "path", "C": "path"}, M=L(lambda: mtx_file("M")), K=L(lambda: mtx_file("K")),
          C=L(lambda: mtx_file("C"))),
+    # contact patches: node ids of zero are valid; shifted or scaled positions still pair (or are refused)
+    case("fe.contact_patch", lambda: microslip.fe.contact_patch, mesh_or_points=PATCH_POINTS, surface_a=PATCH_A,
+         surface_b=PATCH_B, tolerance=1e-6),
+    case("fe.patch_from_mesh", lambda: microslip.fe.patch_from_mesh, kinds=PATH, path=L(patch_file),
+         set_a="LOWER", set_b="UPPER", tolerance=1e-6),
+    case("fe.add_patch", lambda: microslip.fe.add_patch, kinds={"dofs": "mapping"}, structure=L(patch_structure),
+         patch=L(a_patch), law=PRESSURE_LAW, dofs={k: (3 * k, 3 * k + 1, 3 * k + 2) for k in range(12)},
+         name="patch"),
+    case("fe.add_patch [relative]", lambda: microslip.fe.add_patch, kinds={"dofs": "mapping"},
+         structure=L(lambda: Structure(np.eye(6), np.zeros((6, 6)), np.eye(6))), patch=L(table_patch),
+         law=PRESSURE_LAW, dofs={3: (0, 1, 2), 8: (3, 4, 5)}, relative=True),
+    # interface tables: node ids of zero and negative areas are refused, a zero normal has no unit length
+    case("fe.patch_from_tables", lambda: microslip.fe.patch_from_tables, nodes_a=[3, 8], area=[1e-4, 2e-4],
+         normal=[[0.0, 0.0, 1.0], [0.6, 0.0, 0.8]], nodes_b=[13, 18], tangent1=[[1.0, 0.0, 0.0], [0.8, 0.0, -0.6]],
+         tangent2=[[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]),
+    case("PressureLaw", lambda: microslip.fe.PressureLaw, kn_per_area=1e12, kt_per_area=5e11, mu=0.5, gap=0.0),
+    case("PressureLaw.model", lambda: PRESSURE_LAW.model, area=1e-4),
 ]
 
 
@@ -912,8 +962,8 @@ NOT_FUZZED = {
 RESULTS = {"AccuracyReport", "AFTResult", "PlaneAFTResult", "Contact", "ElementSweep", "FittedBackbone", "FrequencyResponse",
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
-           "DesignCurve", "CampbellDiagram", "SpeedCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes", "SynthesizedResponse",
-           "SweepResult", "Study", "Case", "Mistuning"}
+           "DesignCurve", "CampbellDiagram", "SpeedCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes",
+           "SynthesizedResponse", "SweepResult", "Study", "Case", "Mistuning", "ContactPatch"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",
                   "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe", "microslip.study")

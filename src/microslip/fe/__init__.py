@@ -6,16 +6,21 @@
 * :class:`DofMap` -- the node and component of every matrix row, names such as ``"1204:x"``;
 * :func:`blade` -- a plane-stress blade with a platform, meshed and assembled with scikit-fem
   (:class:`FEBlade`);
-* :func:`natural_frequencies` -- the lowest natural frequencies of ``M``, ``K``.
+* :func:`natural_frequencies` -- the lowest natural frequencies of ``M``, ``K``;
+* :func:`contact_patch`, :func:`patch_from_mesh`, :func:`patch_from_tables`, :func:`add_patch` -- node-to-node
+  contacts between two surfaces of a mesh or from a reduced model's interface tables (tributary areas,
+  normals, tangents; a law per unit area, :class:`PressureLaw`).
 
-Nothing here imports from the rest of :mod:`microslip` except :mod:`microslip.common`.
-h5py, pyNastran and scikit-fem are optional (``pip install microslip[fe]``) and imported only
-by the readers and the model that need them.
+Nothing here imports from the rest of :mod:`microslip` except :mod:`microslip.common` and (for the
+contact laws of patches) :mod:`microslip.model`. h5py, pyNastran, scikit-fem and meshio are optional
+(``pip install microslip[fe]``) and imported only by the readers and the model that need them.
 """
 
 from .blade import FEBlade, blade
 from .dof_map import DofMap
 from .files import FEMatrices, read_matrices, read_matrix
 from .modal import natural_frequencies
+from .patches import ContactPatch, PressureLaw, add_patch, contact_patch, patch_from_mesh, patch_from_tables
 
-__all__ = ["DofMap", "FEBlade", "FEMatrices", "blade", "natural_frequencies", "read_matrices", "read_matrix"]
+__all__ = ["ContactPatch", "DofMap", "FEBlade", "FEMatrices", "PressureLaw", "add_patch", "blade", "contact_patch",
+           "natural_frequencies", "patch_from_mesh", "patch_from_tables", "read_matrices", "read_matrix"]
