@@ -278,7 +278,7 @@ def test_the_differential_evolution_shows_its_progress(small, capsys, monkeypatc
     """It ran silently for 35 s on the default problem: now a line per generation, at most one every 5 s."""
     from microslip.common import _progress
 
-    clock = iter(range(0, 10_000, 3))  # each reading of the clock 3 s later: a line every other generation
+    clock = iter(range(0, 10_000, 6))  # each reading of the clock 6 s later: more than 5 s between lines
     monkeypatch.setattr(_progress.time, "perf_counter", lambda: float(next(clock)))
     optimal_points(small, 3, budget=64, restarts=0, progress=True)
     err = capsys.readouterr().err
