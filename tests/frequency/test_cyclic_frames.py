@@ -304,9 +304,9 @@ def test_a_damper_and_a_craig_bampton_model_keep_the_frame(tmp_path):
     from microslip.frequency import CraigBampton, UnderPlatformDamper, craig_bampton
 
     d = cartesian_sector()
-    upd = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=40.0)
-    upd.add_interface(MODEL, points=[(-3e-3, 1e-3)], angle=np.radians(135.0), platform={"x": 6, "y": 7})
-    upd.add_interface(MODEL, points=[(3e-3, 1e-3)], angle=np.radians(45.0), platform={"x": d.next(3), "y": d.next(4)})
+    upd = UnderPlatformDamper(0.02, 1e-6, centrifugal_load=40.0, retention=2e3)  # one contact per face: it rolls
+    upd.add_interface(MODEL, points=[(-3e-3, 1e-3)], angle_deg=135.0, platform={"x": 6, "y": 7})
+    upd.add_interface(MODEL, points=[(3e-3, 1e-3)], angle_deg=45.0, platform={"x": d.next(3), "y": d.next(4)})
     with_damper = upd.attach(d)
     assert with_damper.frame == "cartesian" and with_damper.ndof == 18
     np.testing.assert_array_equal(with_damper.boundary_rotation.toarray(), d.boundary_rotation.toarray())
