@@ -663,7 +663,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
                                                        reduction, modes, engine_order)
         report = Progress(10, enabled=progress)
-        describe = lambda w, count: f"omega = {w:.6g} rad/s, {count} points"  # noqa: E731
+        describe = lambda w, count: f"omega = {w:.6g} rad/s ({w / (2 * np.pi):.6g} Hz), {count} points"  # noqa: E731
         xs, omegas, iters, complete, stopped = follow(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
                                                       control=control, report=report, describe=describe)
         result = _collect(hb, xs, omegas, iters, static, complete)
