@@ -2,20 +2,22 @@
 
 * :func:`read_matrices`, :func:`read_matrix` -- mass, stiffness and damping matrices from Matrix
   Market, MATLAB (v5 and v7.3), NumPy ``.npz`` and Nastran OP4 files, checked (square, finite,
-  symmetric, same size);
+  symmetric, same size); a truncated, damaged or inconsistent file raises :class:`FileFormatError`
+  (a ``ValueError`` naming the file and, for a text format, the line);
 * :class:`DofMap` -- the node and component of every matrix row, names such as ``"1204:x"``;
 * :func:`blade` -- a plane-stress blade with a platform, meshed and assembled with scikit-fem
   (:class:`FEBlade`);
 * :func:`natural_frequencies` -- the lowest natural frequencies of ``M``, ``K``.
 
 Nothing here imports from the rest of :mod:`microslip` except :mod:`microslip.common`.
-h5py, pyNastran and scikit-fem are optional (``pip install microslip[fe]``) and imported only
-by the readers and the model that need them.
+h5py and scikit-fem are optional (``pip install microslip[fe]``) and imported only by the
+reader and the model that need them.
 """
 
 from .blade import FEBlade, blade
 from .dof_map import DofMap
-from .files import FEMatrices, read_matrices, read_matrix
+from .files import FEMatrices, FileFormatError, read_matrices, read_matrix
 from .modal import natural_frequencies
 
-__all__ = ["DofMap", "FEBlade", "FEMatrices", "blade", "natural_frequencies", "read_matrices", "read_matrix"]
+__all__ = ["DofMap", "FEBlade", "FEMatrices", "FileFormatError", "blade", "natural_frequencies", "read_matrices",
+           "read_matrix"]
