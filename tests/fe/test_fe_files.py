@@ -25,7 +25,9 @@ def _equal(read, expected, sparse):
 
 
 WRITERS = {
+    "mat4": (".mat", lambda p, v: scipy.io.savemat(p, v, format="4")),
     "mat5": (".mat", lambda p, v: scipy.io.savemat(p, v)),
+    "mat7": (".mat", lambda p, v: scipy.io.savemat(p, v, do_compression=True)),
     "mat73": (".mat", write_mat73),
     "npz": (".npz", write_npz),
     "op4": (".op4", write_op4),

@@ -154,6 +154,27 @@ def test_9_a_matrix_market_file_declaring_a_huge_size_is_refused_before_any_allo
     _refused(lambda: read_matrix(path), f"{path}: {message}")
 
 
+@pytest.mark.parametrize("byte, bit, message", [
+    (176, 0, "at byte 128: variable 'M': its values are of element type 8, not numbers"),
+    (521, 6, "at byte 472: variable 'K': its row indices are of element type 16389, not numbers"),
+    (596, 4, "at byte 472: variable 'K': its values are of element type 11, not numbers"),
+    (817, 7, "at byte 768: variable 'C': its row indices are of element type 32773, not numbers"),
+    (639, 6, "at byte 472: variable 'K': its values of 1073741952 bytes run past the variable (288 bytes)"),
+])
+def test_9_a_damaged_mat5_variable_is_named_not_a_crash(tmp_path, byte, bit, message):
+    """These flipped bits crashed scipy's reader (segmentation fault) or made it allocate 8 GB: run in a child."""
+    path = tmp_path / "model.mat"
+    scipy.io.savemat(path, {"M": np.diag(np.linspace(0.5, 3.0, 6)), "K": chain(6), "C": 1e-4 * chain(6, seed=1)})
+    raw = bytearray(path.read_bytes())
+    raw[byte] ^= 1 << bit
+    path.write_bytes(bytes(raw))
+    code = (f"from microslip.fe import read_matrices, FileFormatError\n"
+            f"try:\n    read_matrices({str(path)!r})\nexcept FileFormatError as e:\n    print(e)\n")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert f"{path}: {message}" in run.stdout
+
+
 def test_9_a_matrix_market_file_cut_inside_its_last_line_is_refused(tmp_path):
     """A cut inside the last line can leave a shorter number that is still a number: 1.2e+05 -> 1.2."""
     path = tmp_path / "K.mtx"

@@ -14,7 +14,6 @@ library reads it underneath; nothing is allocated from a size the file does not 
 
 from __future__ import annotations
 
-import math
 import struct
 import warnings
 import zipfile
@@ -26,10 +25,11 @@ import numpy as np
 import scipy.io
 import scipy.sparse as sp
 
-from . import _matrix_market, _op4
+from . import _mat5, _matrix_market, _op4
 from ._errors import FileFormatError
 from ._limits import MAX_ENTRIES, MAX_ROWS
 from ._optional import require
+from ._sparse import compressed, entries
 
 #: suffix -> format name, as the messages say it
 SUFFIXES = {".mtx": "Matrix Market", ".mm": "Matrix Market", ".mat": "MATLAB", ".npz": "NumPy .npz",
@@ -143,60 +143,6 @@ def read(path: Path, wanted: list[str]) -> dict:
     return found
 
 
-def entries(shape) -> int:
-    """The number of entries of an array of ``shape`` (a Python int: no overflow)."""
-    return math.prod(int(n) for n in shape)
-
-
-def compressed(path: Path, label: str, data, indices, indptr, shape: tuple[int, int], *, by_row: bool,
-               ordered: bool = False, names=("data", "indices", "indptr")) -> None:
-    """Check the arrays of a compressed sparse matrix before scipy builds it (scipy trusts its indices).
-
-    ``by_row``: CSR (``indptr`` over rows) or CSC; ``ordered``: the indices of each row (column)
-    must be strictly increasing (MATLAB's rule). ``names`` are the arrays as the file calls them.
-
-    Raises
-    ------
-    FileFormatError
-        Non-integer indices, lengths that disagree, pointers not starting at 0 or decreasing,
-        indices outside the matrix or (``ordered``) repeated or out of order.
-    """
-    nd, ni, np_ = names
-    major, minor = (shape[0], shape[1]) if by_row else (shape[1], shape[0])
-    what_major, what_minor = ("row", "column") if by_row else ("column", "row")
-    data, indices, indptr = np.asarray(data), np.asarray(indices), np.asarray(indptr)
-
-    def fail(what):
-        raise FileFormatError(path, f"{label}: {what}")
-
-    for name, a in ((ni, indices), (np_, indptr)):
-        if a.ndim != 1 or a.dtype.kind not in "iu":
-            fail(f"{name} must be a 1-D array of integers, got {a.dtype} of shape {a.shape}")
-    if data.ndim != 1:
-        fail(f"{nd} must be a 1-D array, got shape {data.shape}")
-    if indptr.size != major + 1:
-        fail(f"{np_} has {indptr.size} entries; a matrix of {major} {what_major}s needs {major + 1}")
-    ptr = indptr.astype(np.int64)  # a uint64 beyond 2**63 becomes negative: refused below
-    if ptr[0] != 0 or (np.diff(ptr) < 0).any():
-        k = 0 if ptr[0] != 0 else int(np.flatnonzero(np.diff(ptr) < 0)[0]) + 1
-        fail(f"{np_}[{k}] = {ptr[k]}: the pointers must start at 0 and never decrease")
-    if not ptr[-1] == indices.size == data.size:
-        fail(f"{np_} ends at {ptr[-1]} but {ni} has {indices.size} entries and {nd} {data.size}: they must agree")
-    idx = indices.astype(np.int64)
-    out = (idx < 0) | (idx >= minor)
-    if out.any():
-        k = int(np.flatnonzero(out)[0])
-        fail(f"{ni}[{k}] = {indices[k]} is not a {what_minor} of the {shape[0]} x {shape[1]} matrix "
-             f"(0..{minor - 1})")
-    if ordered and idx.size > 1:
-        rising = np.diff(idx) > 0
-        rising[ptr[1:-1][(ptr[1:-1] > 0) & (ptr[1:-1] < idx.size)] - 1] = True  # a new row (column) may start lower
-        if not rising.all():
-            k = int(np.flatnonzero(~rising)[0]) + 1
-            fail(f"{ni}[{k}] = {idx[k]} repeats or precedes the {what_minor} before it in its {what_major}: "
-                 f"the indices of each {what_major} must increase")
-
-
 def _shape(path: Path, label: str, value) -> tuple[int, int]:
     """A stored ``(rows, columns)``: two whole numbers from 0 to MAX_ROWS."""
     a = np.asarray(value)
@@ -224,11 +170,13 @@ def _mat(path: Path, wanted: list[str]) -> dict:
     if major == 2:
         return _mat73(path, wanted)
     if major == 1:
-        count = _mat5_variables(path)
-    variables = scipy.io.whosmat(str(path))
-    if major == 1 and len(variables) != count:
-        raise FileFormatError(path, f"holds {count} variables but only {len(variables)} can be read: damaged")
-    held = {name: (shape, kind) for name, shape, kind in variables}
+        return _mat5.read(path, wanted, lambda found, w: _pick(path, found, w))
+    return _mat4(path, wanted)
+
+
+def _mat4(path: Path, wanted: list[str]) -> dict:
+    """A MATLAB v4 file (no header; scipy's reader, in Python): each variable's size checked first."""
+    held = {name: (shape, kind) for name, shape, kind in scipy.io.whosmat(str(path))}
     _pick(path, held, wanted)
     for w in wanted:
         shape, kind = held[w]
@@ -245,35 +193,11 @@ def _mat(path: Path, wanted: list[str]) -> dict:
     out = {}
     for w in wanted:
         A = data[w]
-        if sp.issparse(A):
+        if sp.issparse(A) and A.format in ("csr", "csc"):  # (coordinates are checked as scipy builds them)
             compressed(path, w, A.data, A.indices, A.indptr, A.shape, by_row=A.format == "csr",
                        names=("data", "row indices", "column pointers"))
         out[w] = A
     return out
-
-
-def _mat5_variables(path: Path) -> int:
-    """The count of variables of a MATLAB v5 file, each element's byte count checked against the file."""
-    size = path.stat().st_size
-    with open(path, "rb") as f:
-        head = f.read(128)
-        endian = "<" if head[126:128] == b"IM" else ">"
-        pos, count = 128, 0
-        while pos < size:
-            f.seek(pos)
-            tag = f.read(8)
-            if len(tag) < 8:
-                raise FileFormatError(path, f"at byte {pos}: {len(tag)} byte(s) after the last variable: truncated "
-                                            f"or damaged")
-            kind, nbytes = struct.unpack(endian + "II", tag)
-            if kind not in (14, 15):  # miMATRIX, miCOMPRESSED
-                raise FileFormatError(path, f"at byte {pos}: element type {kind} is not a MATLAB variable: damaged")
-            if pos + 8 + nbytes > size:
-                raise FileFormatError(path, f"at byte {pos}: variable {count + 1} declares {nbytes} bytes but the file "
-                                            f"ends {size - pos - 8} bytes later: truncated")
-            pos += 8 + nbytes
-            count += 1
-    return count
 
 
 def _mat73(path: Path, wanted: list[str]) -> dict:
@@ -366,12 +290,22 @@ class NpzArrays:
                 if info.filename.endswith(".npy"):
                     self.shapes[info.filename[:-4]] = self._check(info)
                     self.names.append(info.filename[:-4])
+                else:  # opened all the same: zipfile checks its name against the member's own header
+                    self._open(info).close()
         except BaseException:
             self._zip.close()
             raise
 
     def __enter__(self):
         return self
+
+    def _open(self, info):
+        try:
+            return self._zip.open(info)
+        except _PASSED:
+            raise
+        except _DAMAGE as err:
+            raise FileFormatError(self.path, f"member {info.filename!r} is damaged ({err})") from None
 
     def __exit__(self, *exc):
         self._zip.close()
