@@ -175,6 +175,17 @@ def test_9_a_damaged_mat5_variable_is_named_not_a_crash(tmp_path, byte, bit, mes
     assert f"{path}: {message}" in run.stdout
 
 
+def test_9_a_damaged_mat4_size_is_refused_before_any_allocation(tmp_path):
+    """A bit of K's column count flipped: scipy's reader tried to allocate 36 GB (MemoryError)."""
+    path = tmp_path / "model.mat"
+    scipy.io.savemat(path, {"M": np.diag(np.linspace(0.5, 3.0, 6)), "K": chain(6)}, format="4")
+    raw = bytearray(path.read_bytes())
+    raw[321] ^= 1 << 4  # K's header starts at byte 310: MOPT, rows, columns (318..321), ...
+    path.write_bytes(bytes(raw))
+    _refused(lambda: read_matrices(path), f"{path}: at byte 310: a variable of 17 x 268435459 values runs past the "
+                                          f"end of the file")
+
+
 def test_9_a_matrix_market_file_cut_inside_its_last_line_is_refused(tmp_path):
     """A cut inside the last line can leave a shorter number that is still a number: 1.2e+05 -> 1.2."""
     path = tmp_path / "K.mtx"

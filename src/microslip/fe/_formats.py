@@ -15,7 +15,6 @@ library reads it underneath; nothing is allocated from a size the file does not 
 from __future__ import annotations
 
 import struct
-import warnings
 import zipfile
 import zlib
 from pathlib import Path
@@ -25,7 +24,7 @@ import numpy as np
 import scipy.io
 import scipy.sparse as sp
 
-from . import _mat5, _matrix_market, _op4
+from . import _mat4, _mat5, _matrix_market, _op4
 from ._errors import FileFormatError
 from ._limits import MAX_ENTRIES, MAX_ROWS
 from ._optional import require
@@ -169,35 +168,7 @@ def _mat(path: Path, wanted: list[str]) -> dict:
         major = 2
     if major == 2:
         return _mat73(path, wanted)
-    if major == 1:
-        return _mat5.read(path, wanted, lambda found, w: _pick(path, found, w))
-    return _mat4(path, wanted)
-
-
-def _mat4(path: Path, wanted: list[str]) -> dict:
-    """A MATLAB v4 file (no header; scipy's reader, in Python): each variable's size checked first."""
-    held = {name: (shape, kind) for name, shape, kind in scipy.io.whosmat(str(path))}
-    _pick(path, held, wanted)
-    for w in wanted:
-        shape, kind = held[w]
-        if kind == "sparse" and max(shape, default=0) > MAX_ROWS or kind != "sparse" and entries(shape) > MAX_ENTRIES:
-            raise FileFormatError(path, f"{w} declares shape {shape}: more than {MAX_ROWS} rows or "
-                                        f"{MAX_ENTRIES:.0e} entries (a damaged size?)")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        data = scipy.io.loadmat(str(path), variable_names=wanted)
-    damaged = [c for c in caught if issubclass(c.category, scipy.io.matlab.MatReadWarning)
-               or "Unreadable variable" in str(c.message)]
-    if damaged:
-        raise FileFormatError(path, f"a damaged variable ({damaged[0].message})")
-    out = {}
-    for w in wanted:
-        A = data[w]
-        if sp.issparse(A) and A.format in ("csr", "csc"):  # (coordinates are checked as scipy builds them)
-            compressed(path, w, A.data, A.indices, A.indptr, A.shape, by_row=A.format == "csr",
-                       names=("data", "row indices", "column pointers"))
-        out[w] = A
-    return out
+    return (_mat5 if major == 1 else _mat4).read(path, wanted, lambda found, w: _pick(path, found, w))
 
 
 def _mat73(path: Path, wanted: list[str]) -> dict:
