@@ -130,6 +130,22 @@ def test_9_a_damaged_npz_file_is_refused_by_name(tmp_path, damage):
     _refused(lambda: read_matrices(path), str(path))
 
 
+def test_9_a_damaged_zip_directory_does_not_drop_the_damping_matrix(tmp_path):
+    """A damaged length in the zip directory made zipfile stop listing members early, silently: C was gone."""
+    import struct
+
+    path = tmp_path / "model.npz"
+    np.savez(path, M=M, K=K.toarray(), C=1e-4 * K.toarray())
+    raw = bytearray(path.read_bytes())
+    end = raw.rfind(b"PK\x05\x06")
+    entry = struct.unpack("<I", raw[end + 16:end + 20])[0]  # the directory's first entry (M.npy)
+    entry += 46 + sum(struct.unpack("<3H", raw[entry + 28:entry + 34]))  # the second (K.npy)
+    raw[entry + 32:entry + 34] = struct.pack("<H", 0x4000)  # its comment's length: past the directory's end
+    path.write_bytes(bytes(raw))
+    _refused(lambda: read_matrices(path), f"{path}: its zip directory lists 2 of the 3 members its end record "
+                                          f"declares: damaged")
+
+
 def test_9_a_truncated_mat73_file_is_refused_by_name(tmp_path):
     path = tmp_path / "model.mat"
     write_mat73(path, {"M": M, "K": K})

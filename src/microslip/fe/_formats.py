@@ -257,6 +257,7 @@ class NpzArrays:
             raise FileFormatError(self.path, f"not a NumPy .npz (zip) file, or a truncated one ({err})") from None
         self.names, self.shapes = [], {}
         try:
+            self._count()
             for info in self._zip.infolist():
                 if info.filename.endswith(".npy"):
                     self.shapes[info.filename[:-4]] = self._check(info)
@@ -269,6 +270,19 @@ class NpzArrays:
 
     def __enter__(self):
         return self
+
+    def _count(self):
+        """The members zipfile found must be all those the end record declares (it stops early, silently,
+        where a damaged length makes it skip the rest of the directory)."""
+        with open(self.path, "rb") as f:
+            f.seek(max(f.seek(0, 2) - (1 << 16) - 22, 0))
+            tail = f.read()
+        end = tail.rfind(b"PK\x05\x06")
+        declared = struct.unpack("<H", tail[end + 10:end + 12])[0] if 0 <= end <= len(tail) - 22 else None
+        found = len(self._zip.infolist())
+        if declared is not None and declared != 0xFFFF and declared != found:  # 0xFFFF: counted in a ZIP64 record
+            raise FileFormatError(self.path, f"its zip directory lists {found} of the {declared} members its end "
+                                             f"record declares: damaged")
 
     def _open(self, info):
         try:

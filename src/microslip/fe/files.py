@@ -179,7 +179,7 @@ def read_matrix(path, name: str | None = None, *, symmetry_tolerance: float = SY
     TypeError
         ``path`` is not a file path or ``name`` not a string.
     ImportError
-        A v7.3 ``.mat`` without h5py or an ``.op4`` without pyNastran.
+        A v7.3 ``.mat`` without h5py.
     """
     path = _path("path", path)
     if name is not None:
@@ -244,7 +244,7 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
         of different sizes, or a DOF map of another length. Every message
         names the file and the variable.
     ImportError
-        A v7.3 ``.mat`` without h5py or an ``.op4`` without pyNastran.
+        A v7.3 ``.mat`` without h5py.
 
     Examples
     --------
