@@ -21,14 +21,15 @@ import re
 from pathlib import Path
 
 import numpy as np
+import scipy.io
 import scipy.sparse as sp
 
 from ._errors import FileFormatError
 from ._limits import MAX_ROWS
 
-_INDEX = r"\+?[0-9]+"
-_INTEGER = r"[+-]?[0-9]+"
-_REAL = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_INDEX = r"[0-9]+"
+_INTEGER = r"-?[0-9]+"
+_REAL = r"-?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
 #: field -> the numbers of one value
 _VALUE = {"real": (_REAL,), "double": (_REAL,), "integer": (_INTEGER,), "complex": (_REAL, _REAL)}
 _SYMMETRIES = ("general", "symmetric", "skew-symmetric", "hermitian")
@@ -109,20 +110,34 @@ def read(path: Path) -> np.ndarray | sp.csr_matrix:
     if held > entries:
         raise FileFormatError(path, f"more entries than the {entries} the size line (line {no + 1}) declares",
                               first + entries + 1)
-    if not entries:
-        values = np.zeros((0, len(numbers)))
-    else:
+    if fmt == "coordinate":
+        rows, cols, v = _entries(path, lines, field)
+    elif entries:
         values = np.loadtxt(io.StringIO(data), dtype=np.float64, ndmin=2, comments=None)
-    if field == "complex":
-        v = values[:, -2] + 1j * values[:, -1]
+        v = values[:, 0] + 1j * values[:, 1] if field == "complex" else values[:, 0]
     else:
-        v = values[:, -1]
+        v = np.zeros(0)
     if not np.isfinite(v).all():
         k = int(np.flatnonzero(~np.isfinite(v))[0])
         raise FileFormatError(path, f"the value {v[k].item()!r} is not finite", first + k + 1)
     if fmt == "array":
         return _array(v, nrows, ncols, symmetry)
-    return _coordinate(path, values, v, nrows, ncols, symmetry, first)
+    return _coordinate(path, rows, cols, v, nrows, ncols, symmetry, first)
+
+
+def _entries(path: Path, lines: list[str], field: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rows, columns (from 0) and values in the file's order, parsed by scipy once every line is checked.
+
+    The banner is read as ``general``: a symmetric file's entries come back as stored, one triangle.
+    """
+    text = "\n".join([f"%%MatrixMarket matrix coordinate {field} general"] + lines[1:])
+    try:
+        A = scipy.io.mmread(io.StringIO(text))
+    except ValueError as err:  # an index outside the matrix, as scipy says it
+        m = re.match(r"Line (\d+): (.*)", str(err))
+        raise FileFormatError(path, m.group(2) if m else str(err), int(m.group(1)) if m else None) from None
+    return A.row.astype(np.int64), A.col.astype(np.int64), A.data.astype(np.complex128 if field == "complex"
+                                                                           else np.float64)
 
 
 def _why(line: str, numbers: tuple, spelled: str) -> str:
@@ -148,8 +163,7 @@ def _array(v: np.ndarray, n: int, m: int, symmetry: str) -> np.ndarray:
     return A
 
 
-def _coordinate(path, values, v, nrows, ncols, symmetry, first) -> sp.csr_matrix:
-    rows, cols = values[:, 0].astype(np.int64) - 1, values[:, 1].astype(np.int64) - 1
+def _coordinate(path, rows, cols, v, nrows, ncols, symmetry, first) -> sp.csr_matrix:
     for name, idx, count in (("row", rows, nrows), ("column", cols, ncols)):
         out = (idx < 0) | (idx >= count)
         if out.any():
