@@ -8,7 +8,7 @@ import pytest
 import scipy.io
 import scipy.sparse as sp
 
-from _writers import chain, dense, write_mat73, write_npz, write_op4
+from _writers import chain, dense, write_mat73, write_npz, write_op4, write_op4_binary, write_op4_text
 from microslip.fe import DofMap, read_matrices, read_matrix
 
 N = 6
@@ -237,3 +237,37 @@ def test_op4_files_are_read_without_pynastran(tmp_path, monkeypatch):
     for module in ("pyNastran", "pyNastran.op4", "pyNastran.op4.op4"):
         monkeypatch.setitem(sys.modules, module, None)
     _equal(read_matrices(tmp_path / "model.op4").K, K_SPARSE, sparse=True)
+
+
+def _scattered(n=9):
+    """A symmetric matrix whose columns hold several strings of rows (pyNastran writes its columns out of order)."""
+    rng = np.random.default_rng(3)
+    A = np.zeros((n, n))
+    A[np.triu_indices(n)] = rng.normal(size=n * (n + 1) // 2)
+    A = A + A.T
+    A[2, 5] = A[5, 2] = A[0, 6] = A[6, 0] = A[1, 4] = A[4, 1] = 0.0
+    A[:, 8] = A[8, :] = 0.0
+    A[8, 8] = 3.0
+    return A
+
+
+@pytest.mark.parametrize("layout", ["pyNastran sparse", "pyNastran dense", "text dense", "text sparse",
+                                    "text sparse bigmat", "binary dense", "binary sparse big-endian",
+                                    "binary sparse bigmat", "binary dense bigmat big-endian"])
+def test_op4_layouts_read_exactly_and_as_pynastran_reads_them(tmp_path, layout):
+    from pyNastran.op4.op4 import read_op4
+
+    path, A = tmp_path / "a.op4", _scattered()
+    variables = {"A": A, "M": M_DENSE}
+    if layout.startswith("pyNastran"):
+        write_op4(path, {"A": sp.coo_matrix(A) if "sparse" in layout else A, "M": M_DENSE})
+    else:
+        write = write_op4_text if layout.startswith("text") else write_op4_binary
+        kwargs = {"sparse": "sparse" in layout, "bigmat": "bigmat" in layout}
+        if "big-endian" in layout:
+            kwargs["endian"] = ">"
+        write(path, variables, **kwargs)
+    for name, expected in variables.items():
+        got = read_matrix(path, name, symmetry_tolerance=1e-12)
+        np.testing.assert_array_equal(dense(got), expected)
+        np.testing.assert_array_equal(dense(got), dense(read_op4(str(path), debug=None)[name][1]))

@@ -5,11 +5,12 @@ the BIGMAT layout --, form, type 1-4 = real/complex in single/double precision, 
 and, in a text file, the Fortran format of the values, e.g. ``1P,3E23.16``), one record per column
 holding a nonzero (``ICOL IROW NW``: dense from row ``IROW``, or sparse when ``IROW = 0``: strings
 of consecutive rows, each after a header naming its first row), and an end record ``ICOL = NCOL + 1``.
+Nastran writes the columns in order; pyNastran in any order: each column once, each row once.
 A binary file stores each of these as a Fortran record (its byte count before and after it).
 
 Every line (text) or record (binary) is checked before a number is taken from it: a value that is
 not a number of the format, a line of the wrong length or with a value missing, rows or columns
-outside the matrix or out of order, counts that disagree with the values present, a file that ends
+outside the matrix or given twice, counts that disagree with the values present, a file that ends
 inside a matrix. The messages name the line, or the byte where the record starts.
 
 ``NW`` and the string headers count 4-byte words (Nastran); pyNastran's text writer counts values
@@ -18,6 +19,8 @@ instead. Each matrix must follow one of these conventions throughout.
 
 from __future__ import annotations
 
+import bisect
+import math
 import re
 from pathlib import Path
 
@@ -57,7 +60,8 @@ def read(path: Path) -> dict:
 
 
 class _Matrix:
-    """The entries of one matrix as its records give them, checked as they come."""
+    """The strings of rows of one matrix as its records give them, checked as they come; the values
+    are converted once, at the end (:meth:`matrix`)."""
 
     def __init__(self, path, name, ncols, nrows, kind, where):
         if kind not in KINDS:
@@ -72,15 +76,17 @@ class _Matrix:
                                         f"and columns are read", *where)
         code, self.words, self.complex = KINDS[kind]
         self.per_value = 2 if self.complex else 1  # numbers per value in a text file
-        self.rows, self.cols, self.vals = [], [], []
-        self.dense, self.last_col = None, 0
+        self.starts, self.lengths, self.cols, self.wheres = [], [], [], []  # one entry per string of rows
+        self.dense, self.columns, self.first = None, set(), 0
         self.conventions = {"words", "values"}
 
     def column(self, icol, irow, where):
-        if not self.last_col < icol <= self.ncols:
-            raise FileFormatError(self.path, f"matrix {self.name!r}: column {icol} is outside 1..{self.ncols} or out "
-                                             f"of order (the record before was column {self.last_col})", *where)
-        self.last_col = icol
+        """A column record starts (columns may come in any order -- pyNastran writes them so --, once each)."""
+        if not 1 <= icol <= self.ncols or icol in self.columns:
+            raise FileFormatError(self.path, f"matrix {self.name!r}: column {icol} is outside 1..{self.ncols} or "
+                                             f"given twice", *where)
+        self.columns.add(icol)
+        self.first = len(self.starts)
         if self.dense is None:
             self.dense = irow != 0
         elif self.dense != (irow != 0):
@@ -88,19 +94,23 @@ class _Matrix:
                                              f"{'sparse (IROW = 0)' if irow == 0 else 'dense (IROW > 0)'} but those "
                                              f"before are not", *where)
 
-    def values(self, icol, first, values, where, last_row=0):
-        """Consecutive rows from ``first`` (1-based) of column ``icol``; returns the last row."""
-        n = values.size
-        if first <= last_row or first < 1 or first + n - 1 > self.nrows:
+    def string(self, icol, first, n, where):
+        """``n`` values of consecutive rows from ``first`` (1-based) of column ``icol``."""
+        if first < 1 or first + n - 1 > self.nrows:
             raise FileFormatError(self.path, f"matrix {self.name!r}: column {icol}: {n} value(s) from row {first} "
-                                             f"fall outside rows {last_row + 1}..{self.nrows}", *where)
-        if not np.isfinite(values).all():
-            bad = values[~np.isfinite(values)][0].item()
-            raise FileFormatError(self.path, f"matrix {self.name!r}: column {icol} holds {bad!r}", *where)
-        self.rows.append(np.arange(first - 1, first - 1 + n))
-        self.cols.append(np.full(n, icol - 1))
-        self.vals.append(values)
-        return first + n - 1
+                                             f"fall outside rows 1..{self.nrows}", *where)
+        self.starts.append(first - 1)
+        self.lengths.append(n)
+        self.cols.append(icol - 1)
+        self.wheres.append(where)
+
+    def strings_end(self, icol, where):
+        """A sparse column's strings may come in any order, but never give a row twice."""
+        strings = sorted(zip(self.starts[self.first:], self.lengths[self.first:]))
+        for (a, n), (b, _) in zip(strings, strings[1:]):
+            if b < a + n:
+                raise FileFormatError(self.path, f"matrix {self.name!r}: column {icol} gives row {b + 1} twice",
+                                      *where)
 
     def counts(self, icol, expected: dict, where):
         """Keep the counting conventions under which the record's counts are ``expected`` ones."""
@@ -110,16 +120,19 @@ class _Matrix:
                                              f"match the values it holds (a value is missing or a count is damaged)",
                                   *where)
 
-    def matrix(self):
-        dtype = np.complex128 if self.complex else np.float64
-        rows, cols = (np.concatenate(a) if a else np.zeros(0, np.int64) for a in (self.rows, self.cols))
-        vals = np.concatenate(self.vals).astype(dtype) if self.vals else np.zeros(0, dtype)
+    def matrix(self, vals: np.ndarray):
+        """The matrix from the values of every string, in their order (finite: the readers check them)."""
+        lengths = np.array(self.lengths, dtype=np.int64)
+        ends = np.cumsum(lengths)
+        total = int(ends[-1]) if ends.size else 0
+        rows = np.repeat(np.array(self.starts, dtype=np.int64) - (ends - lengths), lengths) + np.arange(total)
+        cols = np.repeat(np.array(self.cols, dtype=np.int64), lengths)
         if self.dense is False:
             return sp.csr_matrix((vals, (rows, cols)), shape=(self.nrows, self.ncols))
         if self.nrows * self.ncols > MAX_ENTRIES:
             raise FileFormatError(self.path, f"matrix {self.name!r}: a dense {self.nrows} x {self.ncols} matrix has "
                                              f"more than {MAX_ENTRIES:.0e} entries")
-        A = np.zeros((self.nrows, self.ncols), dtype)
+        A = np.zeros((self.nrows, self.ncols), vals.dtype)
         A[rows, cols] = vals
         return A
 
@@ -152,8 +165,7 @@ class _Text:
             if not self.lines[self.i].strip():
                 self.i += 1
                 continue
-            m = self._matrix()
-            _add(self.path, found, m.name, m.matrix())
+            _add(self.path, found, *self._matrix())
         return found
 
     def _fail(self, what, line=None):
@@ -169,7 +181,7 @@ class _Text:
         self.i += 1
         return [int(x) for x in items]
 
-    def _matrix(self) -> _Matrix:
+    def _matrix(self) -> tuple[str, object]:
         head, where = self.lines[self.i], (self.i + 1,)
         try:
             ncols, nrows, _form, kind = (int(head[k:k + 8]) for k in (0, 8, 16, 24))
@@ -182,27 +194,41 @@ class _Text:
             self._fail(f"the matrix header must end with an 8-character name and a Fortran format such as "
                        f"1P,3E23.16; got {head[32:][:60]!r}")
         self.fmt, self.per_line, self.width = fmt, int(m.group(1)), int(m.group(2))
+        self.cells, self.line_starts, self.line_numbers = [], [], []  # the matrix's values, and their lines
         matrix = _Matrix(self.path, name, ncols, nrows, kind, where)
         self.i += 1
         while True:
             where = (self.i + 1,)
             icol, irow, nw = self._ints(3, f"a column record 'ICOL IROW NW' of matrix {name!r}")
             if icol == matrix.ncols + 1:  # the end record and its value (one line: a matrix header may follow)
-                if not self._values(lines=1).size:
+                held = len(self.cells)
+                if not self._values(lines=1):
                     self._fail(f"matrix {name!r}: the end record has no value")
-                return matrix
+                vals = self._numbers()[:held]  # (the end record's value checked too)
+                if matrix.complex:
+                    vals = vals[0::2] + 1j * vals[1::2]
+                return name, matrix.matrix(vals)
             matrix.column(icol, irow, where)
             if irow:
-                v = self._numbers(matrix, icol)
-                matrix.values(icol, irow, v, where)
-                f = v.size * matrix.per_value
+                f = self._string(matrix, icol, irow, where)
                 matrix.counts(icol, {"words": nw == f * matrix.words // matrix.per_value, "values": nw == f}, where)
             else:
                 self._sparse_column(matrix, icol, nw, where)
 
+    def _string(self, matrix: _Matrix, icol: int, first: int, where) -> int:
+        """Read the value lines of a string of rows from ``first``; returns the count of numbers."""
+        f = self._values()
+        if not f:
+            self._fail(f"matrix {matrix.name!r}: column {icol}: expected a line of values")
+        if f % matrix.per_value:
+            self._fail(f"matrix {matrix.name!r}: column {icol}: a complex value needs two numbers, the record "
+                       f"holds {f}", self.i)
+        matrix.string(icol, first, f // matrix.per_value, where)
+        return f
+
     def _sparse_column(self, matrix: _Matrix, icol: int, nw: int, where):
         h = 2 if matrix.big else 1
-        last, strings = 0, []
+        strings = []
         while self.i < len(self.lines) and _INTS.fullmatch(self.lines[self.i]) \
                 and len(self.lines[self.i].split()) == h:
             at = (self.i + 1,)
@@ -212,11 +238,10 @@ class _Text:
             else:
                 words = ints[0] // 65536 - 1
                 first = ints[0] - 65536 * (words + 1)
-            v = self._numbers(matrix, icol)
-            last = matrix.values(icol, first, v, at, last)
-            strings.append((words, v.size * matrix.per_value))
+            strings.append((words, self._string(matrix, icol, first, at)))
         if not strings:
             self._fail(f"matrix {matrix.name!r}: column {icol} is sparse (IROW = 0) but no string of values follows")
+        matrix.strings_end(icol, where)
         total = sum(f for _, f in strings)
         per_field = matrix.words // matrix.per_value
         words = all(w == f * per_field for w, f in strings) and nw == sum(h + f * per_field for _, f in strings)
@@ -224,24 +249,13 @@ class _Text:
             nw == 2 * total + 1 and all(w == 2 * total for w, _ in strings))
         matrix.counts(icol, {"words": words, "values": values}, where)
 
-    def _numbers(self, matrix: _Matrix, icol: int) -> np.ndarray:
-        v = self._values()
-        if not v.size:
-            self._fail(f"matrix {matrix.name!r}: column {icol}: expected a line of values")
-        if matrix.complex:
-            if v.size % 2:
-                self._fail(f"matrix {matrix.name!r}: column {icol}: a complex value needs two numbers, the record "
-                           f"holds {v.size}", self.i)
-            return v[0::2] + 1j * v[1::2]
-        return v
-
-    def _values(self, lines: int | None = None) -> np.ndarray:
-        """The numbers on the lines from here to the next line of integers (at most ``lines`` lines); each
-        line but the last is full."""
-        start, fields = self.i, []
-        w, k = self.width, self.per_line
+    def _values(self, lines: int | None = None) -> int:
+        """Gather the values on the lines from here to the next line of integers (at most ``lines`` lines),
+        each line but the last full; returns their count."""
+        start, full, w, k = len(self.cells), True, self.width, self.per_line
+        first_line = self.i
         while self.i < len(self.lines) and not _INTS.fullmatch(self.lines[self.i]) \
-                and (lines is None or len(fields) < lines):
+                and (lines is None or self.i - first_line < lines):
             line = self.lines[self.i].rstrip()
             if not line:
                 self._fail("an empty line among the values")
@@ -251,19 +265,36 @@ class _Text:
                            f"{self.fmt}): a value is damaged or cut short")
             if n > k:
                 self._fail(f"{n} values on a line; the format {self.fmt} puts at most {k}")
-            if fields and len(fields[-1]) != k:
-                self._fail(f"{len(fields[-1])} values on a line that is not the last of its record; the format "
-                           f"{self.fmt} puts {k} (a value is missing)", self.i)
-            cells = [line[j * w:(j + 1) * w] for j in range(n)]
-            for j, cell in enumerate(cells):
-                if not _NUMBER.fullmatch(cell):
-                    self._fail(f"value {j + 1}, {cell.strip()!r}, is not a number of the format {self.fmt}")
-            fields.append(cells)
+            if not full:
+                self._fail(f"{(len(self.cells) - start) % k} values on a line that is not the last of its record; "
+                           f"the format {self.fmt} puts {k} (a value is missing)", self.i)
+            full = n == k
+            self.line_starts.append(len(self.cells))
+            self.line_numbers.append(self.i + 1)
+            self.cells.extend(line[j:j + w] for j in range(0, len(line), w))
             self.i += 1
-        out = np.array([_float(c) for cells in fields for c in cells], dtype=np.float64)
-        if not np.isfinite(out).all():
-            k_bad = int(np.flatnonzero(~np.isfinite(out))[0])
-            self._fail(f"the value {float(out[k_bad])!r} is not finite", start + 1 + k_bad // k)
+        return len(self.cells) - start
+
+    def _numbers(self) -> np.ndarray:
+        """The matrix's values, each a number of the format: NumPy reads them all at once (strictly:
+        '4.0E+0x' is no number); where it cannot, the first value that is not one is named with its line."""
+        cells = self.cells
+        try:
+            out = np.array(cells).astype(np.float64)
+            ok = bool(np.isfinite(out).all()) and not any("_" in c for c in cells)
+        except ValueError:
+            ok = False
+        if ok:
+            return out
+        out = np.empty(len(cells))  # Fortran's forms (1.0D+00, 1.0-100) or a damaged value
+        for j, cell in enumerate(cells):
+            at = bisect.bisect_right(self.line_starts, j) - 1
+            line, position = self.line_numbers[at], j - self.line_starts[at] + 1
+            if not _NUMBER.fullmatch(cell):
+                self._fail(f"value {position}, {cell.strip()!r}, is not a number of the format {self.fmt}", line)
+            out[j] = _float(cell)
+            if not math.isfinite(out[j]):
+                self._fail(f"the value {out[j].item()!r} is not finite", line)
         return out
 
 
@@ -284,7 +315,8 @@ class _Binary:
     def _fail(self, what, at):
         raise FileFormatError(self.path, f"at byte {at}: {what}")
 
-    def _record(self, what: str) -> tuple[bytes, int]:
+    def _record(self, what: str) -> tuple[int, int, int]:
+        """``(start, end, at)``: where the next record's bytes lie in the file, and where it starts."""
         at, raw = self.pos, self.raw
         if at + 4 > len(raw):
             self._fail(f"the file ends where {what} should be: truncated", at)
@@ -295,65 +327,78 @@ class _Binary:
         if int(np.frombuffer(raw, self.i4, 1, at + 4 + n)[0]) != n:
             self._fail(f"{what}: the byte counts before and after the record differ (a damaged file)", at)
         self.pos = at + 8 + n
-        return raw[at + 4:at + 4 + n], at
+        return at + 4, at + 4 + n, at
 
     def read(self) -> dict:
         found = {}
         while self.pos < len(self.raw):
-            m = self._matrix()
-            _add(self.path, found, m.name, m.matrix())
+            _add(self.path, found, *self._matrix())
         return found
 
-    def _matrix(self) -> _Matrix:
-        head, at = self._record("a matrix header record")
-        if len(head) != 24:
-            self._fail(f"expected a matrix header record of 24 bytes, got {len(head)}", at)
-        ncols, nrows, _form, kind = (int(x) for x in np.frombuffer(head, self.i4, 4))
-        name = head[16:24].decode("ascii", errors="replace").strip()
-        matrix = _Matrix(self.path, name, ncols, nrows, kind, ())
+    def _matrix(self) -> tuple[str, object]:
+        start, end, at = self._record("a matrix header record")
+        if end - start != 24:
+            self._fail(f"expected a matrix header record of 24 bytes, got {end - start}", at)
+        ncols, nrows, _form, kind = (int(x) for x in np.frombuffer(self.raw, self.i4, 4, start))
+        name = self.raw[start + 16:end].decode("ascii", errors="replace").strip()
+        try:
+            matrix = _Matrix(self.path, name, ncols, nrows, kind, ())
+        except FileFormatError as err:
+            self._fail(err.what, at)
         code, words, _ = KINDS[kind]
         dtype = np.dtype(self.endian + code)
+        pieces, offsets = [], []  # the bytes of each string's values, and where the record starts
         while True:
-            body, at = self._record(f"a column record of matrix {name!r}")
-            if len(body) < 12:
-                self._fail(f"matrix {name!r}: a column record of {len(body)} bytes (at least ICOL, IROW, NW: 12)", at)
-            icol, irow, nw = (int(x) for x in np.frombuffer(body, self.i4, 3))
+            start, end, at = self._record(f"a column record of matrix {name!r}")
+            if end - start < 12:
+                self._fail(f"matrix {name!r}: a column record of {end - start} bytes (at least ICOL, IROW, NW: 12)", at)
+            icol, irow, nw = (int(x) for x in np.frombuffer(self.raw, self.i4, 3, start))
             if icol == ncols + 1:
-                return matrix
-            data = body[12:]
-            if nw < 0 or len(data) != 4 * nw:
+                break
+            if nw < 0 or end - start - 12 != 4 * nw:
                 self._fail(f"matrix {name!r}: column {icol} declares NW = {nw} words but its record holds "
-                           f"{len(data) / 4:g}", at)
+                           f"{(end - start - 12) / 4:g}", at)
             try:
                 matrix.column(icol, irow, ())
                 if irow:
                     if nw % words:
                         self._fail(f"matrix {name!r}: column {icol}: {nw} words are not whole values of {words} words",
                                    at)
-                    matrix.values(icol, irow, np.frombuffer(data, dtype), ())
+                    matrix.string(icol, irow, nw // words, ())
+                    pieces.append(self.raw[start + 12:end])
+                    offsets.append(at)
                 else:
-                    self._sparse_column(matrix, icol, data, dtype, words, at)
+                    self._sparse_column(matrix, icol, start + 12, end, words, at, pieces, offsets)
             except FileFormatError as err:
-                if err.line is None and "at byte" not in str(err):
+                if err.line is None and not err.what.startswith("at byte"):
                     self._fail(err.what, at)
                 raise
+        vals = np.frombuffer(b"".join(pieces), dtype)
+        if not np.isfinite(vals).all():
+            k = int(np.flatnonzero(~np.isfinite(vals))[0])
+            string = int(np.searchsorted(np.cumsum(matrix.lengths), k, side="right"))
+            self._fail(f"matrix {name!r}: column {matrix.cols[string] + 1} holds {vals[k].item()!r}", offsets[string])
+        return name, matrix.matrix(vals.astype(np.complex128 if matrix.complex else np.float64))
 
-    def _sparse_column(self, matrix, icol, data, dtype, words, at):
-        off, last, h = 0, 0, 8 if matrix.big else 4
-        if not data:
+    def _sparse_column(self, matrix, icol, off, end, words, at, pieces, offsets):
+        h = 8 if matrix.big else 4
+        if off == end:
             self._fail(f"matrix {matrix.name!r}: column {icol} is sparse (IROW = 0) but holds no string", at)
-        while off < len(data):
-            if off + h > len(data):
+        while off < end:
+            if off + h > end:
                 self._fail(f"matrix {matrix.name!r}: column {icol}: a string header runs past the record", at)
-            ints = [int(x) for x in np.frombuffer(data, self.i4, h // 4, off)]
+            ints = [int(x) for x in np.frombuffer(self.raw, self.i4, h // 4, off)]
             if matrix.big:
                 n_words, first = ints[0] - 1, ints[1]
             else:
                 n_words = ints[0] // 65536 - 1
                 first = ints[0] - 65536 * (n_words + 1)
             off += h
-            if n_words <= 0 or n_words % words or off + 4 * n_words > len(data):
+            if n_words <= 0 or n_words % words or off + 4 * n_words > end:
                 self._fail(f"matrix {matrix.name!r}: column {icol}: a string of {n_words} words does not fit the "
                            f"record or is not whole values of {words} words", at)
-            last = matrix.values(icol, first, np.frombuffer(data, dtype, n_words // words, off), (), last)
+            matrix.string(icol, first, n_words // words, ())
+            pieces.append(self.raw[off:off + 4 * n_words])
+            offsets.append(at)
             off += 4 * n_words
+        matrix.strings_end(icol, ())
