@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from microslip.fe import DofMap
+from microslip.fe import DofMap, FileFormatError
 from microslip.fe.dof_map import split_name
 
 
@@ -72,10 +72,13 @@ def test_invalid_maps_are_refused(nodes, components, error, message):
 
 @pytest.mark.parametrize("text, message", [
     ("", "no header; the first line must name the columns 'node,component'"),
-    ("1,x\n2,y\n", r"line 1 must be a header naming the columns 'node' and 'component' \(missing node, component\)"),
+    ("1,x\n2,y\n", r"line 1: must be a header naming the columns 'node' and 'component' \(missing node, component\)"),
     ("node,dof\n1,x\n", r"\(missing component\)"),
     ("node,component\n", "no data row after the header"),
-    ("node,component\n1,x\n2\n", "line 3 has 1 cell\\(s\\), the header has 2"),
+    ("node,component\n1,x\n2\n", "line 3: has 1 cell\\(s\\), the header has 2"),
+    ("node,component\n1,x\n2,y,5\n", "line 3: has 3 cell\\(s\\), the header has 2"),
+    ("node,component,node\n1,x,2\n", r"line 1: the header names the column\(s\) 'node' more than once"),
+    ("component,node\nx,10\ny,1", r"line 3: the file does not end with a line break: it may be truncated"),  # 10 cut
     ("node,component\n1,x\nabc,y\n", "line 3: node id must be a non-negative integer, got 'abc'"),
     ("node,component\n1,x\n1,7\n", "line 3: component '7' is not one of"),
     ("node,component\n1,x\n1,1\n", r"rows 0 and 1 both name DOF '1:x'.*\(data rows counted from 0\)"),
@@ -83,7 +86,7 @@ def test_invalid_maps_are_refused(nodes, components, error, message):
 def test_csv_errors_name_the_file_and_line(tmp_path, text, message):
     f = tmp_path / "dofs.csv"
     f.write_text(text, encoding="utf-8")
-    with pytest.raises(ValueError, match=message) as err:
+    with pytest.raises(FileFormatError, match=message) as err:
         DofMap.from_csv(f)
     assert str(f) in str(err.value)
 

@@ -8,77 +8,29 @@ import pytest
 import scipy.io
 import scipy.sparse as sp
 
+from _writers import chain, dense, write_mat73, write_npz, write_op4, write_op4_binary, write_op4_text
 from microslip.fe import DofMap, read_matrices, read_matrix
 
 N = 6
-
-
-def _chain(n=N, seed=0):
-    """A symmetric positive definite tridiagonal matrix with distinct entries (sparse CSR)."""
-    rng = np.random.default_rng(seed)
-    k = rng.uniform(1e5, 1e6, n + 1)
-    return sp.diags([-k[1:-1], k[:-1] + k[1:], -k[1:-1]], [-1, 0, 1], format="csr")
-
-
 M_DENSE = np.diag(np.linspace(0.1, 0.6, N))
-K_SPARSE = _chain()
-C_SPARSE = 1e-4 * _chain(seed=1)
-
-
-def _dense(A):
-    return A.toarray() if sp.issparse(A) else np.asarray(A)
+K_SPARSE = chain(N)
+C_SPARSE = 1e-4 * chain(N, seed=1)
 
 
 def _equal(read, expected, sparse):
     assert sp.issparse(read) == sparse
     if sparse:
         assert read.format == "csr"
-    np.testing.assert_array_equal(_dense(read), _dense(expected))  # exact: every format stores doubles
-
-
-# -- writers of MATLAB v7.3 (HDF5) as MATLAB lays it out ----------------------------------------------
-def _write_mat73(path, variables):
-    with h5py.File(path, "w", userblock_size=512) as f:
-        for name, A in variables.items():
-            if sp.issparse(A):
-                csc = sp.csc_matrix(A)
-                g = f.create_group(name)
-                g.attrs["MATLAB_class"] = np.bytes_("double")
-                g.attrs["MATLAB_sparse"] = np.uint64(csc.shape[0])
-                g["data"], g["ir"], g["jc"] = csc.data, csc.indices.astype(np.uint64), csc.indptr.astype(np.uint64)
-            elif np.asarray(A).dtype.kind == "U":  # MATLAB text: UTF-16 code units
-                d = f.create_dataset(name, data=np.vectorize(ord)(A).astype(np.uint16).T)
-                d.attrs["MATLAB_class"] = np.bytes_("char")
-            else:
-                d = f.create_dataset(name, data=np.asarray(A).T)  # MATLAB writes columns first
-                d.attrs["MATLAB_class"] = np.bytes_("double")
-    with open(path, "r+b") as fh:
-        fh.write(b"MATLAB 7.3 MAT-file, created by a test".ljust(116) + bytes(8) + b"\x00\x02IM")
-
-
-def _write_op4(path, variables):
-    from pyNastran.op4.op4 import OP4
-
-    matrices = {k: (6, sp.coo_matrix(A) if sp.issparse(A) else np.asarray(A)) for k, A in variables.items()}
-    OP4().write_op4(str(path), matrices, is_binary=False, precision="double")
-
-
-def _write_npz(path, variables):
-    arrays = {}
-    for name, A in variables.items():
-        if sp.issparse(A):
-            arrays |= {f"{name}_data": A.data, f"{name}_indices": A.indices, f"{name}_indptr": A.indptr,
-                       f"{name}_shape": A.shape, f"{name}_format": A.format}
-        else:
-            arrays[name] = A
-    np.savez(path, **arrays)
+    np.testing.assert_array_equal(dense(read), dense(expected))  # exact: every format stores doubles
 
 
 WRITERS = {
+    "mat4": (".mat", lambda p, v: scipy.io.savemat(p, v, format="4")),
     "mat5": (".mat", lambda p, v: scipy.io.savemat(p, v)),
-    "mat73": (".mat", _write_mat73),
-    "npz": (".npz", _write_npz),
-    "op4": (".op4", _write_op4),
+    "mat7": (".mat", lambda p, v: scipy.io.savemat(p, v, do_compression=True)),
+    "mat73": (".mat", write_mat73),
+    "npz": (".npz", write_npz),
+    "op4": (".op4", write_op4),
 }
 
 
@@ -180,7 +132,7 @@ def _npz(tmp_path, **arrays):
     (dict(M=np.eye(2), K_data=[1.0], K_indptr=[0, 1, 1], K_shape=[2, 2]),
      r"bad.npz: K in csr format needs the arrays data, indices, indptr, shape; missing indices"),
     (dict(M=np.eye(2), K_data=[1.0], K_indices=[5], K_indptr=[0, 1, 1], K_shape=[2, 2]),
-     r"bad.npz: K is not a consistent csr matrix"),
+     r"bad.npz: K: indices\[0\] = 5 is not a column of the 2 x 2 matrix \(0..1\)"),
 ])
 def test_messages_name_the_file_and_the_variable(tmp_path, arrays, message):
     with pytest.raises(ValueError, match=message):
@@ -219,7 +171,7 @@ def test_a_missing_variable_lists_those_present(tmp_path, kind):
 
 def test_mat73_is_read_columns_first(tmp_path):
     """MATLAB stores a 2 x 3 matrix as a 3 x 2 HDF5 dataset; the reader must transpose it back."""
-    _write_mat73(tmp_path / "a.mat", {"M": np.ones((2, 3)), "K": sp.csr_matrix(np.ones((2, 3)))})
+    write_mat73(tmp_path / "a.mat", {"M": np.ones((2, 3)), "K": sp.csr_matrix(np.ones((2, 3)))})
     with pytest.raises(ValueError, match=r"a.mat: M must be square, got shape \(2, 3\)"):
         read_matrix(tmp_path / "a.mat", "M")
     with pytest.raises(ValueError, match=r"a.mat: K must be square, got shape \(2, 3\)"):
@@ -227,7 +179,7 @@ def test_mat73_is_read_columns_first(tmp_path):
 
 
 def test_mat73_text_and_groups_are_refused(tmp_path):
-    _write_mat73(tmp_path / "a.mat", {"M": np.array([["a"]])})
+    write_mat73(tmp_path / "a.mat", {"M": np.array([["a"]])})
     with h5py.File(tmp_path / "a.mat", "a") as f:
         f.create_group("S").attrs["MATLAB_class"] = np.bytes_("struct")
     with pytest.raises(ValueError, match=r"a.mat: M is a MATLAB char array; expected a numeric matrix"):
@@ -257,8 +209,10 @@ def test_mat73_text_and_groups_are_refused(tmp_path):
      r"dof_map must be a DofMap or the path of a node,component CSV file, got list"),
     (lambda p: read_matrices(p / "m.npz", symmetry_tolerance=-1), ValueError,
      r"symmetry_tolerance must be positive, got -1.0"),
-    (lambda p: read_matrix(p / "junk.mtx"), ValueError, r"junk.mtx: not a readable Matrix Market file"),
-    (lambda p: read_matrix(p / "junk.op4"), ValueError, r"junk.op4: not a readable Nastran OP4 file"),
+    (lambda p: read_matrix(p / "junk.mtx"), ValueError, r"junk.mtx: line 1: not a Matrix Market matrix: the first "
+                                                        r"line must be '%%MatrixMarket matrix FORMAT FIELD SYMMETRY'"),
+    (lambda p: read_matrix(p / "junk.op4"), ValueError, r"junk.op4: line 1: expected a matrix header \(NCOL, NROW, "
+                                                        r"FORM, TYPE as 8-character integers, the name, the format\)"),
     (lambda p: read_matrix(p / "junk.mat"), ValueError, r"junk.mat: neither a MATLAB v5 nor a v7.3 \(HDF5\) file"),
 ])
 def test_call_errors(tmp_path, call, error, message):
@@ -269,15 +223,51 @@ def test_call_errors(tmp_path, call, error, message):
         call(tmp_path)
 
 
-@pytest.mark.parametrize("module, write, suffix", [
-    ("h5py", _write_mat73, ".mat"),
-    ("pyNastran.op4.op4", _write_op4, ".op4"),
-])
-def test_a_missing_optional_package_names_the_extra(tmp_path, monkeypatch, module, write, suffix):
-    path = tmp_path / f"model{suffix}"
-    write(path, {"M": M_DENSE, "K": K_SPARSE})
-    monkeypatch.setitem(sys.modules, module, None)  # makes `import module` raise ImportError
-    package = module.split(".")[0]
-    with pytest.raises(ImportError, match=rf"needs the package {package}, which is not installed: "
-                                          rf"pip install microslip\[fe\]"):
+def test_a_missing_optional_package_names_the_extra(tmp_path, monkeypatch):
+    path = tmp_path / "model.mat"
+    write_mat73(path, {"M": M_DENSE, "K": K_SPARSE})
+    monkeypatch.setitem(sys.modules, "h5py", None)  # makes `import h5py` raise ImportError
+    with pytest.raises(ImportError, match=r"needs the package h5py, which is not installed: "
+                                          r"pip install microslip\[fe\]"):
         read_matrices(path)
+
+
+def test_op4_files_are_read_without_pynastran(tmp_path, monkeypatch):
+    write_op4(tmp_path / "model.op4", {"M": M_DENSE, "K": K_SPARSE})
+    for module in ("pyNastran", "pyNastran.op4", "pyNastran.op4.op4"):
+        monkeypatch.setitem(sys.modules, module, None)
+    _equal(read_matrices(tmp_path / "model.op4").K, K_SPARSE, sparse=True)
+
+
+def _scattered(n=9):
+    """A symmetric matrix whose columns hold several strings of rows (pyNastran writes its columns out of order)."""
+    rng = np.random.default_rng(3)
+    A = np.zeros((n, n))
+    A[np.triu_indices(n)] = rng.normal(size=n * (n + 1) // 2)
+    A = A + A.T
+    A[2, 5] = A[5, 2] = A[0, 6] = A[6, 0] = A[1, 4] = A[4, 1] = 0.0
+    A[:, 8] = A[8, :] = 0.0
+    A[8, 8] = 3.0
+    return A
+
+
+@pytest.mark.parametrize("layout", ["pyNastran sparse", "pyNastran dense", "text dense", "text sparse",
+                                    "text sparse bigmat", "binary dense", "binary sparse big-endian",
+                                    "binary sparse bigmat", "binary dense bigmat big-endian"])
+def test_op4_layouts_read_exactly_and_as_pynastran_reads_them(tmp_path, layout):
+    from pyNastran.op4.op4 import read_op4
+
+    path, A = tmp_path / "a.op4", _scattered()
+    variables = {"A": A, "M": M_DENSE}
+    if layout.startswith("pyNastran"):
+        write_op4(path, {"A": sp.coo_matrix(A) if "sparse" in layout else A, "M": M_DENSE})
+    else:
+        write = write_op4_text if layout.startswith("text") else write_op4_binary
+        kwargs = {"sparse": "sparse" in layout, "bigmat": "bigmat" in layout}
+        if "big-endian" in layout:
+            kwargs["endian"] = ">"
+        write(path, variables, **kwargs)
+    for name, expected in variables.items():
+        got = read_matrix(path, name, symmetry_tolerance=1e-12)
+        np.testing.assert_array_equal(dense(got), expected)
+        np.testing.assert_array_equal(dense(got), dense(read_op4(str(path), debug=None)[name][1]))

@@ -488,8 +488,10 @@ class ConfigFiles:
     def arrays(self, path: Path) -> dict:
         """The arrays ``M``, ``C``, ``K`` found in the ``.npz`` file ``path``."""
         def read():
-            with np.load(path) as arrays:
-                return {k: np.array(arrays[k]) for k in ("M", "C", "K") if k in arrays}
+            from ..fe.files import NpzArrays
+
+            with NpzArrays(path) as arrays:  # a damaged file is a FileFormatError naming it
+                return {k: arrays.get(k) for k in ("M", "C", "K") if k in arrays.names}
 
         self.paths.add(Path(path))
         return self._once(("npz", str(path)), read)
@@ -578,7 +580,10 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         npz = base / st["matrices"]
         if not npz.is_file():
             raise FileNotFoundError(f"{path}: [structure] matrices file {str(npz)!r} does not exist")
-        mats = dict(files.arrays(npz))
+        try:
+            mats = dict(files.arrays(npz))
+        except ValueError as exc:  # a damaged file (FileFormatError)
+            raise ConfigError(f"{path}: [structure] matrices: {exc}") from None
         for key in ("M", "K"):
             if key not in mats:
                 raise ConfigError(f"{path}: [structure] matrices file {str(npz)!r} holds no array {key!r}")
@@ -985,8 +990,14 @@ def _structure_files(st: dict, base: Path, path, files: ConfigFiles):
                           f"as matrices")
     kwargs = {k: base / st[k] for k in ("M", "K", "C") if isinstance(st.get(k), str)}
     dof_map = base / st["dof_map"] if "dof_map" in st else None
+    from ..fe.files import OneMatrixFile
+
     try:
         return files.matrices(base / st["file"] if by_file else None, dof_map=dof_map, names=st.get("names"),
                               **kwargs)
+    except OneMatrixFile as exc:
+        raise ConfigError(f"{path}: [structure] file = {st['file']!r} is a {exc.kind} file, which holds a single "
+                          f"matrix: say which matrix each file is, M = \"M{exc.path.suffix}\", K = "
+                          f"\"K{exc.path.suffix}\" (and C = ... if any) instead of file = ...") from None
     except (ValueError, TypeError) as exc:
         raise ConfigError(f"{path}: [structure] {exc}") from None

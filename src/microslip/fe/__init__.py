@@ -2,7 +2,8 @@
 
 * :func:`read_matrices`, :func:`read_matrix` -- mass, stiffness and damping matrices from Matrix
   Market, MATLAB (v5 and v7.3), NumPy ``.npz`` and Nastran OP4 files, checked (square, finite,
-  symmetric, same size);
+  symmetric, same size); a truncated, damaged or inconsistent file raises :class:`FileFormatError`
+  (a ``ValueError`` naming the file and, for a text format, the line);
 * :class:`DofMap` -- the node and component of every matrix row, names such as ``"1204:x"``;
 * :func:`blade` -- a plane-stress blade with a platform, meshed and assembled with scikit-fem
   (:class:`FEBlade`);
@@ -12,15 +13,16 @@
   normals, tangents; a law per unit area, :class:`PressureLaw`).
 
 Nothing here imports from the rest of :mod:`microslip` except :mod:`microslip.common` and (for the
-contact laws of patches) :mod:`microslip.model`. h5py, pyNastran, scikit-fem and meshio are optional
+contact laws of patches) :mod:`microslip.model`. h5py, scikit-fem and meshio are optional
 (``pip install microslip[fe]``) and imported only by the readers and the model that need them.
 """
 
 from .blade import FEBlade, blade
 from .dof_map import DofMap
-from .files import FEMatrices, read_matrices, read_matrix
+from .files import FEMatrices, FileFormatError, read_matrices, read_matrix
 from .modal import natural_frequencies
 from .patches import ContactPatch, PressureLaw, add_patch, contact_patch, patch_from_mesh, patch_from_tables
 
-__all__ = ["ContactPatch", "DofMap", "FEBlade", "FEMatrices", "PressureLaw", "add_patch", "blade", "contact_patch",
-           "natural_frequencies", "patch_from_mesh", "patch_from_tables", "read_matrices", "read_matrix"]
+__all__ = ["ContactPatch", "DofMap", "FEBlade", "FEMatrices", "FileFormatError", "PressureLaw", "add_patch", "blade",
+           "contact_patch", "natural_frequencies", "patch_from_mesh", "patch_from_tables", "read_matrices",
+           "read_matrix"]

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..common import _checks
 from ..common._io import atomic_write
+from ._errors import FileFormatError
 
 #: displacement components in Nastran's order (component ``k`` is ``COMPONENTS[k - 1]``)
 COMPONENTS = ("x", "y", "z", "rx", "ry", "rz")
@@ -23,23 +24,25 @@ COMPONENTS = ("x", "y", "z", "rx", "ry", "rz")
 MAX_NODE = 2 ** 53
 
 
-def _component(value, where: str) -> str:
-    """A component letter from a letter or a Nastran number 1..6."""
+def _component(value, where: str | None) -> str:
+    """A component letter from a letter or a Nastran number 1..6 (``where`` starts the message, if given)."""
     text = str(value).strip().lower()
     if text in COMPONENTS:
         return text
     if text.isdigit() and 1 <= int(text) <= 6:
         return COMPONENTS[int(text) - 1]
-    raise ValueError(f"{where}: component {value!r} is not one of {', '.join(COMPONENTS)} "
+    where = f"{where}: " if where else ""
+    raise ValueError(f"{where}component {value!r} is not one of {', '.join(COMPONENTS)} "
                      f"(or their numbers 1..6)")
 
 
-def _node(value, where: str) -> int:
+def _node(value, where: str | None) -> int:
     """A node id: an integer in ``0..MAX_NODE`` (also from text such as ``"1204"``)."""
     if isinstance(value, np.floating):
         value = float(value)  # shown as 1.5, not np.float64(1.5)
+    where = f"{where}: " if where else ""
     if isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{where}: node id must be an integer, got {value!r}")
+        raise TypeError(f"{where}node id must be an integer, got {value!r}")
     if isinstance(value, (int, np.integer)):
         node = int(value)
     elif isinstance(value, str) and value.strip().lstrip("+").isdigit():
@@ -47,11 +50,11 @@ def _node(value, where: str) -> int:
     elif isinstance(value, (float, np.floating)) and float(value).is_integer():
         node = int(value)
     else:
-        raise ValueError(f"{where}: node id must be a non-negative integer, got {value!r}")
+        raise ValueError(f"{where}node id must be a non-negative integer, got {value!r}")
     if node < 0:
-        raise ValueError(f"{where}: node id must be a non-negative integer, got {node}")
+        raise ValueError(f"{where}node id must be a non-negative integer, got {node}")
     if node > MAX_NODE:
-        raise ValueError(f"{where}: node id must be at most 2**53 = {MAX_NODE}, got {value!r}")
+        raise ValueError(f"{where}node id must be at most 2**53 = {MAX_NODE}, got {value!r}")
     return node
 
 
@@ -135,51 +138,66 @@ class DofMap:
     def from_csv(cls, path) -> DofMap:
         """Read a CSV file with a header naming the columns ``node`` and ``component``.
 
-        One data row per matrix row, in the order of the matrix rows; other
-        columns are ignored, lines starting with ``#`` are comments. A UTF-8
-        byte-order mark is accepted.
+        One data row per matrix row, in the order of the matrix rows, each
+        with as many cells as the header; other columns are ignored, lines
+        starting with ``#`` are comments, the last line ends with a line
+        break. A UTF-8 byte-order mark is accepted.
 
         Raises
         ------
         FileNotFoundError
             No such file.
-        ValueError
-            No header with ``node`` and ``component``, a row with a missing
-            cell, an invalid node id or component (with the file and line),
-            duplicate rows, no data row, or a file that is not UTF-8.
+        FileFormatError
+            (a ValueError naming the file and the line) No header with
+            ``node`` and ``component``, a column named twice, a row with
+            more or fewer cells than the header, an invalid node id or
+            component, duplicate rows, no data row, a last line without its
+            line break (a truncated file), or a file that is not UTF-8.
         TypeError
             ``path`` is not a file name.
         """
         path = _checks.file_path("path", path)
         try:
             with open(path, newline="", encoding="utf-8-sig") as fh:
-                lines = [(no, line) for no, line in enumerate(fh, start=1)
-                         if line.strip() and not line.lstrip().startswith("#")]
+                every = list(enumerate(fh, start=1))
+            lines = [(no, line) for no, line in every if line.strip() and not line.lstrip().startswith("#")]
         except UnicodeDecodeError as err:
-            raise ValueError(f"{path}: not a UTF-8 text file ({err.reason} at byte {err.start}); save the DOF "
-                             f"map as UTF-8 CSV") from None
+            raise FileFormatError(path, f"not a UTF-8 text file ({err.reason} at byte {err.start}); save the DOF "
+                                        f"map as UTF-8 CSV") from None
         if not lines:
-            raise ValueError(f"{path}: no header; the first line must name the columns 'node,component'")
-        rows = list(csv.reader(line for _, line in lines))
+            raise FileFormatError(path, "no header; the first line must name the columns 'node,component'")
+        if not every[-1][1].endswith(("\n", "\r")):  # a cut inside the last row could leave a shorter node id
+            raise FileFormatError(path, "the file does not end with a line break: it may be truncated (if its last "
+                                        "row is complete, end it with a line break)", every[-1][0])
+        try:
+            rows = list(csv.reader(line for _, line in lines))
+        except csv.Error as err:
+            raise FileFormatError(path, f"not a CSV file ({err})") from None
         header = [h.strip().lower() for h in rows[0]]
         missing = [c for c in ("node", "component") if c not in header]
         if missing:
-            raise ValueError(f"{path}: line {lines[0][0]} must be a header naming the columns 'node' and "
-                             f"'component' (missing {', '.join(missing)}), got {rows[0]}")
+            raise FileFormatError(path, f"must be a header naming the columns 'node' and 'component' (missing "
+                                        f"{', '.join(missing)}), got {rows[0]}", lines[0][0])
+        twice = sorted({h for h in header if h and header.count(h) > 1})
+        if twice:
+            raise FileFormatError(path, f"the header names the column(s) {', '.join(map(repr, twice))} more than "
+                                        f"once, got {rows[0]}", lines[0][0])
         ci, cc = header.index("node"), header.index("component")
         nodes, comps = [], []
         for (no, _), cells in zip(lines[1:], rows[1:]):
-            where = f"{path}: line {no}"
-            if len(cells) <= max(ci, cc):
-                raise ValueError(f"{where} has {len(cells)} cell(s), the header has {len(header)}")
-            nodes.append(_node(cells[ci].strip(), where))
-            comps.append(_component(cells[cc], where))
+            if len(cells) != len(header):
+                raise FileFormatError(path, f"has {len(cells)} cell(s), the header has {len(header)}", no)
+            try:
+                nodes.append(_node(cells[ci].strip(), None))
+                comps.append(_component(cells[cc], None))
+            except (TypeError, ValueError) as err:
+                raise FileFormatError(path, str(err), no) from None
         if not nodes:
-            raise ValueError(f"{path}: no data row after the header")
+            raise FileFormatError(path, "no data row after the header")
         try:
             return cls(nodes, comps)
         except ValueError as err:
-            raise ValueError(f"{path}: {err} (data rows counted from 0)") from None
+            raise FileFormatError(path, f"{err} (data rows counted from 0)") from None
 
     def to_csv(self, path) -> Path:
         """Write the map as a ``node,component`` CSV (readable by :meth:`from_csv`), atomically."""

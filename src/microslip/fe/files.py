@@ -10,12 +10,19 @@ Formats, chosen by the file's suffix:
                         ``NAME_data, NAME_indices, NAME_indptr, NAME_shape`` (``NAME_format`` ``"csr"``
                         or ``"csc"``, default ``"csr"``) or ``NAME_row, NAME_col, NAME_data,
                         NAME_shape``; or a whole file written by ``scipy.sparse.save_npz`` (one matrix)
-``.op4``                Nastran OUTPUT4, ASCII or binary, dense or sparse (read with pyNastran)
+``.op4``                Nastran OUTPUT4, text or binary (32-bit), dense or sparse, BIGMAT or not
 ======================  ===============================================================================
 
-h5py and pyNastran are optional (``pip install microslip[fe]``); the other formats need only
-NumPy and SciPy. Matrices come back as ``scipy.sparse`` CSR when the file stores them sparse and
-as dense arrays otherwise, in the file's units (the rest of microslip expects kg, N s/m, N/m).
+A Matrix Market file, or a ``save_npz`` file, holds one matrix: it is read as the matrix its
+role names (``M=``, ``K=``, ``C=``), never as the whole model. h5py is optional (``pip install
+microslip[fe]``, for MATLAB v7.3); the other formats need only NumPy and SciPy. Matrices come
+back as ``scipy.sparse`` CSR when the file stores them sparse and as dense arrays otherwise, in
+the file's units (the rest of microslip expects kg, N s/m, N/m).
+
+The files are checked as they are read: a truncated, damaged or inconsistent file (a value that
+is not a number, a line with a value missing, sparse indices outside the matrix, sizes the file
+does not hold, a failed checksum) raises :class:`FileFormatError`, a ``ValueError`` naming the
+file and, for a text format, the line. Nothing is allocated from a size the file does not back.
 """
 
 from __future__ import annotations
@@ -28,7 +35,13 @@ import scipy.sparse as sp
 
 from ..common import _checks
 from . import _formats
+from ._errors import FileFormatError
+from ._formats import NpzArrays, OneMatrixFile
+from ._limits import MAX_ROWS
 from .dof_map import DofMap
+
+__all__ = ["FEMatrices", "FileFormatError", "NpzArrays", "OneMatrixFile", "check_matrix", "read_matrices",
+           "read_matrix"]
 
 #: the matrices of a model and their meaning
 ROLES = {"M": "mass", "K": "stiffness", "C": "damping"}
@@ -78,9 +91,9 @@ def check_matrix(A, where: str, *, symmetry_tolerance: float = SYMMETRY_TOLERANC
     Raises
     ------
     ValueError
-        ``A`` is not 2-D, not square, complex or not numeric, holds a
-        non-finite entry (its row and column are named) or is not symmetric
-        within the tolerance.
+        ``A`` is not 2-D, not square, empty, larger than 1e7 rows, complex
+        or not numeric, holds a non-finite entry (its row and column are
+        named) or is not symmetric within the tolerance.
     """
     if sp.issparse(A):
         A = sp.csr_matrix(A)
@@ -92,9 +105,13 @@ def check_matrix(A, where: str, *, symmetry_tolerance: float = SYMMETRY_TOLERANC
         raise ValueError(f"{where} is complex; expected a real matrix")
     if A.dtype.kind not in "iuf":
         raise ValueError(f"{where} holds {A.dtype} values; expected real numbers")
-    A = A.astype(np.float64)
     if A.shape[0] != A.shape[1]:
         raise ValueError(f"{where} must be square, got shape {A.shape}")
+    if A.shape[0] == 0:
+        raise ValueError(f"{where} is an empty 0 x 0 matrix; expected at least one row and column")
+    if A.shape[0] > MAX_ROWS:
+        raise ValueError(f"{where} has {A.shape[0]} rows; at most {MAX_ROWS} are accepted")
+    A = A.astype(np.float64)
     values = A.data if sp.issparse(A) else A
     if not np.isfinite(values).all():
         if sp.issparse(A):
@@ -154,13 +171,15 @@ def read_matrix(path, name: str | None = None, *, symmetry_tolerance: float = SY
 
     Raises
     ------
+    FileFormatError
+        A truncated, damaged or inconsistent file (a ``ValueError``).
     ValueError
         Unknown suffix, a missing variable (the message lists those the
         file holds), or a matrix that fails :func:`check_matrix`.
     TypeError
         ``path`` is not a file path or ``name`` not a string.
     ImportError
-        A v7.3 ``.mat`` without h5py or an ``.op4`` without pyNastran.
+        A v7.3 ``.mat`` without h5py.
     """
     path = _path("path", path)
     if name is not None:
@@ -182,7 +201,9 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
 
     Either one file holding the variables ``M``, ``K`` and optionally ``C``
     (``path``; a ``.mat``, ``.npz`` or ``.op4`` file), or one file per
-    matrix (``M=``, ``K=``, ``C=``; any format).
+    matrix (``M=``, ``K=``, ``C=``; any format). A file that holds a single
+    matrix (Matrix Market, ``scipy.sparse.save_npz``) says nothing of which
+    matrix it is: it is read only as one of ``M=``, ``K=``, ``C=``.
 
     Parameters
     ----------
@@ -211,6 +232,11 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
 
     Raises
     ------
+    FileFormatError
+        A truncated, damaged or inconsistent file (a ``ValueError``): the
+        message names the file and, for a text format, the line.
+    OneMatrixFile
+        ``path`` holds a single matrix (a ``ValueError``).
     ValueError
         Both or neither of ``path`` and ``M``/``K`` given, an unknown
         suffix, a missing variable (the message lists the variables in the
@@ -218,7 +244,7 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
         of different sizes, or a DOF map of another length. Every message
         names the file and the variable.
     ImportError
-        A v7.3 ``.mat`` without h5py or an ``.op4`` without pyNastran.
+        A v7.3 ``.mat`` without h5py.
 
     Examples
     --------
@@ -281,12 +307,14 @@ def _one(path: Path, var: str, named: bool):
 def _dof_map(value, n: int) -> DofMap | None:
     if value is None:
         return None
+    where = "dof_map"
     if isinstance(value, (str, Path)):
+        where = f"dof_map {str(value)!r}"
         value = DofMap.from_csv(value)
     elif not isinstance(value, DofMap):
         raise TypeError(f"dof_map must be a DofMap or the path of a node,component CSV file, got "
                         f"{type(value).__name__}")
     if len(value) != n:
-        raise ValueError(f"dof_map has {len(value)} rows but the matrices have {n}: one row per DOF, in the "
+        raise ValueError(f"{where} has {len(value)} rows but the matrices have {n}: one row per DOF, in the "
                          f"order of the matrix rows")
     return value

@@ -21,6 +21,7 @@ import scipy.sparse.linalg as spla
 
 from ...common import _checks
 from ...common._io import atomic_write
+from ...fe.files import FileFormatError, NpzArrays
 from ...model import MicroslipModel
 from ..structures.cyclic import CyclicStructure, add_contact_terms, contact_terms
 from ..structures.structure import Structure, dof_indices, refuse_indefinite
@@ -83,25 +84,60 @@ class CraigBampton:
 
     @classmethod
     def load(cls, path) -> "CraigBampton":
-        """Read a model written by :meth:`save`."""
+        """Read a model written by :meth:`save`.
+
+        Raises
+        ------
+        microslip.fe.FileFormatError
+            Not such a model file, or a damaged one (truncated, altered, of
+            inconsistent sizes): a ValueError naming the file.
+        """
         path = _checks.file_path("path", path)
         if not path.is_file():
             raise ValueError(f"path: no Craig-Bampton model file at {str(path)!r}")
-        with np.load(path, allow_pickle=False) as data:
-            missing = {"M", "C", "K", "recovery", "keep", "frequencies", "contacts"} - set(data.files)
+        with NpzArrays(path) as npz:
+            missing = {"M", "C", "K", "recovery", "keep", "frequencies", "contacts"} - set(npz.names)
             if missing:
-                raise ValueError(f"{path}: not a Craig-Bampton model file (missing {', '.join(sorted(missing))})")
-            cyclic = json.loads(str(data["cyclic"])) if "cyclic" in data.files else None
-            if cyclic:
-                s = CyclicStructure(data["M"], data["C"], data["K"], **cyclic)
-            else:
-                s = Structure(data["M"], data["C"], data["K"])
-            for c in json.loads(str(data["contacts"])):
-                add_contact_terms(s, MicroslipModel.from_dict(c["model"]), c["tangential"], c["normal"],
-                                  preload=c["preload"], approach=c["approach"], name=c["name"])
-            if "static_force" in data.files:
-                s.static_force = data["static_force"]
-            return cls(s, data["recovery"], data["keep"], data["frequencies"])
+                raise FileFormatError(path, f"not a Craig-Bampton model file (missing {', '.join(sorted(missing))})")
+            data = {k: npz.get(k) for k in npz.names}
+        try:
+            return cls._from_arrays(data)
+        except (ValueError, TypeError, KeyError, IndexError, AttributeError) as err:
+            raise FileFormatError(path, f"not a valid Craig-Bampton model file ({type(err).__name__}: {err})") \
+                from None
+
+    @classmethod
+    def _from_arrays(cls, data: dict) -> "CraigBampton":
+        def parsed(key):
+            try:
+                return json.loads(str(data[key]))
+            except ValueError as err:
+                raise ValueError(f"{key} is not valid JSON ({err})") from None
+
+        cyclic = parsed("cyclic") if "cyclic" in data else None
+        if cyclic:
+            s = CyclicStructure(data["M"], data["C"], data["K"], **cyclic)
+        else:
+            s = Structure(data["M"], data["C"], data["K"])
+        contacts = parsed("contacts")
+        if not isinstance(contacts, list) or not all(isinstance(c, dict) for c in contacts):
+            raise ValueError("contacts must be a list of tables")
+        for c in contacts:
+            add_contact_terms(s, MicroslipModel.from_dict(c["model"]), c["tangential"], c["normal"],
+                              preload=c["preload"], approach=c["approach"], name=c["name"])
+        n = s.ndof
+        if "static_force" in data:
+            s.static_force = _checks.real_array("static_force", data["static_force"], ndim=1)
+            if s.static_force.size != n:
+                raise ValueError(f"static_force has {s.static_force.size} entries; the structure has {n} DOFs")
+        recovery = _checks.real_array("recovery", data["recovery"], ndim=2)
+        keep, frequencies = np.asarray(data["keep"]), _checks.real_array("frequencies", data["frequencies"], ndim=1)
+        if recovery.shape[1] != n or keep.ndim != 1 or keep.dtype.kind not in "iu" \
+                or keep.size + frequencies.size != n or not np.all((keep >= 0) & (keep < recovery.shape[0])) \
+                or np.unique(keep).size != keep.size:
+            raise ValueError(f"recovery {recovery.shape}, keep {keep.shape} and frequencies {frequencies.shape} do "
+                             f"not fit a reduced structure of {n} DOFs (keep: distinct rows of recovery)")
+        return cls(s, recovery, keep, frequencies)
 
 
 def _kept(structure: Structure, keep) -> np.ndarray:
