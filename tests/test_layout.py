@@ -18,8 +18,8 @@ PACKAGE = Path(microslip.__file__).parent
 ROOT = PACKAGE.parent
 
 #: the allowed direction of the arrows: a module may import from its own top-level package or from
-#: one of lower rank, never from one of higher rank (``_plane_lanes``: LLVM vector code the kernels build on)
-RANKS = {"_plane_lanes": -1, "common": 0, "_kernels": 0, "model": 1, "reference": 2, "fe": 2, "accuracy": 3,
+#: one of lower rank, never from one of higher rank
+RANKS = {"common": 0, "_kernels": 0, "model": 1, "reference": 2, "fe": 2, "accuracy": 3,
          "frequency": 3, "tuning": 4, "measured": 5, "figures": 6, "study": 6, "cli": 7, "": 8}
 
 
@@ -117,7 +117,7 @@ def test_arrows_run_one_way_between_packages(graph):
 
 def test_the_top_level_holds_packages_and_a_handful_of_modules():
     modules = sorted(p.stem for p in PACKAGE.glob("*.py"))
-    assert modules == ["__init__", "_kernels", "_plane_lanes", "model"]
+    assert modules == ["__init__", "_kernels", "model"]
     packages = sorted(p.parent.name for p in PACKAGE.glob("*/__init__.py"))
     assert packages == ["accuracy", "cli", "common", "fe", "figures", "frequency", "measured", "reference",
                         "study", "tuning"]
@@ -127,7 +127,7 @@ def test_internal_modules_are_not_attributes_of_the_top_level():
     public = set(microslip.__all__) | {"__version__"}
     extra = {name for name in vars(microslip) if not name.startswith("__")} - public
     packages = {p.parent.name for p in PACKAGE.glob("*/__init__.py")}
-    assert extra <= packages | {"model", "_kernels", "_plane_lanes"}
+    assert extra <= packages | {"model", "_kernels"}
 
 
 def test_every_public_name_is_importable_where_users_import_it():
