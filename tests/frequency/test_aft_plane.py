@@ -253,11 +253,10 @@ def test_an_element_on_a_corner_of_its_stick_region_takes_its_derivative_from_th
         np.testing.assert_allclose(exact, approx, atol=1e-6 * k)
 
 
-def test_the_period_a_pair_of_vectors_at_a_time_is_plane_step_to_the_bit():
-    """The period's element update, two vectors of ``MARCH_LANES`` elements at a time, against the scalar
-    ``plane_step`` marched sample by sample (the contact cycles' march) from the same sliders, on 11
-    elements (one pass and a padded one) that open, stick and slip: the conditions, each element's
-    force and the sliders equal to the bit (the same operations in the same order)."""
+def test_the_period_is_plane_step_to_the_bit():
+    """The AFT's period against ``plane_step`` marched sample by sample (the contact cycles' march) from the
+    same sliders, on 11 elements that open, stick and slip: the conditions, each element's force and the
+    sliders equal to the bit (the same element update)."""
     from microslip.kernels import aft_plane as _aft_plane, plane_march as _plane_march
 
     rng = np.random.default_rng(5)
@@ -268,15 +267,49 @@ def test_the_period_a_pair_of_vectors_at_a_time_is_plane_step_to_the_bit():
     t1, t2, n = 1e-7 * np.cos(tau), 0.4e-7 * np.sin(2 * tau), 1.5e-7 + 1e-7 * np.cos(tau)
     s = rng.normal(scale=1e-7, size=(2, J))
     st, rec = _aft_plane.march_work(J, Ns)
-    st[:2, :J] = s
+    st[:2] = s
     _aft_plane._period(kt, kn, gaps, mu, mu * kn / kt, t1, t2, n, st, rec)
     Ti, cond = np.empty((Ns, J, 2)), np.empty((Ns, J), dtype=np.int8)
     _plane_march.march_plane(kt, kn, gaps, mu, t1, t2, n, s, np.empty((Ns, 2)), np.empty(Ns), Ti, cond)
     assert set(np.unique(cond)) == {0, 1, 2}  # open, stick and slip all occur
-    np.testing.assert_array_equal(rec[0][:, :J], cond)
-    np.testing.assert_array_equal(rec[4][:, :J], Ti[:, :, 0])
-    np.testing.assert_array_equal(rec[5][:, :J], Ti[:, :, 1])
-    np.testing.assert_array_equal(st[:2, :J], s)
+    np.testing.assert_array_equal(rec[0], cond)
+    np.testing.assert_array_equal(rec[4], Ti[:, :, 0])
+    np.testing.assert_array_equal(rec[5], Ti[:, :, 1])
+    np.testing.assert_array_equal(st[:2], s)
+
+
+@pytest.mark.parametrize("planar", [[True, False, True], [True, True, True]])
+def test_a_batch_of_contacts_gives_each_contact_alone(planar):
+    """The harmonic balance's batch (contacts on their planes, with contacts along one direction or without
+    them) equals each contact's ``aft_plane`` and ``aft``, bit for bit."""
+    from microslip.kernels import aft as _aft, aft_plane as _aft_plane
+    from microslip.frequency.aft import aft as aft_line
+    from microslip.frequency.aft import pack_models
+
+    cases = [_random_case(seed, H=3, J=seed + 2) for seed in (0, 1, 2)]
+    models = [model for model, _, _ in cases]
+    nc, nb = len(cases), 7
+    XT, XT2, XN = (np.array([c[1][0] if a == 0 else c[1][1] if a == 1 else c[2] for c in cases]) for a in range(3))
+    for c, p in enumerate(planar):
+        if not p:
+            XT2[c] = 0.0
+    FT, FN, FT2 = (np.zeros((nc, nb)) for _ in range(3))
+    JTt, JTn, JNn, JT12, JT21, JT22, JT2n = (np.zeros((nc, nb, nb)) for _ in range(7))
+    periods = np.empty(nc, dtype=np.int64)
+    _aft_plane.aft_mixed_batch(*pack_models(models), np.array(planar), XT, XT2, XN, *_aft.tables(3, 64),
+                               _aft_plane.sweep_tables(3, 64), 1000, FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22,
+                               JT2n, periods)
+    for c, (model, t, n) in enumerate(cases):
+        if planar[c]:
+            r = aft_plane(model, np.array([XT[c], XT2[c]]), n, samples=64)
+            got = (FT[c], FT2[c], FN[c], JTt[c], JT12[c], JT21[c], JT22[c], JTn[c], JT2n[c], JNn[c])
+            want = (r.T[0], r.T[1], r.N, r.dT_dt[0, 0], r.dT_dt[0, 1], r.dT_dt[1, 0], r.dT_dt[1, 1], r.dT_dn[0],
+                    r.dT_dn[1], r.dN_dn)
+        else:
+            r = aft_line(model, XT[c], n, samples=64)
+            got, want = (FT[c], FN[c], JTt[c], JTn[c], JNn[c]), (r.T, r.N, r.dT_dt, r.dT_dn, r.dN_dn)
+        for a, b in zip(got, want):
+            np.testing.assert_array_equal(a, b)
 
 
 def _plain_periods(model, t, n, Ns, periods):

@@ -57,6 +57,19 @@ the coefficient of ``sigma`` accumulated forward. An element stuck through
 the whole period (``Phi_s = I``) keeps the slider its history gave it: that
 history is marched again with the slider's derivative carried forward
 (rank-one updates, a few of them).
+
+Rounding between processors. Plain numba loops, no hand-written vector code.
+The period's element update is :func:`microslip.kernels.element.plane_step`, bit for
+bit the same on every processor numba compiles for (``NUMBA_CPU_NAME``). The
+samples of the motion (:func:`~microslip.kernels.aft._synthesise`), the
+sums over the elements at each sample (:func:`_sample_sums`) and the normal
+force's transform are compiled with ``fastmath``: their sums are reordered to
+the processor's vector width and their products fused into multiply-adds where
+it has them, so forces and Jacobians differ between processors by rounding
+(measured: 4e-16 of the largest entry between a generic x86-64 and an AVX2
+processor; ``tests/model/test_targets.py`` allows 1e-14). The sweep and the
+products with the basis rows round every product and sum (no fused
+multiply-add).
 """
 
 from __future__ import annotations
@@ -69,8 +82,6 @@ import numpy as np
 
 from .element import OPEN, SLIP, STICK, plane_step
 from .aft import _aft_contact, _dft, _diagonal_jacobian, _synthesise, tables
-from .simd import (MARCH_PAIR, columns_times_basis, period_march, project_rows, sample_coefficients, sample_rows,
-                   start_weights)
 
 #: the periodicity tolerance, in units of the motion's size times the machine epsilon
 PERIODIC_ULPS = 32.0
@@ -172,11 +183,9 @@ def _history_derivative(rk, gi, t1, t2, n, x1_0, x2_0, xn_0, E, periods, D):  # 
     return s1, s2, moved
 
 
-#: float64 values per 64 bytes: the work arrays start on 64-byte boundaries (a 512-bit vector's load or store that
-#: straddles two cache lines is slower; the allocator's 32-byte alignment gave runs 10 % apart at random)
+#: float64 values per 64 bytes: the work arrays start on 64-byte boundaries (cache lines)
 ALIGN = 8
-#: the sweep's coefficient rows are padded to a multiple of this many values (a multiple of ``_simd.LANES``): its loops
-#: over them then run a whole number of vector steps, never one value at a time
+#: the sweep's coefficient rows are padded with zeros to a multiple of this many values
 PAD = 16
 
 
@@ -202,16 +211,14 @@ def sweep_tables(H: int, Ns: int) -> np.ndarray:
 
 @nb.njit(cache=True, nogil=True)
 def march_work(J, Ns):  # pragma: no cover - compiled
-    """The march's rows for ``J`` elements over ``Ns`` samples: ``(st (6, Jp), rec (6, Ns, Jp))``.
+    """The march's rows for ``J`` elements over ``Ns`` samples: ``(st (6, J), rec (6, Ns, J))``.
 
-    ``Jp`` is ``J`` rounded up to a multiple of ``MARCH_PAIR`` (:func:`_period`
-    updates that many elements at a time). ``st`` holds the sliders
-    ``s1, s2`` and the period map's derivative ``C`` (4 rows, row-major
-    2x2 per element); ``rec`` the period's records (condition, ``alpha``,
-    ``V1, V2``, the element's force ``Te1, Te2``), each ``(Ns, Jp)``.
+    ``st`` holds the sliders ``s1, s2`` and the period map's derivative
+    ``C`` (4 rows, row-major 2x2 per element); ``rec`` the period's records
+    (condition, ``alpha``, ``V1, V2``, the element's force ``Te1, Te2``),
+    each ``(Ns, J)``.
     """
-    Jp = -(-J // MARCH_PAIR) * MARCH_PAIR
-    return np.empty((6, Jp)), np.empty((6, Ns, Jp))
+    return np.empty((6, J)), np.empty((6, Ns, J))
 
 
 @nb.njit(cache=True, nogil=True)
@@ -247,19 +254,245 @@ def _aligned_block(size):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
-def _march_parameters(kt, kn, gaps, mu, rk, Jp):  # pragma: no cover - compiled
-    """The rows :func:`._simd.period_march` reads, ``(5, Jp)``: ``kt, rk, mu kn, kn, gap``, the elements past
-    ``J`` (padding) open at every sample."""
-    J = kt.shape[0]
-    par = np.empty((5, Jp))
-    for i in range(Jp):
-        real = i < J
-        par[0, i] = kt[i] if real else 1.0
-        par[1, i] = rk[i] if real else 0.0
-        par[2, i] = mu * kn[i] if real else 0.0
-        par[3, i] = kn[i] if real else 0.0
-        par[4, i] = gaps[i] if real else np.inf  # never closed
+def _march_parameters(kt, kn, gaps, mu, rk):  # pragma: no cover - compiled
+    """The rows :func:`period_march` reads, ``(5, J)``: ``kt, rk, mu kn, kn, gap``."""
+    par = np.empty((5, kt.shape[0]))
+    for i in range(kt.shape[0]):
+        par[0, i] = kt[i]
+        par[1, i] = rk[i]
+        par[2, i] = mu * kn[i]
+        par[3, i] = kn[i]
+        par[4, i] = gaps[i]
     return par
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def period_march(par, st, rec, t1, t2, n):  # pragma: no cover - compiled
+    """One period of the AFT's march on the plane for every element: :func:`microslip.kernels.element.plane_step` at each
+    sample, with the period map's derivative.
+
+    Rows of ``J`` elements, C-contiguous float64: ``par`` (5, J) ``kt, mu kn / kt, mu kn, kn, gap``; ``st``
+    (6, J) the sliders ``s1, s2`` at the start of the period (updated to its end) and the period map's
+    derivative so far ``C`` (2x2 per element, row-major, updated: ``alpha v v^T C`` in slip, unchanged in stick, 0
+    when open); ``rec`` (6, Ns, J) receives at ``[:, k]`` the condition of sample ``k`` (0 open, 1 stick, 2 slip,
+    as a float), ``alpha = r / |d|`` and ``v = (-d2, d1) / |d|`` of a slip (0 otherwise) and the element's force
+    ``T1, T2``. ``t1, t2, n`` (Ns,) are the period's motion.
+    """
+    for k in range(t1.shape[0]):
+        tx = t1[k]
+        ty = t2[k]
+        nk0 = n[k]
+        for i in range(par.shape[1]):
+            s1 = st[0, i]
+            s2 = st[1, i]
+            T1, T2, _, code, st[0, i], st[1, i], al, q = plane_step(par[0, i], par[1, i], par[2, i], par[3, i],
+                                                                     nk0 - par[4, i], tx, ty, s1, s2)
+            slip = code == SLIP
+            stick = code == STICK  # C kept in stick, cleared when open
+            v1 = -(ty - s2) * q
+            v2 = (tx - s1) * q
+            c0 = st[2, i]
+            c1 = st[3, i]
+            c2 = st[4, i]
+            c3 = st[5, i]
+            w1 = al * (v1 * c0 + v2 * c2)
+            w2 = al * (v1 * c1 + v2 * c3)
+            st[2, i] = v1 * w1 if slip else (c0 if stick else 0.0)
+            st[3, i] = v1 * w2 if slip else (c1 if stick else 0.0)
+            st[4, i] = v2 * w1 if slip else (c2 if stick else 0.0)
+            st[5, i] = v2 * w2 if slip else (c3 if stick else 0.0)
+            rec[0, k, i] = code
+            rec[1, k, i] = al if slip else 0.0
+            rec[2, k, i] = v1 if slip else 0.0
+            rec[3, k, i] = v2 if slip else 0.0
+            rec[4, k, i] = T1
+            rec[5, k, i] = T2
+
+
+@nb.njit(cache=True, nogil=True)
+def start_weights(rec, nkt, weights, ends):  # pragma: no cover - compiled
+    """Every element's coefficient ``Z = beta (x) I + z (x) w^T`` of its slider at the start of the period, as
+    weights of the basis rows.
+
+    ``Z = sum_k -kt P[:, k] (x) C_k`` with ``C_k = A_k ... A_0``: the identity up to the first slip, ``c_k l_k w^T``
+    after it (``w`` the first slip's ``v``, ``l_k`` the last one's), zero from the first opening on. ``rec``
+    (6, Ns, J) are the periodic period's records (:func:`period_march`), ``nkt`` (J) the elements' ``-kt``;
+    ``weights`` (Ns, 3 J) receives at ``[k, i]`` the weight of ``P[:, k]`` in element ``i``'s ``beta`` and at
+    ``[k, (1 + a) J + i]`` in its ``z_a``, so that one matrix product with ``P.T`` gives them all; ``ends``
+    (5, J) receives ``w1, w2, c, l1, l2``: ``w``, and ``Phi_s = C_(Ns-1) = c l w^T`` (``c = 1``, ``l = w = 0``
+    for an element that sticks throughout, whose ``Phi_s`` is the identity; ``c = 0`` once it opens).
+    """
+    J = nkt.shape[0]
+    for i in range(J):
+        f0 = nkt[i]
+        w1 = w2 = l1 = l2 = 0.0
+        cc = 1.0
+        first = True  # no slip yet
+        live = True  # not opened yet
+        for k in range(rec.shape[1]):
+            code = rec[0, k, i]
+            on = live and code != OPEN
+            slip = on and code == SLIP
+            if slip:
+                al = rec[1, k, i]
+                v1 = rec[2, k, i]
+                v2 = rec[3, k, i]
+                cc = al if first else cc * (al * (v1 * l1 + v2 * l2))
+                if first:
+                    w1 = v1
+                    w2 = v2
+                l1 = v1
+                l2 = v2
+            elif not on:
+                cc = 0.0
+            still = first and not slip
+            f = f0 * cc
+            moved = on and not still
+            weights[k, i] = f0 if on and still else 0.0
+            weights[k, J + i] = f * l1 if moved else 0.0
+            weights[k, 2 * J + i] = f * l2 if moved else 0.0
+            first = still
+            live = on
+        ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i] = w1, w2, cc, l1, l2
+
+
+@nb.njit(cache=True, nogil=True)
+def sample_coefficients(coefs, rec, KR, w, m):  # pragma: no cover - compiled
+    """Every element's coefficients for sample ``m`` of the sweep.
+
+    ``coefs`` (16, J) receives :data:`SAMPLE_COEFFICIENTS` of each element (the rows :func:`sample_rows` reads);
+    ``rec`` (6, Ns, J) is the periodic period's records (:func:`period_march`: condition, ``alpha``, ``v``),
+    ``KR`` (2, J) the elements' ``kt`` and ``rk = mu kn / kt``, ``w`` (3, J) the ``w`` of each element's
+    ``Y = beta I + y w^T``, set to ``v`` by a slip, and whether its ``beta`` is known to be zero (1: after a slip
+    or an opening; 0: not known, or after a stick) for ``full``, 1 when the ``beta`` terms are needed. With
+    ``G = [I - alpha v v^T | -rk u]`` (``u = (v2, -v1)``; ``[I | 0]`` when open, where the records' ``alpha, v``
+    are 0) and ``h = w^T G``: ``g = G`` (``g21 = g12``), ``cb = alpha``, ``cp = -alpha kt``, ``cy = alpha w.v``,
+    ``sb = sp = 0``; in stick ``g = h = 0``, ``cb = cp = v = 0``, ``cy = sb = 1``, ``sp = -kt`` (``y`` kept,
+    ``beta -= kt P[:, m]``).
+    """
+    for i in range(coefs.shape[1]):
+        code = rec[0, m, i]
+        w1 = w[0, i]
+        w2 = w[1, i]
+        if code == STICK:
+            for r in range(12):
+                coefs[r, i] = 0.0
+            coefs[12, i] = 1.0
+            coefs[13, i] = 1.0
+            coefs[14, i] = -KR[0, i]
+            coefs[15, i] = 1.0
+            w[2, i] = 0.0
+            continue
+        al = rec[1, m, i]
+        v1 = rec[2, m, i]
+        v2 = rec[3, m, i]
+        rk = KR[1, i]
+        awv = al * (w1 * v1 + w2 * v2)
+        coefs[0, i] = 1.0 - al * v1 * v1
+        coefs[1, i] = -(al * v1 * v2)
+        coefs[2, i] = -(rk * v2)
+        coefs[3, i] = 1.0 - al * v2 * v2
+        coefs[4, i] = rk * v1
+        coefs[5, i] = w1 - awv * v1
+        coefs[6, i] = w2 - awv * v2
+        coefs[7, i] = -(rk * (w1 * v2 - w2 * v1))
+        coefs[8, i] = al
+        coefs[9, i] = -(al * KR[0, i])
+        coefs[10, i] = v1
+        coefs[11, i] = v2
+        coefs[12, i] = awv
+        coefs[13, i] = 0.0
+        coefs[14, i] = 0.0
+        coefs[15, i] = 1.0 - w[2, i]
+        w[2, i] = 1.0
+        if code == SLIP:
+            w[0, i] = v1
+            w[1, i] = v2
+
+
+#: the rows of the sample sums :func:`sample_rows` reads (``local``, see :func:`_sample_sums`): the local
+#: derivatives ``d11 = dT1/dt1, d12, d22, c1 = dT1/dn, c2 = dT2/dn`` in rows 3 to 7, one for each of its six
+#: coefficient rows
+LOCAL_ROWS = (3, 4, 6, 4, 5, 7)
+#: the coefficients of one element at one sample in :func:`sample_rows`, in this order
+SAMPLE_COEFFICIENTS = ("g11", "g12", "g13", "g22", "g23", "h1", "h2", "h3", "cb", "cp", "v1", "v2", "cy", "sb", "sp",
+                       "full")
+
+
+@nb.njit(cache=True, nogil=True)
+def sample_rows(U, m, B, Y, PT, coefs, local, order, count):  # pragma: no cover - compiled
+    """Sample ``m`` of the sweep for the elements ``order[:count]``, over the ``nbp`` columns.
+
+    ``U`` (Ns, 6, nbp), ``B`` (J, nbp), ``Y`` (J, 2, nbp), ``PT`` (Ns, nbp), ``coefs`` (16, J) and ``local``
+    (rows, Ns) C-contiguous float64, ``order`` int64. With element ``i``'s ``beta = B[i]``, ``y = Y[i]`` and
+    coefficients ``coefs[:, i]`` (:data:`SAMPLE_COEFFICIENTS`, ``g21 = g12``; :func:`sample_coefficients`) and the
+    sample's local derivative ``l_ab = local[LOCAL_ROWS[3a + b], m]``::
+
+        U[m, 3a + b] = l_ab PT[m] + sum over the elements of (beta g_ab + y_a h_b)     (a = 0, 1; b = 0, 1, 2)
+        y_a = (cb beta + cp PT[m]) v_a + cy y_a
+        beta = sb beta + sp PT[m]
+
+    An element whose ``full`` is 0 has ``beta = 0`` before and after (it slips or opens after a slip or an
+    opening): its ``beta`` terms are left out. The sums in element order.
+    """
+    u = U[m]
+    pt = PT[m]
+    nbp = pt.shape[0]
+    for r in range(6):
+        lr = local[LOCAL_ROWS[r], m]
+        for p in range(nbp):
+            u[r, p] = lr * pt[p]
+    for e in range(count):
+        i = order[e]
+        g11, g12, g13, g22, g23 = coefs[0, i], coefs[1, i], coefs[2, i], coefs[3, i], coefs[4, i]
+        h1, h2, h3, cb, cp = coefs[5, i], coefs[6, i], coefs[7, i], coefs[8, i], coefs[9, i]
+        v1, v2, cy, sb, sp = coefs[10, i], coefs[11, i], coefs[12, i], coefs[13, i], coefs[14, i]
+        full = coefs[15, i] != 0.0  # the beta terms
+        y1 = Y[i, 0]
+        y2 = Y[i, 1]
+        beta = B[i]
+        for p in range(nbp):
+            a1 = y1[p]
+            a2 = y2[p]
+            r0 = u[0, p] + a1 * h1
+            r1 = u[1, p] + a1 * h2
+            r2 = u[2, p] + a1 * h3
+            r3 = u[3, p] + a2 * h1
+            r4 = u[4, p] + a2 * h2
+            r5 = u[5, p] + a2 * h3
+            q = pt[p] * cp
+            if full:
+                bp = beta[p]
+                r0 += bp * g11
+                r1 += bp * g12
+                r2 += bp * g13
+                r3 += bp * g12
+                r4 += bp * g22
+                r5 += bp * g23
+                q += cb * bp
+                beta[p] = sb * bp + pt[p] * sp
+            u[0, p], u[1, p], u[2, p], u[3, p], u[4, p], u[5, p] = r0, r1, r2, r3, r4, r5
+            y1[p] = cy * a1 + q * v1
+            y2[p] = cy * a2 + q * v2
+
+
+@nb.njit(cache=True, nogil=True)
+def columns_times_basis(U, E, out):  # pragma: no cover - compiled
+    """``out = E.T @ U``: ``out[q, r] = sum over m of E[m, q] U[m, r]``, each sum in the order of ``m``.
+
+    ``U`` (Ns, R), ``E`` (Ns, nq) and ``out`` (nq, R) C-contiguous float64 (the history columns times the basis
+    rows, the start weights and the force samples times the projection's rows). Each product in the order
+    ``U[m, r] E[m, q]``, each sum from zero in the order of ``m``, as
+    :func:`microslip.kernels.aft._project` adds them.
+    """
+    out[:] = 0.0
+    for m in range(U.shape[0]):
+        u = U[m]
+        for q in range(E.shape[1]):
+            e = E[m, q]
+            o = out[q]
+            for r in range(u.shape[0]):
+                o[r] += u[r] * e
 
 
 @nb.njit(cache=True, nogil=True)
@@ -282,11 +515,10 @@ def _period(kt, kn, gaps, mu, rk, t1, t2, n, st, rec):  # pragma: no cover - com
     perpendicular ``v = rec[2:4, k, i]`` of a slip (0 otherwise), and the
     element's force ``rec[4:6, k, i]``; ``st[2:6]`` receives the period
     map's derivative ``dPhi/ds`` (row-major 2x2 per element). The rows are
-    :func:`march_work`'s; the elements past ``J`` (padding) stay open. The
-    element update is :func:`microslip.kernels.element.plane_step`'s arithmetic,
-    ``MARCH_PAIR`` elements at a time (:func:`._simd.period_march`).
+    :func:`march_work`'s. The element update is
+    :func:`microslip.kernels.element.plane_step` (:func:`period_march`).
     """
-    _period_of(_march_parameters(kt, kn, gaps, mu, rk, st.shape[1]), t1, t2, n, st, rec)
+    _period_of(_march_parameters(kt, kn, gaps, mu, rk), t1, t2, n, st, rec)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -469,7 +701,7 @@ def _march(kt, kn, gaps, mu, rk, x1, x2, xn, t1, t2, n, tol, max_periods, st, re
     lam = el[7]  # the Newton steps' length, halved each time one does not reduce the residual
     newton = np.ones(J, dtype=np.int64)
     stepped = np.zeros(J, dtype=np.int64)  # 1: this period started from a Newton step
-    par = _march_parameters(kt, kn, gaps, mu, rk, st.shape[1])
+    par = _march_parameters(kt, kn, gaps, mu, rk)
     for i in range(J):
         _, a1, a2, _, _ = _step(rk[i], xn[0] - gaps[i], x1[0], x2[0], 0.0, 0.0)
         st1[i] = a1
@@ -613,12 +845,11 @@ def _sweep(rec, KR, PT, B, Y, w, active, local, U):  # pragma: no cover - compil
     through the sweep (a slip makes it ``y (x) v^T``, a stick adds
     ``-kt P[:, m]`` to ``beta``, an opening clears it). ``U[m, 3 a + b]`` is
     column ``m``'s coefficient row for output ``a`` and input ``b``. Each
-    sample is two vector loops: the elements' coefficients
-    (:func:`._simd.sample_coefficients`, from the records ``rec`` of
-    :func:`_period` and ``KR`` = ``kt, rk`` padded like them), then
-    their contributions to the column, with the sample's local derivatives
-    (``local``, :func:`_sample_sums`) times ``P[:, m]``, and their new ``Y``
-    (:func:`._simd.sample_rows`).
+    sample is two loops over the elements: their coefficients
+    (:func:`sample_coefficients`, from the records ``rec`` of :func:`_period`
+    and ``KR`` = ``kt, rk``), then their contributions to the column, with
+    the sample's local derivatives (``local``, :func:`_sample_sums`) times
+    ``P[:, m]``, and their new ``Y`` (:func:`sample_rows`).
     """
     Ns = PT.shape[0]
     order = np.flatnonzero(active)
@@ -644,29 +875,29 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     Ns = E.shape[0]
     J = kt.shape[0]
     nbp = tabs.shape[1]
-    Jp = -(-J // MARCH_PAIR) * MARCH_PAIR
     # the work arrays, views of one block of memory (two dozen allocations cost about a microsecond a call)
-    block, at = _aligned_block(12 * Ns + J + Ns * 6 * nbp + 3 * J * nbp + 17 * Jp + 7 * nbasis + 9 * Ns * Jp
-                               + 3 * Jp * nbp + 3 * nbp + 2 * cos2.shape[0] + 6 * nbp * nbp + 20 * ALIGN)
+    block, at = _aligned_block(15 * Ns + J + Ns * 6 * nbp + 3 * J * nbp + 17 * J + 7 * nbasis + 9 * Ns * J
+                               + 3 * J * nbp + 3 * nbp + 2 * cos2.shape[0] + 6 * nbp * nbp + 20 * ALIGN)
     smp, at = _take(block, at, (3, Ns))  # the motion's samples
     rk, at = _take(block, at, (J,))
     U, at = _take(block, at, (Ns, 6, nbp))
     B, at = _take(block, at, (J, nbp))
     Y, at = _take(block, at, (J, 2, nbp))
-    w, at = _take(block, at, (3, Jp))
-    KR, at = _take(block, at, (2, Jp))
+    w, at = _take(block, at, (3, J))
+    KR, at = _take(block, at, (2, J))
     D, at = _take(block, at, (2, 3, nbasis))
     wD, at = _take(block, at, (nbasis,))
-    nkt, at = _take(block, at, (Jp,))
-    weights, at = _take(block, at, (Ns, 3 * Jp))
-    ends, at = _take(block, at, (5, Jp))
-    BZ, at = _take(block, at, (3 * Jp, nbp))  # every element's beta (rows 0 .. Jp-1), z1 (Jp .. 2 Jp-1) and z2
+    nkt, at = _take(block, at, (J,))
+    weights, at = _take(block, at, (Ns, 3 * J))
+    ends, at = _take(block, at, (5, J))
+    BZ, at = _take(block, at, (3 * J, nbp))  # every element's beta (rows 0 .. J-1), z1 (J .. 2 J-1) and z2
     local, at = _take(block, at, (9, Ns))
+    forces, at = _take(block, at, (Ns, 3))  # the samples of T1, T2, N, one row per sample
     Fp, at = _take(block, at, (3, nbp))
     CS, at = _take(block, at, (2, cos2.shape[0]))
     acc, at = _take(block, at, (nbp, 6 * nbp))  # acc[q, r nbp + p]
-    st, at = _take(block, at, (6, Jp))  # the march's rows (march_work)
-    rec, at = _take(block, at, (6, Ns, Jp))
+    st, at = _take(block, at, (6, J))  # the march's rows (march_work)
+    rec, at = _take(block, at, (6, Ns, J))
     ivec = np.empty((6, J), dtype=np.int64)
     count, tried, moving, corner, active = ivec[0], ivec[1], ivec[2], ivec[3:5], ivec[5]
     t1 = smp[0]
@@ -683,23 +914,22 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
                      corner)
     # -- the tangential outputs' derivatives: local and history parts -----------------------------------
     # column m's coefficients, times E[m] at the end; U[m, 3 a + b, p] for output a, input b
-    # (rows of nbp values, padded: the sweep's loops over them vectorise)
+    # (rows of nbp values, padded with zeros)
     Jac[:2] = 0.0
     PT = tabs[:Ns]
     w[:] = 0.0  # w, and whether beta is known to be zero (not yet)
-    KR[:] = 0.0
-    KR[0, :J] = kt
-    KR[1, :J] = rk
-    nkt[:] = 0.0
-    nkt[:J] = -kt
+    for i in range(J):
+        KR[0, i] = kt[i]
+        KR[1, i] = rk[i]
+        nkt[i] = -kt[i]
     start_weights(rec, nkt, weights, ends)
     columns_times_basis(PT, weights, BZ)
     for i in range(J):
         beta = B[i]
         y = Y[i]
         beta[:] = BZ[i]
-        y[0] = BZ[Jp + i]
-        y[1] = BZ[2 * Jp + i]
+        y[0] = BZ[J + i]
+        y[1] = BZ[2 * J + i]
         w1, w2, cc, l1, l2 = ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i]
         w[0, i] = w1
         w[1, i] = w2
@@ -745,7 +975,10 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
         for i in range(J):  # element after element, as along one direction: the same normal force to the bit
             fn += kn[i] * max(n[k] - gaps[i], 0.0)
         local[2, k] = fn
-    project_rows(PT, local[:3], Fp)
+    for k in range(Ns):
+        for a in range(3):
+            forces[k, a] = local[a, k]
+    columns_times_basis(PT, forces, Fp)
     F[:] = Fp[:, :nbasis]
     _dft(cos2, sin2, local[8], CS[0], CS[1])
     _diagonal_jacobian(CS[0], CS[1], Ns, Jac[2, 2])

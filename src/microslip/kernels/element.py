@@ -24,6 +24,14 @@ force ``kt_i (t - s_i)`` is returned radially onto the disc of radius
 
 On a line of the plane this is the one-direction rule, to rounding (the step
 computes ``|d|`` and ``d / |d|`` where the line clips).
+
+Plain numba loops, no hand-written vector code. Their arithmetic is additions,
+products, divisions and square roots, each rounded by IEEE 754, with no
+``fastmath``: the compiler neither fuses a product and a sum into one
+multiply-add nor reorders a sum, so the marches give the same numbers bit for
+bit on every processor numba compiles for (``NUMBA_CPU_NAME``; vectors of any
+width or none), equal to their pure-Python twins (``tests/model/test_targets.py``
+compares a generic x86-64 and an AVX2 target with the host).
 """
 
 from __future__ import annotations
@@ -33,11 +41,11 @@ import math
 import numba as nb
 import numpy as np
 
-from .plane_lanes import DD2_MIN, LANES, PADDING, step_lanes, step_lanes_recorded
-
 OPEN = 0
 STICK = 1
 SLIP = 2
+#: the smallest ``|d|^2`` (m^2) :func:`plane_step` divides by (``2^-1000``: its reciprocal is finite)
+DD2_MIN = 2.0 ** -1000
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -212,47 +220,65 @@ def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cov
     As :func:`march`, with ``T`` of shape ``(steps, 2)`` and, unless empty,
     ``Ti`` of shape ``(steps, J, 2)``; ``N``, ``W`` ``(steps,)`` and ``cond``
     ``(steps, J)`` as there (an element is recorded open where its ``N_i``
-    is zero). ``Ti`` and ``cond`` C-contiguous.
+    is zero).
 
-    Each sample updates every element with :func:`plane_step`'s operations
-    in vector form, eight elements at a time, and adds the elements' forces,
-    normal forces and work in element order
-    (:func:`microslip.kernels.plane_lanes.step_lanes`): the numbers of a loop over
-    the elements calling :func:`plane_step`, bit for bit. ``mu kn / kt`` and
-    ``mu kn`` are computed here once per element, as ``(mu * kn) / kt`` and
-    ``mu * kn``.
+    Each sample updates every element with :func:`plane_step` (``mu kn / kt``
+    and ``mu kn`` computed as ``(mu * kn) / kt`` and ``mu * kn``) in one
+    loop over contiguous scratch rows, copies the records from the rows, then
+    adds the rows in element order, as the twin
+    (:func:`march_plane_reference`) does: equal to it bit for bit. Only
+    IEEE-rounded operations without fused multiply-adds or reordered sums, so
+    the numbers are the same on every processor numba compiles for.
     """
     work = W.shape[0] > 0
     elements = Ti.shape[0] > 0
     J = kt.shape[0]
-    Jp = -(-J // LANES) * LANES
-    par = np.empty((len(PADDING), Jp))  # kt, mu kn / kt, mu kn, kn, gap; then open padding elements
-    sl = np.zeros((2, Jp))  # the sliders, one component per row
-    for i in range(Jp):
-        if i < J:
-            par[0, i] = kt[i]
-            par[1, i] = mu * kn[i] / kt[i]
-            par[2, i] = mu * kn[i]
-            par[3, i] = kn[i]
-            par[4, i] = gaps[i]
-            sl[0, i] = s[i, 0]
-            sl[1, i] = s[i, 1]
-        else:
-            for r in range(len(PADDING)):
-                par[r, i] = PADDING[r]
+    scratch = np.empty((7, J))
+    sx = scratch[0]  # the sliders, one component per row (contiguous: the element loop vectorises)
+    sy = scratch[1]
+    fx = scratch[2]
+    fy = scratch[3]
+    fn = scratch[4]
+    fw = scratch[5]
+    slips = scratch[6]  # 1.0 where the element slipped (a float row: an int8 one stops the vectorisation)
+    sx[:] = s[:, 0]
+    sy[:] = s[:, 1]
     for k in range(t.shape[0]):
+        tx = t[k, 0]
+        ty = t[k, 1]
+        nk = n[k]
+        for i in range(J):  # no store into the strided records here: that would stop the vectorisation
+            sx_old = sx[i]
+            sy_old = sy[i]
+            Tx, Ty, Ni, code, sx[i], sy[i], _, _ = plane_step(kt[i], mu * kn[i] / kt[i], mu * kn[i], kn[i],
+                                                              nk - gaps[i], tx, ty, sx_old, sy_old)
+            fx[i] = Tx
+            fy[i] = Ty
+            fn[i] = Ni
+            slips[i] = 1.0 if code == SLIP else 0.0
+            fw[i] = plane_work(Tx, Ty, sx_old, sy_old, sx[i], sy[i])  # always: a branch here slows the loop
         if elements:
-            T1, T2, Nk, Wk = step_lanes_recorded(par, sl, t[k, 0], t[k, 1], n[k], Ti, cond, k)
-        else:
-            T1, T2, Nk, Wk = step_lanes(par, sl, t[k, 0], t[k, 1], n[k])
-        T[k, 0] = T1
-        T[k, 1] = T2
-        N[k] = Nk
+            for i in range(J):
+                Ti[k, i, 0] = fx[i]
+                Ti[k, i, 1] = fy[i]
+                cond[k, i] = OPEN if fn[i] == 0.0 else (SLIP if slips[i] > 0.0 else STICK)
+        txsum = 0.0
+        tysum = 0.0
+        nsum = 0.0
+        for i in range(J):
+            txsum += fx[i]
+            tysum += fy[i]
+            nsum += fn[i]
+        T[k, 0] = txsum
+        T[k, 1] = tysum
+        N[k] = nsum
         if work:
-            W[k] = Wk
-    for i in range(J):
-        s[i, 0] = sl[0, i]
-        s[i, 1] = sl[1, i]
+            wsum = 0.0
+            for i in range(J):
+                wsum += fw[i]
+            W[k] = wsum
+    s[:, 0] = sx
+    s[:, 1] = sy
 
 
 NO_WORK = np.empty(0)
