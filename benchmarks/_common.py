@@ -1,4 +1,5 @@
-"""Helpers the benchmarks share: timing, reading a peak off a curve, running pyHarm (an optional comparison).
+"""Helpers the benchmarks share: timing, reading a peak off a curve, running pyHarm (an optional comparison),
+saving a benchmark's figures with the machine's details.
 
 pyHarm (``pyHarm-os``, the ``bench`` extra of pyproject.toml) is imported only inside these helpers, so a
 benchmark runs its microslip part without it.
@@ -6,11 +7,19 @@ benchmark runs its microslip part without it.
 
 from __future__ import annotations
 
+import datetime
+import json
 import os
+import platform
+import sys
 import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
+
+#: where :func:`save_results` writes, one JSON file per benchmark
+RESULTS = Path(__file__).resolve().parent / "results"
 
 
 def best_of(fn, repeat=5):
@@ -81,3 +90,36 @@ def run_pyharm(inputs: dict, study: str = "frf"):
     maestro.operate()
     elapsed = time.perf_counter() - t0
     return elapsed, np.array([s.x for s in maestro.nls[study].SolList if s.flag_accepted]), maestro
+
+
+def machine() -> dict:
+    """The machine and software a benchmark ran on: processor (its model and numba's target, which
+    ``NUMBA_CPU_NAME`` changes), cores, load, operating system, Python, numba, llvmlite, NumPy, SciPy, microslip,
+    the date (UTC)."""
+    import llvmlite
+    import numba
+    import scipy
+
+    import microslip
+
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as fh:
+            cpu = next(line.split(":", 1)[1].strip() for line in fh if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    return {"cpu": cpu, "numba_target": numba.config.CPU_NAME or llvmlite.binding.get_host_cpu_name(),
+            "cores": os.cpu_count(), "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+            "system": platform.platform(), "python": sys.version.split()[0], "numba": numba.__version__,
+            "llvmlite": llvmlite.__version__, "numpy": np.__version__, "scipy": scipy.__version__,
+            "microslip": microslip.__version__,
+            "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")}
+
+
+def save_results(name: str, figures: dict) -> Path:
+    """Write ``figures`` (JSON-serialisable) and :func:`machine` to ``results/<name>.json``, atomically (a
+    temporary file renamed: never half written). Returns the file's path."""
+    from microslip.common._io import atomic_write
+
+    text = json.dumps({"benchmark": name, "machine": machine(), "figures": figures}, indent=1) + "\n"
+    return atomic_write(RESULTS / f"{name}.json", text)

@@ -95,7 +95,7 @@ FIXED_POINT_MARGIN = 1e-3
 NEWTON_MARGIN = 1e-8
 
 
-@nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def _step(rk, nk, t1, t2, s1, s2):  # pragma: no cover - compiled
     """One element, one sample: ``(code, s1, s2, alpha, q)``, the arithmetic of :func:`_period`.
 
@@ -236,7 +236,7 @@ def periodic_tolerance(rk, gaps, t1, t2, n):  # pragma: no cover - compiled
     return PERIODIC_ULPS * 2.220446049250313e-16 * (size + rmax)
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True)
 def _take(block, at, shape):  # pragma: no cover - compiled
     """The array of ``shape`` at ``block[at:]`` (a view) and the position of the next one, at the next
     :data:`ALIGN` boundary."""
@@ -666,7 +666,11 @@ def _corner_derivative(t1, t2, rk, s1, s2, a, b, E, D):  # pragma: no cover - co
         u[row, 0] = (t1[j] - s1) / d
         u[row, 1] = (t2[j] - s2) / d
     det = u[0, 0] * u[1, 1] - u[0, 1] * u[1, 0]
-    inv = np.array([[u[1, 1], -u[0, 1]], [-u[1, 0], u[0, 0]]]) / det
+    inv = np.empty((2, 2))
+    inv[0, 0] = u[1, 1] / det
+    inv[0, 1] = -u[0, 1] / det
+    inv[1, 0] = -u[1, 0] / det
+    inv[1, 1] = u[0, 0] / det
     for c in range(2):
         for q in range(nbasis):
             ea = E[a, q]
@@ -852,11 +856,16 @@ def _sweep(rec, KR, PT, B, Y, w, active, local, U):  # pragma: no cover - compil
     ``P[:, m]``, and their new ``Y`` (:func:`sample_rows`).
     """
     Ns = PT.shape[0]
-    order = np.flatnonzero(active)
+    order = np.empty(active.shape[0], dtype=np.int64)  # the active elements' indices
+    count = 0
+    for i in range(active.shape[0]):
+        if active[i]:
+            order[count] = i
+            count += 1
     coefs = np.empty((16, w.shape[1]))
     for m in range(Ns - 1, -1, -1):
         sample_coefficients(coefs, rec, KR, w, m)
-        sample_rows(U, m, B, Y, PT, coefs, local, order, order.size)
+        sample_rows(U, m, B, Y, PT, coefs, local, order, count)
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -927,9 +936,10 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
     for i in range(J):
         beta = B[i]
         y = Y[i]
-        beta[:] = BZ[i]
-        y[0] = BZ[J + i]
-        y[1] = BZ[2 * J + i]
+        for p in range(nbp):
+            beta[p] = BZ[i, p]
+            y[0, p] = BZ[J + i, p]
+            y[1, p] = BZ[2 * J + i, p]
         w1, w2, cc, l1, l2 = ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i]
         w[0, i] = w1
         w[1, i] = w2
@@ -979,7 +989,9 @@ def _aft_plane(kt, kn, gaps, mu, x1, x2, xn, E, P, cos2, sin2, cum, tabs, max_pe
         for a in range(3):
             forces[k, a] = local[a, k]
     columns_times_basis(PT, forces, Fp)
-    F[:] = Fp[:, :nbasis]
+    for a in range(3):
+        for p in range(nbasis):
+            F[a, p] = Fp[a, p]
     _dft(cos2, sin2, local[8], CS[0], CS[1])
     _diagonal_jacobian(CS[0], CS[1], Ns, Jac[2, 2])
     Jac[2, :2] = 0.0
@@ -1010,36 +1022,60 @@ def aft_plane_batch(kt, kn, gaps, offsets, mu, X1, X2, XN, E, P, cos2, sin2, cum
                                 max_periods, F[c], Jac[c])
 
 
-@nb.njit(cache=True, nogil=True)
 def aft_mixed_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, sin2, cum, tabs, max_periods,
-                    FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods):  # pragma: no cover - compiled
+                    FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods):
     """AFT of contacts along one direction and on their planes (``planar[c]``), in one call.
 
     The one-direction arrays as :func:`microslip.kernels.aft.aft_batch`
     (for a contact on its plane: its first direction's); ``FT2`` (nc, nb)
     the second tangential force, ``JT12, JT21, JT22, JT2n`` (nc, nb, nb) the
     derivatives of ``T1`` by ``t2``, ``T2`` by ``t1``, ``t2`` and ``n``
-    (zero for a one-direction contact).
+    (zero for a one-direction contact). Two compiled loops, the contacts on
+    their planes and those along one direction: the second is compiled only
+    where a structure has such contacts besides contacts on their planes.
     """
+    _planes_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, sin2, cum, tabs, max_periods,
+                  FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods)
+    if not planar.all():
+        _lines_batch(kt, kn, gaps, offsets, mu, planar, XT, XN, E, P, cos2, sin2, cum, max_periods, FT, FN, JTt,
+                     JTn, JNn, periods)
+
+
+@nb.njit(cache=True, nogil=True)
+def _planes_batch(kt, kn, gaps, offsets, mu, planar, XT, XT2, XN, E, P, cos2, sin2, cum, tabs, max_periods,
+                  FT, FN, JTt, JTn, JNn, FT2, JT12, JT21, JT22, JT2n, periods):  # pragma: no cover - compiled
+    """The contacts of :func:`aft_mixed_batch` on their planes."""
     nbasis = XT.shape[1]
     F = np.empty((3, nbasis))
     Jac = np.empty((3, 3, nbasis, nbasis))
     for c in range(XT.shape[0]):
+        if not planar[c]:
+            continue
         a = offsets[c]
         b = offsets[c + 1]
-        if not planar[c]:
-            periods[c] = _aft_contact(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XN[c], E, P, cos2, sin2, cum,
-                                      max_periods, FT[c], FN[c], JTt[c], JTn[c], JNn[c])
-            continue
         periods[c] = _aft_plane(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XT2[c], XN[c], E, P, cos2, sin2, cum,
                                 tabs, max_periods, F, Jac)
-        FT[c] = F[0]
-        FT2[c] = F[1]
-        FN[c] = F[2]
-        JTt[c] = Jac[0, 0]
-        JT12[c] = Jac[0, 1]
-        JTn[c] = Jac[0, 2]
-        JT21[c] = Jac[1, 0]
-        JT22[c] = Jac[1, 1]
-        JT2n[c] = Jac[1, 2]
-        JNn[c] = Jac[2, 2]
+        for p in range(nbasis):
+            FT[c, p] = F[0, p]
+            FT2[c, p] = F[1, p]
+            FN[c, p] = F[2, p]
+            for q in range(nbasis):
+                JTt[c, p, q] = Jac[0, 0, p, q]
+                JT12[c, p, q] = Jac[0, 1, p, q]
+                JTn[c, p, q] = Jac[0, 2, p, q]
+                JT21[c, p, q] = Jac[1, 0, p, q]
+                JT22[c, p, q] = Jac[1, 1, p, q]
+                JT2n[c, p, q] = Jac[1, 2, p, q]
+                JNn[c, p, q] = Jac[2, 2, p, q]
+
+
+@nb.njit(cache=True, nogil=True)
+def _lines_batch(kt, kn, gaps, offsets, mu, planar, XT, XN, E, P, cos2, sin2, cum, max_periods,
+                 FT, FN, JTt, JTn, JNn, periods):  # pragma: no cover - compiled
+    """The contacts of :func:`aft_mixed_batch` along one direction."""
+    for c in range(XT.shape[0]):
+        if not planar[c]:
+            a = offsets[c]
+            b = offsets[c + 1]
+            periods[c] = _aft_contact(kt[a:b], kn[a:b], gaps[a:b], mu[c], XT[c], XN[c], E, P, cos2, sin2, cum,
+                                      max_periods, FT[c], FN[c], JTt[c], JTn[c], JNn[c])

@@ -241,8 +241,9 @@ def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cov
     fn = scratch[4]
     fw = scratch[5]
     slips = scratch[6]  # 1.0 where the element slipped (a float row: an int8 one stops the vectorisation)
-    sx[:] = s[:, 0]
-    sy[:] = s[:, 1]
+    for i in range(J):
+        sx[i] = s[i, 0]
+        sy[i] = s[i, 1]
     for k in range(t.shape[0]):
         tx = t[k, 0]
         ty = t[k, 1]
@@ -277,8 +278,9 @@ def march_plane(kt, kn, gaps, mu, t, n, s, T, N, W, Ti, cond):  # pragma: no cov
             for i in range(J):
                 wsum += fw[i]
             W[k] = wsum
-    s[:, 0] = sx
-    s[:, 1] = sy
+    for i in range(J):
+        s[i, 0] = sx[i]
+        s[i, 1] = sy[i]
 
 
 NO_WORK = np.empty(0)
