@@ -16,10 +16,16 @@ studies on Dask), :mod:`microslip.cli` (the command line); the model itself is :
 
 import sys as _sys
 
+from .common.errors import (BeyondTuningWarning, BranchPointWarning, ConfigError, ConvergenceError, CurveInterrupted,
+                            DesignPointWarning, FileFormatError, FolderInUseError, IncompleteCurveWarning,
+                            LoadLimitError, LoopError, MicroslipError, MicroslipWarning, MissingVariable,
+                            NotPeriodicError, OneMatrixFile, OneSidedDamperWarning, PeakOnEdgeWarning,
+                            SingularInteriorError, StudyFolderWarning, TargetNotMet, TuningError, UnderResolvedWarning)
+from .common import errors as _errors
 from .model import MicroslipModel, Response, State, Step
-from .reference import Cylinder, LoadLimitError, MDRModel, Sphere, mdr
-from .tuning import (ContactReference, TargetNotMet, TargetProblem, TargetTuning, TuningError, TuningPoints,
-                     smallest_elements, tune, tune_to_target, tuning_points)
+from .reference import Cylinder, MDRModel, Sphere, mdr
+from .tuning import (ContactReference, TargetProblem, TargetTuning, TuningPoints, smallest_elements, tune,
+                     tune_to_target, tuning_points)
 from .accuracy import AccuracyReport, accuracy, paths
 from .measured import (FittedBackbone, LoopTuning, MeasuredContact, Validation, fit_backbone, loops, tune_on_loops,
                        validate)
@@ -38,13 +44,12 @@ for _name, _module in list(_sys.modules.items()):
 _sys.modules.setdefault(f"{__name__}.frequency.config", config.frf)  # its former path
 del _alias, _module, _name, _sys
 
-__all__ = [
+__all__ = _errors.__all__ + [
     "AccuracyReport",
     "ContactReference",
     "Cylinder",
     "FittedBackbone",
     "FrequencyResponse",
-    "LoadLimitError",
     "LoopTuning",
     "MDRModel",
     "MeasuredContact",
@@ -56,10 +61,8 @@ __all__ = [
     "Step",
     "Structure",
     "SweepResult",
-    "TargetNotMet",
     "TargetProblem",
     "TargetTuning",
-    "TuningError",
     "TuningPoints",
     "Validation",
     "accuracy",
@@ -77,3 +80,4 @@ __all__ = [
     "tuning_points",
     "validate",
 ]
+del _errors

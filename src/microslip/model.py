@@ -38,6 +38,7 @@ from .kernels import element as _kernels
 from .common._io import atomic_write
 from .common._version import __version__
 from .common.units import unit_factor
+from .common.errors import BeyondTuningWarning
 
 OPEN, STICK, SLIP = _kernels.OPEN, _kernels.STICK, _kernels.SLIP
 
@@ -52,14 +53,6 @@ _SI = {"kt": "N/m", "kn": "N/m", "gaps": "m", "mu": "-"}
 _BEYOND_RTOL = 1e-9
 #: largest displacement (m) accepted on the contact plane: the element squares the stretch (1e200 m^2 at most)
 PLANE_LIMIT = 1e100
-
-
-class BeyondTuningWarning(UserWarning):
-    """A tuned model is driven beyond the normal load it was tuned for.
-
-    Beyond its tuning approach every element of the paper's array is closed,
-    so its normal and tangential stiffnesses only extrapolate linearly.
-    """
 
 
 def frozen(a: np.ndarray) -> np.ndarray:

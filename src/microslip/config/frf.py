@@ -118,6 +118,7 @@ from ..common import _checks
 from ..common._checks import close_spelling
 from ..model import MicroslipModel
 from ..common.units import parse_quantity
+from ..common.errors import ConfigError
 from ..frequency.aft import check_harmonics, check_samples
 from ..frequency.numerics.continuation import StepControl
 from ..frequency.structures.structure import Structure
@@ -150,10 +151,6 @@ FREQUENCY_UNITS = ("Hz", "rad/s")
 #: what ``[excitation]`` accepts (its keys name harmonics), and keys to suggest a misspelled one from
 EXCITATION_ACCEPTS = "static, h<harmonic> such as h1, phase_h<harmonic> such as phase_h1, and scale"
 EXCITATION_EXAMPLES = ("static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phase_h3", "scale")
-
-
-class ConfigError(ValueError):
-    """A configuration file that cannot be used; the message names the file and the key."""
 
 
 #: the references a contact may be tuned on when the configuration is read ('microslip tune --reference'), their

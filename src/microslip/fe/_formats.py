@@ -26,6 +26,7 @@ import scipy.sparse as sp
 
 from . import _mat4, _mat5, _matrix_market, _op4
 from ._errors import FileFormatError
+from ..common.errors import MissingVariable, OneMatrixFile
 from ._limits import MAX_ENTRIES, MAX_ROWS
 from ._optional import require
 from ._sparse import compressed, entries
@@ -44,33 +45,6 @@ _DAMAGE = (ValueError, TypeError, KeyError, IndexError, EOFError, OSError, Overf
            AssertionError, zipfile.BadZipFile, zlib.error, struct.error, scipy.io.matlab.MatReadError)
 #: what passes through unchanged: not the file's fault, or already said
 _PASSED = (FileFormatError, ImportError, FileNotFoundError, PermissionError, IsADirectoryError)
-
-
-class MissingVariable(ValueError):
-    """A file lacks variables that were asked for; ``missing`` and ``held`` list the names.
-
-    ``advice`` ends the message: how the caller chooses other variables.
-    """
-
-    def __init__(self, path: Path, missing: list[str], held,
-                 advice: str = "choose others with names={'M': ..., 'K': ...}"):
-        self.path, self.missing, self.held = path, list(missing), sorted(held)
-        listed = ", ".join(self.held) if self.held else "no variables"
-        super().__init__(f"{path}: no variable {', '.join(repr(m) for m in missing)}; the file holds {listed} "
-                         f"({advice})")
-
-
-class OneMatrixFile(ValueError):
-    """A file that holds a single matrix was asked for several (``M``, ``K``, ``C`` from one file).
-
-    ``path`` is the file, ``kind`` its format.
-    """
-
-    def __init__(self, path: Path, kind: str, wanted: list[str]):
-        self.path, self.kind = path, kind
-        named = ", ".join(wanted[:-1]) + f" and {wanted[-1]}"
-        super().__init__(f"{path}: a {kind} file holds a single matrix, which cannot be {named} at once; say which "
-                         f"matrix each file is: one file per matrix (M=..., K=..., and C=... if any)")
 
 
 class _One(NamedTuple):

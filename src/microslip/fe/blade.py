@@ -22,6 +22,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..common import _checks
+from ..common.errors import MicroslipError
 from ._optional import require
 from .dof_map import DofMap
 
@@ -38,7 +39,7 @@ _DOFS_PER_ELEMENT = 8
 _SAME_POINT = 1e-9
 
 
-class _Unmeshable(ValueError):
+class _Unmeshable(MicroslipError, ValueError):
     """No grid of about the requested DOFs fits the shape (:func:`blade` says which part is to blame)."""
 
 

@@ -36,6 +36,7 @@ from typing import Sequence
 import numpy as np
 
 from ..common import _checks
+from ..common.errors import NotPeriodicError, UnderResolvedWarning
 from ..model import PLANE_LIMIT, MicroslipModel
 from ..kernels import aft as _aft, aft_plane as _aft_plane
 
@@ -45,10 +46,6 @@ MAX_HARMONICS = 256
 #: samples x (2H + 1) at most: the AFT's tables and work arrays hold about seven arrays of that many
 #: numbers (235 MB at the limit), so a slip such as samples = 10**7 is refused before any allocation
 MAX_TABLE = 2**22
-
-
-class NotPeriodicError(RuntimeError):
-    """The contact state did not become periodic within the allowed number of periods."""
 
 
 def default_samples(harmonics: int) -> int:
@@ -443,10 +440,6 @@ def pack_models(models: Sequence[MicroslipModel]) -> tuple[np.ndarray, ...]:
         return np.ones(0), np.ones(0), np.zeros(0), offsets, np.ones(0)
     return (np.concatenate([m.kt for m in models]), np.concatenate([m.kn for m in models]),
             np.concatenate([m.gaps for m in models]), offsets, np.array([m.mu for m in models]))
-
-
-class UnderResolvedWarning(RuntimeWarning):
-    """The AFT samples too few points per period to resolve a contact opening and closing during the cycle."""
 
 
 def friction_work(packed, xt, xn, synthesis, max_periods: int = MAX_PERIODS) -> tuple[np.ndarray, np.ndarray]:

@@ -48,6 +48,7 @@ import numpy as np
 from scipy import optimize
 
 from ..common import _checks
+from ..common.errors import LoadLimitError
 from ..model import MicroslipModel, State, Step
 from .profiles import SphereProfile, as_profile
 
@@ -57,10 +58,6 @@ _APPROACH_RTOL = 1e-9
 
 _DECREASING = ("profile: its MDR profile g(x) decreases somewhere in the contact; the method needs a "
                "non-decreasing g (an indenter whose contact grows with the load)")
-
-
-class LoadLimitError(ValueError):
-    """An MDR model was asked for an approach (load) beyond what it was built for."""
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -21,6 +21,7 @@ import warnings
 from pathlib import Path
 
 from ..common._io import temporary_names
+from ..common.errors import FolderInUseError, StudyFolderWarning
 
 #: the lock file in the results folder
 LOCK = ".sweep.lock"
@@ -35,14 +36,6 @@ LEFTOVERS = {
     ".": (temporary_names(r"summary\.csv|summary\.parquet|report\.html|report\.md|[A-Za-z0-9_]+\.png"),
           re.compile(r"\.curves\.[a-z0-9_]+\.tmp"), re.compile(r"\.curves\.zarr\.old\.\d+")),
 }
-
-
-class StudyFolderWarning(UserWarning):
-    """The results folder was not as a finished run leaves it: a case file not trusted, leftovers, a lock taken over."""
-
-
-class FolderInUseError(OSError):
-    """Another run holds the results folder."""
 
 
 def notice(message: str) -> None:

@@ -32,12 +32,9 @@ import numpy as np
 from scipy import optimize
 
 from ..common import _checks
+from ..common.errors import TuningError
 from ..model import MicroslipModel
 from ._record import record
-
-
-class TuningError(ValueError):
-    """The reference cannot be represented by the paper's array with the given points."""
 
 
 @runtime_checkable

@@ -19,16 +19,13 @@ from ...common import _checks
 from ...common._io import write_csv
 from ...common._progress import Progress
 from ...common.report import plural
+from ...common.errors import DesignPointWarning
 from ..aft import NotPeriodicError
 from ..numerics.continuation import ConvergenceError
 from ..structures.damper import UnderPlatformDamper
 from .response import (CurveInterrupted, FrequencyResponse, IncompleteCurveWarning, PeakOnEdgeWarning, edge_message,
                        frequency_response)
 from ..structures.structure import Structure
-
-
-class DesignPointWarning(RuntimeWarning):
-    """A load of a design curve is left out of its optimum: its forced response failed."""
 
 
 #: what :attr:`DesignCurve.status` says of each load

@@ -20,6 +20,7 @@ from ...common import _checks
 from ...common._io import write_csv
 from ...common._progress import Progress
 from ...common.units import plot_factor
+from ...common.errors import CurveInterrupted, IncompleteCurveWarning, PeakOnEdgeWarning
 from ..aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, synthesise
 from ..numerics.blas import small_dense
 from ..numerics.continuation import StepControl, continuation, newton
@@ -387,10 +388,6 @@ def _static_force(force) -> dict:
     return {}
 
 
-class PeakOnEdgeWarning(RuntimeWarning):
-    """The highest point of a curve is its first or last point: the resonance lies outside the range followed."""
-
-
 def on_edge(amplitude) -> bool:
     """True when the largest of ``amplitude`` (one value per point, in the order of the curve) is its first or
     last value: the curve's highest point is an end of it, not a peak (False for a single point: no range)."""
@@ -690,21 +687,6 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
 PROGRESS_EVERY = 15.0
 
 
-class CurveInterrupted(KeyboardInterrupt):
-    """Ctrl-C (KeyboardInterrupt) during a computation along a curve.
-
-    A ``KeyboardInterrupt`` still (a script stops as before); ``partial`` holds
-    what was computed up to there, with ``complete`` False: the curve up to its
-    last accepted point (a :class:`FrequencyResponse`, a
-    :class:`~microslip.frequency.NonlinearModes`), or the loads finished of a
-    :class:`~microslip.frequency.DesignCurve`.
-    """
-
-    def __init__(self, message: str, partial=None):
-        super().__init__(message)
-        self.partial = partial
-
-
 class _Accepted:
     """A continuation's problem that keeps each point the continuation accepts.
 
@@ -788,10 +770,6 @@ def tenths(report: Progress, lo: float, hi: float, describe):
             report.step(describe(value, count))
 
     return tick
-
-
-class IncompleteCurveWarning(RuntimeWarning):
-    """The continuation stopped at ``StepControl.max_points`` before the end of the frequency range."""
 
 
 def incomplete_message(result: FrequencyResponse, omega_end: float, control: StepControl) -> str:

@@ -51,6 +51,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ...common import _checks
+from ...common.errors import BranchPointWarning, ConvergenceError
 
 
 @dataclass
@@ -102,14 +103,6 @@ class StepControl:
             raise ValueError(f"max_angle must be below pi (rad), got {self.max_angle!r}")
         if self.tolerance >= 1:
             raise ValueError(f"tolerance must be below 1 (a relative residual), got {self.tolerance!r}")
-
-
-class ConvergenceError(RuntimeError):
-    """Newton's method or the continuation could not converge."""
-
-
-class BranchPointWarning(RuntimeWarning):
-    """The curve passed a branch point: another branch of solutions crosses it there (it goes on along its own)."""
 
 
 def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, tolerance: float = 1e-9,

@@ -49,6 +49,8 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ...common.errors import MicroslipError, SingularInteriorError
+
 #: interior DOFs up to which the interior block is factorised densely
 DENSE_INTERIOR = 400
 #: interior DOFs up to which a classically damped interior is condensed through all its normal modes
@@ -71,10 +73,6 @@ CLASSICAL = 1e-12
 PAIRS_LIMIT = 20_000_000
 #: fill-reducing ordering of the sparse factorisations (minimum degree on the pattern of A + A^T)
 ORDERING = "MMD_AT_PLUS_A"
-
-
-class SingularInteriorError(ValueError):
-    """The structure with its retained DOFs held fixed is singular at some frequency."""
 
 
 def _split(A, r, i):
@@ -195,7 +193,7 @@ class _Products:
         return out
 
 
-class _TooFewModes(Exception):
+class _TooFewModes(MicroslipError):
     """The series of the omitted modes would converge too slowly at a frequency: more modes are needed."""
 
     def __init__(self, needed: float):

@@ -53,6 +53,7 @@ import scipy.sparse as sp
 from scipy.optimize import nnls
 
 from ...common import _checks
+from ...common.errors import OneSidedDamperWarning
 from ...model import MicroslipModel
 from .cyclic import CyclicStructure, NextDof, add_contact_terms, contact_terms
 from .structure import Structure
@@ -465,8 +466,8 @@ def _warn_same_sector(contacts) -> None:
         which = "the next sector's (disk.next)" if kinds == {True} else "this sector's"
         warnings.warn(f"every face of the damper ({', '.join(map(repr, faces))}) touches {which} platform: the "
                       f"damper joins a blade to itself; a damper between blades names the next sector's platform "
-                      f"DOFs on one face, with disk.next(j) (\"next:j\" in the configuration)", UserWarning,
-                      stacklevel=3)
+                      f"DOFs on one face, with disk.next(j) (\"next:j\" in the configuration)",
+                      OneSidedDamperWarning, stacklevel=3)
 
 
 def _grow(A, diagonal):

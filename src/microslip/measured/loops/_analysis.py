@@ -50,11 +50,8 @@ import numpy as np
 
 from ...common import _checks
 from ...common._binning import binned_means
+from ...common.errors import LoopError
 from . import _kernels
-
-
-class LoopError(ValueError):
-    """The record cannot be analysed (no complete cycle, no steady cycle, ...)."""
 
 
 _SIGN_ADVICE = ("T must be the tangential force acting along t, so that the loops run clockwise in the "

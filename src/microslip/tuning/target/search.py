@@ -10,17 +10,10 @@ from scipy import optimize
 
 from ...common import _checks
 from ...common._progress import Progress
+from ...common.errors import TargetNotMet
 from .points import stored_fractions
 from .problem import SPACINGS, TargetProblem, TargetTuning, _load_range, ranged, target_fraction
 from ..paper import TuningError, model_from_points, tuning_points
-
-
-class TargetNotMet(ValueError):
-    """No number of elements up to the limit meets the accuracy target; ``best`` holds the best found."""
-
-    def __init__(self, message, best):
-        super().__init__(message)
-        self.best = best
 
 
 def _fractions(z):
