@@ -5,13 +5,22 @@ Variable Normal Loads"): a parallel array of macroslip elements, each with a
 tangential stiffness, a normal stiffness and a normal gap, so the normal load
 shifts between elements as the normal approach changes. SI units throughout.
 
-One package per job: :mod:`microslip.reference` (exact continuous contacts),
+The names most users need are exported here: the model (:class:`MicroslipModel`),
+reference contacts and tuning (:class:`Sphere`, :func:`tune`), accuracy and
+measured loops, the frequency domain (:class:`Structure`, :class:`CyclicStructure`,
+:class:`UnderPlatformDamper`, :func:`frequency_response`, :func:`nonlinear_modes`,
+:func:`damper_design_curve`, ...), design studies (:func:`sweep`) and every error
+and warning (:class:`MicroslipError`, :class:`MicroslipWarning`). One package per
+job holds the rest: :mod:`microslip.reference` (exact continuous contacts),
 :mod:`microslip.tuning` (the paper's equations, tuning to a target),
-:mod:`microslip.measured` (from measured loops to a validated model),
-:mod:`microslip.accuracy` (load paths, accuracy against a reference),
-:mod:`microslip.frequency` (harmonic balance, time integration),
-:mod:`microslip.figures` (the paper's figures), :mod:`microslip.study` (design
-studies on Dask), :mod:`microslip.cli` (the command line); the model itself is :mod:`microslip.model`.
+:mod:`microslip.measured` (from measured loops to a validated model; its
+:mod:`microslip.loops`), :mod:`microslip.accuracy` (load paths,
+:mod:`microslip.paths`; accuracy against a reference), :mod:`microslip.frequency`
+(harmonic balance, time integration), :mod:`microslip.fe` (finite-element
+models), :mod:`microslip.config` (the configuration files), :mod:`microslip.study`
+(design studies on Dask), :mod:`microslip.figures` (the paper's figures) and
+:mod:`microslip.cli` (the command line). The documented packages and their
+public names are listed by :mod:`microslip.common.surface`.
 """
 
 import sys as _sys
@@ -21,7 +30,6 @@ from .common.errors import (BeyondTuningWarning, BranchPointWarning, ConfigError
                             LoadLimitError, LoopError, MicroslipError, MicroslipWarning, MissingVariable,
                             NotPeriodicError, OneMatrixFile, OneSidedDamperWarning, PeakOnEdgeWarning,
                             SingularInteriorError, StudyFolderWarning, TargetNotMet, TuningError, UnderResolvedWarning)
-from .common import errors as _errors
 from .model import MicroslipModel, Response, State, Step
 from .reference import Cylinder, MDRModel, Sphere, mdr
 from .tuning import (ContactReference, TargetProblem, TargetTuning, TuningPoints, smallest_elements, tune,
@@ -29,7 +37,11 @@ from .tuning import (ContactReference, TargetProblem, TargetTuning, TuningPoints
 from .accuracy import AccuracyReport, accuracy, paths
 from .measured import (FittedBackbone, LoopTuning, MeasuredContact, Validation, fit_backbone, loops, tune_on_loops,
                        validate)
-from .frequency import FrequencyResponse, NonlinearModes, Structure, frequency_response, nonlinear_modes
+from .frequency import (CampbellDiagram, ContactCycle, CraigBampton, CyclicStructure, DesignCurve, FrequencyResponse,
+                        NonlinearModes, SpeedCurve, SpeedModel, SteadyState, StepControl, Structure,
+                        SynthesizedResponse, UnderPlatformDamper, campbell, contact_cycle, craig_bampton,
+                        damper_design_curve, damper_speed_curve, frequency_point, frequency_response, nonlinear_modes,
+                        static_solution, steady_state)
 from .study import SweepResult, sweep
 from . import config
 
@@ -44,40 +56,31 @@ for _name, _module in list(_sys.modules.items()):
 _sys.modules.setdefault(f"{__name__}.frequency.config", config.frf)  # its former path
 del _alias, _module, _name, _sys
 
-__all__ = _errors.__all__ + [
-    "AccuracyReport",
-    "ContactReference",
-    "Cylinder",
-    "FittedBackbone",
-    "FrequencyResponse",
-    "LoopTuning",
-    "MDRModel",
-    "MeasuredContact",
-    "MicroslipModel",
-    "NonlinearModes",
-    "Response",
-    "Sphere",
-    "State",
-    "Step",
-    "Structure",
-    "SweepResult",
-    "TargetProblem",
-    "TargetTuning",
-    "TuningPoints",
-    "Validation",
-    "accuracy",
-    "fit_backbone",
-    "frequency_response",
-    "loops",
-    "mdr",
-    "nonlinear_modes",
-    "paths",
-    "smallest_elements",
-    "sweep",
-    "tune",
-    "tune_on_loops",
-    "tune_to_target",
+__all__ = [
+    # errors and warnings (microslip.common.errors)
+    "BeyondTuningWarning", "BranchPointWarning", "ConfigError", "ConvergenceError", "CurveInterrupted",
+    "DesignPointWarning", "FileFormatError", "FolderInUseError", "IncompleteCurveWarning", "LoadLimitError",
+    "LoopError", "MicroslipError", "MicroslipWarning", "MissingVariable", "NotPeriodicError", "OneMatrixFile",
+    "OneSidedDamperWarning", "PeakOnEdgeWarning", "SingularInteriorError", "StudyFolderWarning", "TargetNotMet",
+    "TuningError", "UnderResolvedWarning",
+    # the contact model
+    "MicroslipModel", "Response", "State", "Step",
+    # reference contacts, tuning, accuracy, measured loops
+    "Cylinder", "MDRModel", "Sphere", "mdr",
+    "ContactReference", "TargetProblem", "TargetTuning", "TuningPoints", "smallest_elements", "tune", "tune_to_target",
     "tuning_points",
+    "AccuracyReport", "accuracy", "paths",
+    "FittedBackbone", "LoopTuning", "MeasuredContact", "Validation", "fit_backbone", "loops", "tune_on_loops",
     "validate",
+    # structures and what is run on them
+    "CraigBampton", "CyclicStructure", "SpeedModel", "StepControl", "Structure", "UnderPlatformDamper",
+    "craig_bampton",
+    "FrequencyResponse", "frequency_point", "frequency_response", "static_solution",
+    "NonlinearModes", "SynthesizedResponse", "nonlinear_modes",
+    "SteadyState", "steady_state",
+    "ContactCycle", "contact_cycle",
+    "DesignCurve", "damper_design_curve",
+    "CampbellDiagram", "SpeedCurve", "campbell", "damper_speed_curve",
+    # design studies
+    "SweepResult", "sweep",
 ]
-del _errors

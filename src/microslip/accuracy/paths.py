@@ -40,8 +40,8 @@ import numpy as np
 from ..common import _checks
 from ..model import PLANE_LIMIT, MicroslipModel, frozen, tangential_history
 
-__all__ = ["AMPLITUDES", "LEVELS", "PHASES_DEG", "Path", "RATIOS", "circle", "default_family", "ellipse",
-           "figure_eight", "from_arrays", "line", "loop", "paper_fig4", "variable_load_cycles"]
+__all__ = ["Path", "circle", "default_family", "ellipse", "figure_eight", "from_arrays", "line", "loop", "paper_fig4",
+           "variable_load_cycles"]
 
 
 @dataclass(frozen=True, eq=False)

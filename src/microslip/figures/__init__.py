@@ -34,4 +34,4 @@ from .case import PaperCase
 from .reproduce import reproduce
 from .sections import SECTIONS
 
-__all__ = ["PaperCase", "SECTIONS", "reproduce"]
+__all__ = ["PaperCase", "reproduce"]

@@ -1,4 +1,4 @@
-"""Run every section of :data:`microslip.figures.SECTIONS` and write the report."""
+"""Run every section of ``microslip.figures.sections.SECTIONS`` and write the report."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
     progress : bool
         Show progress on standard error.
     sections : list of modules, optional
-        Default :data:`microslip.figures.SECTIONS`.
+        Default ``microslip.figures.sections.SECTIONS``.
 
     Returns
     -------
