@@ -240,7 +240,7 @@ def a_mode():
 
 @cache
 def a_synthesis():
-    return a_mode().synthesize([0.5])
+    return a_mode().forced_response([0.5])
 
 
 @cache
@@ -734,7 +734,8 @@ CASES += [
     case("NonlinearModes.amplitude", lambda: a_mode().amplitude, dof=0, harmonic=1),
     case("NonlinearModes.shape", lambda: a_mode().shape, point=0),
     case("NonlinearModes.columns", lambda: a_mode().columns, dofs=[0]),
-    case("NonlinearModes.synthesize", lambda: a_mode().synthesize, force=[0.5], omega=(100.0, 160.0), points=50),
+    case("NonlinearModes.forced_response", lambda: a_mode().forced_response, force=[0.5], omega=(100.0, 160.0),
+         points=50),
     case("SynthesizedResponse.amplitude", lambda: a_synthesis().amplitude, dof=0, harmonic=1),
     case("SynthesizedResponse.peak", lambda: a_synthesis().peak, dof=0, harmonic=1),
     case("microslip.steady_state", lambda: steady_state, structure=L(jenkins_structure), force=[1.0], omega=100.0,
@@ -751,7 +752,7 @@ CASES += [
          skip={"force": ("nan", "inf", "string", "dict"), "displacement": ("nan", "inf", "string", "dict")},
          force=[0.0, 1.0, 0.0], displacement=[0.0, 0.0, 1e-6]),
     case("frequency.default_samples", lambda: microslip.frequency.default_samples, harmonics=5),
-    case("frequency.synthesise", lambda: microslip.frequency.synthesise, coefficients=[0.0, 1e-6, 0.0], samples=16),
+    case("frequency.time_samples", lambda: microslip.frequency.time_samples, coefficients=[0.0, 1e-6, 0.0], samples=16),
     case("StepControl", lambda: StepControl, ds_initial=0.02, ds_min=1e-7, ds_max=0.05, max_angle=0.1,
          target_iterations=3, max_iterations=12, max_points=5000, tolerance=1e-9),
     case("HarmonicBalance", lambda: HarmonicBalance, structure=L(jenkins_structure), force=[1.0], harmonics=1,
@@ -956,6 +957,7 @@ NOT_FUZZED = {
     "SynthesizedResponse.plot": "draws",
     "SweepResult.plot": "draws",
     "ContactReference": "a protocol: what a reference provides, nothing to call",
+    "NonlinearModes.synthesize": "the deprecated name of NonlinearModes.forced_response, fuzzed under that name",
 }
 
 #: classes whose objects the package builds and returns (their constructors are not an entry point)

@@ -27,9 +27,10 @@ import sys as _sys
 
 from .common.errors import (BeyondTuningWarning, BranchPointWarning, ConfigError, ConvergenceError, CurveInterrupted,
                             DesignPointWarning, FileFormatError, FolderInUseError, IncompleteCurveWarning,
-                            LoadLimitError, LoopError, MicroslipError, MicroslipWarning, MissingVariable,
-                            NotPeriodicError, OneMatrixFile, OneSidedDamperWarning, PeakOnEdgeWarning,
-                            SingularInteriorError, StudyFolderWarning, TargetNotMet, TuningError, UnderResolvedWarning)
+                            LoadLimitError, LoopError, MicroslipDeprecationWarning, MicroslipError, MicroslipWarning,
+                            MissingVariable, NotPeriodicError, OneMatrixFile, OneSidedDamperWarning,
+                            PeakOnEdgeWarning, SingularInteriorError, StudyFolderWarning, TargetNotMet, TuningError,
+                            UnderResolvedWarning)
 from .model import MicroslipModel, Response, State, Step
 from .reference import Cylinder, MDRModel, Sphere, mdr
 from .tuning import (ContactReference, TargetProblem, TargetTuning, TuningPoints, smallest_elements, tune,
@@ -60,9 +61,9 @@ __all__ = [
     # errors and warnings (microslip.common.errors)
     "BeyondTuningWarning", "BranchPointWarning", "ConfigError", "ConvergenceError", "CurveInterrupted",
     "DesignPointWarning", "FileFormatError", "FolderInUseError", "IncompleteCurveWarning", "LoadLimitError",
-    "LoopError", "MicroslipError", "MicroslipWarning", "MissingVariable", "NotPeriodicError", "OneMatrixFile",
-    "OneSidedDamperWarning", "PeakOnEdgeWarning", "SingularInteriorError", "StudyFolderWarning", "TargetNotMet",
-    "TuningError", "UnderResolvedWarning",
+    "LoopError", "MicroslipDeprecationWarning", "MicroslipError", "MicroslipWarning", "MissingVariable",
+    "NotPeriodicError", "OneMatrixFile", "OneSidedDamperWarning", "PeakOnEdgeWarning", "SingularInteriorError",
+    "StudyFolderWarning", "TargetNotMet", "TuningError", "UnderResolvedWarning",
     # the contact model
     "MicroslipModel", "Response", "State", "Step",
     # reference contacts, tuning, accuracy, measured loops

@@ -89,6 +89,7 @@ PARENTS = {
     "UnderResolvedWarning": RuntimeWarning, "BranchPointWarning": RuntimeWarning, "PeakOnEdgeWarning": RuntimeWarning,
     "IncompleteCurveWarning": RuntimeWarning, "DesignPointWarning": RuntimeWarning,
     "OneSidedDamperWarning": UserWarning, "StudyFolderWarning": UserWarning, "CurveInterrupted": KeyboardInterrupt,
+    "MicroslipDeprecationWarning": DeprecationWarning,
 }
 
 

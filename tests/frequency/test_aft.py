@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from _strategies import random_contact
 from microslip import MicroslipModel, Sphere, tune
-from microslip.frequency import aft, aft_batch, cycle_work, default_samples, synthesise
+from microslip.frequency import aft, aft_batch, cycle_work, default_samples, time_samples
 from microslip.kernels import aft as _aft
 from microslip.frequency.aft import NotPeriodicError
 
@@ -75,7 +75,7 @@ def test_jacobian_covers_stick_slip_and_open_states():
     model, t, n = _random_case(5, H=2)
     Ns = 64
     _, _, _, _, cond, _ = __import__("microslip.kernels.element", fromlist=["x"]).march_reference(
-        model.kt, model.kn, model.gaps, model.mu, np.tile(synthesise(t, Ns), 3), np.tile(synthesise(n, Ns), 3),
+        model.kt, model.kn, model.gaps, model.mu, np.tile(time_samples(t, Ns), 3), np.tile(time_samples(n, Ns), 3),
         np.zeros(model.elements))
     seen = set(np.array(cond).ravel().tolist())
     assert seen == {0, 1, 2}  # the case above exercises all three derivative branches
@@ -178,7 +178,7 @@ def test_default_samples():
     (lambda: aft_batch(JENKINS, [[0, 1e-6, 0]], [[1e-6, 0, 0]]), "models must be a non-empty sequence"),
     (lambda: aft_batch([JENKINS, 3], [[0, 1e-6, 0]] * 2, [[1e-6, 0, 0]] * 2), "models\\[1\\] must be a microslip"),
     (lambda: aft_batch([JENKINS], [[0, 1e-6, 0]] * 2, [[1e-6, 0, 0]] * 2), "t must have shape \\(len\\(models\\), 2H\\+1\\) = \\(1, 3\\)"),
-    (lambda: synthesise([1.0, 2.0], 8), "coefficients must hold 2H \\+ 1"),
+    (lambda: time_samples([1.0, 2.0], 8), "coefficients must hold 2H \\+ 1"),
 ])
 def test_input_errors_name_the_parameter(call, message):
     with pytest.raises((ValueError, TypeError), match=message):

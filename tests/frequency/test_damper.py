@@ -9,7 +9,7 @@ from scipy.optimize import root
 from microslip import MicroslipModel, Sphere, tune
 from microslip.kernels.element import STICK
 from microslip.frequency import (CyclicStructure, Structure, UnderPlatformDamper, damper_design_curve, frequency_point,
-                                 frequency_response, steady_state, synthesise)
+                                 frequency_response, steady_state, time_samples)
 
 SPHERE = Sphere.paper()
 CURVED = tune(SPHERE, 37.5, elements=4)
@@ -408,7 +408,7 @@ def steady_contacts(result, k, samples=512):
     out = []
     for c, contact in enumerate(result.structure.contacts):
         law = contact.model
-        t, n = synthesise(result.contact_t[k, c], samples), synthesise(result.contact_n[k, c], samples)
+        t, n = time_samples(result.contact_t[k, c], samples), time_samples(result.contact_n[k, c], samples)
         state = law.simulate([result.contact_t[k, c, 0]], [result.contact_n[k, c, 0]]).state
         for _ in range(1000):
             r = law.simulate(t, n, state, work=False)

@@ -5,7 +5,7 @@ import pytest
 
 from microslip import MicroslipModel
 from microslip.frequency import (HarmonicBalance, Structure, aft, frequency_point, frequency_response,
-                                 static_solution, steady_state, synthesise)
+                                 static_solution, steady_state, time_samples)
 
 JENKINS = MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0)
 
@@ -19,7 +19,7 @@ def oscillator():
 @pytest.mark.parametrize("call, error, message", [
     (lambda: aft(JENKINS, [0.0, 1e-6, 0.0], [1e-6, 0.0, 0.0], samples=10**12), ValueError,
      r"samples must be at most 10000000 \(a size: larger ones would need gigabytes\), got 1000000000000"),
-    (lambda: synthesise([0.0, 1.0, 0.0], 10**12), ValueError, "samples must be at most 10000000"),
+    (lambda: time_samples([0.0, 1.0, 0.0], 10**12), ValueError, "samples must be at most 10000000"),
     (lambda: HarmonicBalance(oscillator(), [1.0], 1).evaluate([0.0, 1e-6, 0.0], 100.0, jacobian="no"), TypeError,
      "jacobian must be True or False, got 'no'"),
     (lambda: HarmonicBalance(oscillator(), [1.0], 1).local([0.0, 1e-6]), ValueError,
@@ -50,7 +50,7 @@ def oscillator():
     (lambda: frequency_point(oscillator(), [1.0], 100.0, harmonics=10**4), ValueError,
      r"harmonics must be at most 256 \(a size: larger ones would need gigabytes\), got 10000"),
     (lambda: HarmonicBalance(oscillator(), [1.0], 300), ValueError, "harmonics must be at most 256"),
-    (lambda: synthesise(np.zeros(2 * 300 + 1), 4096), ValueError,
+    (lambda: time_samples(np.zeros(2 * 300 + 1), 4096), ValueError,
      "coefficients: the number of harmonics H must be at most 256"),
     (lambda: steady_state(oscillator(), [1.0], 100.0, steps_per_period=10**7, harmonics=7), ValueError,
      "steps_per_period must be at most 279620 with harmonics = 7"),

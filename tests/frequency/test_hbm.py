@@ -16,7 +16,7 @@ from scipy.optimize import brentq
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import (FrequencyResponse, HarmonicBalance, Structure, frequency_point,
                                  frequency_response, static_solution)
-from microslip.frequency import UnderResolvedWarning, synthesise
+from microslip.frequency import UnderResolvedWarning, time_samples
 from microslip.kernels import transient as _transient
 
 from _paths import EXAMPLES
@@ -176,7 +176,7 @@ def test_friction_work_converges_where_the_contact_slides_and_opens():
     errors = {}
     for samples in (128, 512):
         r = frequency_point(s, FORCE, omega, harmonics=7, samples=samples)
-        n = synthesise(r.contact_n[0, 0], samples)
+        n = time_samples(r.contact_n[0, 0], samples)
         assert np.any((n.min() < s.contacts[0].model.gaps) & (n.max() > s.contacts[0].model.gaps))  # it opens
         errors[samples] = abs(r.contact_dissipation[0, 0] / exact - 1)
     # measured 1.3e-3 and 3.4e-4 (the harmonics' work itself: 3.1e-4 and 6e-6), allowed about twice

@@ -83,14 +83,14 @@ def test_the_synthesis_of_a_mode_that_turns_back_says_so(damper_mode):
     force = np.zeros(mode.structure.ndof)
     force[2], force[5] = 5e4, -5e4  # N: a peak far above where the mode turns back (3.48e-4 kg^1/2 m)
     with pytest.raises(ValueError) as info:
-        mode.synthesize(force)
+        mode.forced_response(force)
     message = str(info.value)
     assert "strictly increasing" not in message  # not SciPy's words
     assert message.startswith("force: the synthesised peak lies above the mode's largest amplitude (")
     assert "where the mode turns back (a fold in amplitude, usually an internal resonance" in message
     # 50 N peaks below the fold (6.7e-6 kg^1/2 m): synthesised from the mode up to there
     force /= 1000
-    response = mode.synthesize(force)
+    response = mode.forced_response(force)
     assert response.peak_modal_amplitude < a[np.flatnonzero(np.diff(a) <= 0)[0]]
 
 
@@ -98,4 +98,4 @@ def test_a_synthesis_over_a_range_away_from_the_mode_says_so():
     mode = nonlinear_modes(inclined_block(), 1, (1e-9, 1e-5), harmonics=3)
     with pytest.raises(ValueError, match="^omega: the synthesised response has no point between 1e\\+06 and 2e\\+06 "
                                          "rad/s: it spans .* rad/s \\(its peak at .* rad/s\\)"):
-        mode.synthesize(FORCE, (1e6, 2e6))
+        mode.forced_response(FORCE, (1e6, 2e6))

@@ -97,13 +97,14 @@ def test_a_mode_without_stiffness_is_refused():
     (lambda m: m.shape(-1), ValueError, "point must be an integer >= 0, got -1"),
     (lambda m: m.shape(10 ** 6), ValueError, "point must be below the number of points"),
     (lambda m: m.plot(frequency_unit="kHz"), ValueError, "frequency_unit must be one of"),
-    (lambda m: m.synthesize([1.0]), ValueError, "force must have one entry per DOF (2), got 1"),
-    (lambda m: m.synthesize([0.0, 0.0]), ValueError, "force must not be all zeros"),
-    (lambda m: m.synthesize([0.0, "a"]), TypeError, "force"),
-    (lambda m: m.synthesize([0.0, 1.0], omega=700.0), TypeError, "omega must be a pair (start, end)"),
-    (lambda m: m.synthesize([0.0, 1.0], omega=(-1.0, 900.0)), ValueError, "omega[0]"),
-    (lambda m: m.synthesize([0.0, 1.0], points=5), ValueError, "points must be an integer >= 10, got 5"),
-    (lambda m: m.synthesize([0.0, 1e3]), ValueError, "the synthesised peak lies above the mode's largest amplitude"),
+    (lambda m: m.forced_response([1.0]), ValueError, "force must have one entry per DOF (2), got 1"),
+    (lambda m: m.forced_response([0.0, 0.0]), ValueError, "force must not be all zeros"),
+    (lambda m: m.forced_response([0.0, "a"]), TypeError, "force"),
+    (lambda m: m.forced_response([0.0, 1.0], omega=700.0), TypeError, "omega must be a pair (start, end)"),
+    (lambda m: m.forced_response([0.0, 1.0], omega=(-1.0, 900.0)), ValueError, "omega[0]"),
+    (lambda m: m.forced_response([0.0, 1.0], points=5), ValueError, "points must be an integer >= 10, got 5"),
+    (lambda m: m.forced_response([0.0, 1e3]), ValueError,
+     "the synthesised peak lies above the mode's largest amplitude"),
 ])
 def test_results_refuse_each_parameter_by_name(mode, call, error, words):
     with pytest.raises(error) as info:
@@ -116,7 +117,7 @@ def test_a_force_that_does_not_act_on_the_mode_is_refused():
     s.add_contact(MicroslipModel([1e5], [1e9], [0.0], 0.5), tangential=0, approach=1e-8)
     mode = nonlinear_modes(s, 1, (1e-6, 1e-3), harmonics=1)
     with pytest.raises(ValueError, match="force does not act on the mode"):
-        mode.synthesize([0.0, 1.0])
+        mode.forced_response([0.0, 1.0])
 
 
 def test_the_continuation_stopped_early_is_a_warning(mode):
@@ -148,7 +149,7 @@ def test_the_mode_and_its_synthesis_draw_and_write(mode, tmp_path):
     assert header[:4] == ["modal amplitude [kg^0.5 m]", "omega [rad/s]", "f [Hz]", "damping ratio [-]"]
     assert "excitation work [J]" not in header and len(path.read_text().splitlines()) == mode.points + 1
     assert repr(mode).startswith("NonlinearModes(mode=1, points=") and len(repr(mode)) < 300
-    synthesis = mode.synthesize([0.0, 3.0])
+    synthesis = mode.forced_response([0.0, 3.0])
     ax = synthesis.plot(dof=1)
     lo, hi = ax.get_xlim()
     assert lo < synthesis.peak_omega / (2 * np.pi) < hi and hi - lo < 0.3 * hi  # around the resonance

@@ -15,7 +15,7 @@ import pytest
 from microslip import MicroslipModel
 from microslip.kernels.element import NO_CONDITIONS, NO_ELEMENTS, NO_WORK, march
 from microslip.frequency import (HarmonicBalance, Structure, frequency_point, frequency_response, steady_state,
-                                 synthesise)
+                                 time_samples)
 from microslip.frequency.analyses.response import _equations
 from microslip.frequency.analyses.stability import Bifurcation, floquet_exponents
 from microslip.frequency.analyses.transient import PeriodMap
@@ -250,7 +250,7 @@ def hb_state(scheme, coefficients):
     The sliders come from marching the contact along the solution's displacement history (three periods
     after the static step from the virgin state, as the AFT does), so that they are periodic.
     """
-    q = synthesise(coefficients.T, scheme.steps).T  # (steps, ndof) at tau_k = 2 pi k / steps
+    q = time_samples(coefficients.T, scheme.steps).T  # (steps, ndof) at tau_k = 2 pi k / steps
     kt, kn, gaps, offsets, mu = scheme.packed
     sliders = np.zeros(kt.size)
     for i in range(len(scheme.structure.contacts)):

@@ -77,7 +77,7 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
     from ..frequency import ConvergenceError, NotPeriodicError, frequency_response
     from ..frequency.analyses.synthesis import resonance_band
 
-    synthesis = mode.synthesize(force)
+    synthesis = mode.forced_response(force)
     name = cfg.dof_names[dof]
     write_csv(out / "synthesis.csv", {"omega [rad/s]": synthesis.omega, "f [Hz]": synthesis.omega / (2 * np.pi),
                                       "modal amplitude [kg^0.5 m]": synthesis.modal_amplitude,

@@ -167,6 +167,10 @@ class OneSidedDamperWarning(MicroslipWarning, UserWarning):
     """Every face of an under-platform damper touches the same sector's platforms: it joins a blade to itself."""
 
 
+class MicroslipDeprecationWarning(MicroslipWarning, DeprecationWarning):
+    """A name that is deprecated: it still works, and the message names the one that replaces it."""
+
+
 class StudyFolderWarning(MicroslipWarning, UserWarning):
     """The results folder was not as a finished run leaves it: a case file not trusted, leftovers, a lock taken over."""
 
@@ -199,11 +203,22 @@ class CurveInterrupted(KeyboardInterrupt):
 __all__ = [
     "BeyondTuningWarning", "BranchPointWarning", "ConfigError", "ConvergenceError", "CurveInterrupted",
     "DesignPointWarning", "FileFormatError", "FolderInUseError", "IncompleteCurveWarning", "LoadLimitError",
-    "LoopError", "MicroslipError", "MicroslipWarning", "MissingVariable", "NotPeriodicError", "OneMatrixFile",
-    "OneSidedDamperWarning", "PeakOnEdgeWarning", "SingularInteriorError", "StudyFolderWarning", "TargetNotMet",
-    "TuningError", "UnderResolvedWarning",
+    "LoopError", "MicroslipDeprecationWarning", "MicroslipError", "MicroslipWarning", "MissingVariable",
+    "NotPeriodicError", "OneMatrixFile", "OneSidedDamperWarning", "PeakOnEdgeWarning", "SingularInteriorError",
+    "StudyFolderWarning", "TargetNotMet", "TuningError", "UnderResolvedWarning",
 ]
 
 for _name in __all__:  # a traceback and the API reference name each by the path users import
     globals()[_name].__module__ = "microslip"
 del _name
+
+
+def deprecated(old: str, new: str, stacklevel: int = 3) -> None:
+    """Warn that the name ``old`` is deprecated in favour of ``new`` (a :class:`MicroslipDeprecationWarning`).
+
+    ``stacklevel`` 3 points the warning at the caller of the function that calls this one.
+    """
+    import warnings
+
+    warnings.warn(f"{old} is deprecated: use {new} (the same arguments)", MicroslipDeprecationWarning,
+                  stacklevel=stacklevel)

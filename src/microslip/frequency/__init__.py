@@ -42,7 +42,7 @@ import importlib as _importlib
 import sys as _sys
 
 from .aft import (AFTResult, NotPeriodicError, PlaneAFTResult, UnderResolvedWarning, aft, aft_batch, aft_plane, cycle_work,
-                  default_samples, synthesise)
+                  default_samples, synthesise, time_samples)
 from .numerics.continuation import BranchPointWarning, ConvergenceError, StepControl
 from .reduction.craig_bampton import CraigBampton, craig_bampton
 from .structures.cyclic import CyclicStructure
@@ -122,5 +122,5 @@ __all__ = [
     "plot_contact_cycles",
     "static_solution",
     "steady_state",
-    "synthesise",
+    "time_samples",
 ]

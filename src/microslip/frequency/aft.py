@@ -36,7 +36,7 @@ from typing import Sequence
 import numpy as np
 
 from ..common import _checks
-from ..common.errors import NotPeriodicError, UnderResolvedWarning
+from ..common.errors import NotPeriodicError, UnderResolvedWarning, deprecated
 from ..model import PLANE_LIMIT, MicroslipModel
 from ..kernels import aft as _aft, aft_plane as _aft_plane
 
@@ -97,8 +97,8 @@ def harmonics_of(name: str, coefficients) -> tuple[np.ndarray, int]:
     return c, check_harmonics((c.shape[-1] - 1) // 2, name=f"{name}: the number of harmonics H", minimum=0)
 
 
-def synthesise(coefficients, samples: int) -> np.ndarray:
-    """Values at ``tau_k = 2 pi k / samples`` of the series with these coefficients.
+def time_samples(coefficients, samples: int) -> np.ndarray:
+    """Values at ``tau_k = 2 pi k / samples`` of the Fourier series with these coefficients.
 
     Parameters
     ----------
@@ -115,6 +115,12 @@ def synthesise(coefficients, samples: int) -> np.ndarray:
     Ns = check_samples(samples, H)
     E = _aft.tables(H, Ns)[0]
     return c @ E.T
+
+
+def synthesise(coefficients, samples: int) -> np.ndarray:
+    """Deprecated name of :func:`time_samples` (the same function; warns)."""
+    deprecated("microslip.frequency.synthesise", "microslip.frequency.time_samples")
+    return time_samples(coefficients, samples)
 
 
 @dataclass(frozen=True, eq=False)

@@ -23,7 +23,7 @@ import numpy as np
 
 from ...common import _checks
 from ...kernels import aft as _aft, plane_march as _plane_march
-from ..aft import MAX_PERIODS, NotPeriodicError, synthesise
+from ..aft import MAX_PERIODS, NotPeriodicError, time_samples
 from .response import FrequencyResponse
 
 #: the slip states, in the order of :attr:`ContactCycle.state`'s codes
@@ -252,7 +252,7 @@ def contact_cycle(result, contact, point: int, *, samples: int | None = None,
     periods = _checks.positive_int("max_periods", max_periods)
     model = result.structure.contacts[c].model
     xt, xn = result.contact_t[k, c], result.contact_n[k, c]
-    t, n = synthesise(xt, Ns), synthesise(xn, Ns)
+    t, n = time_samples(xt, Ns), time_samples(xn, Ns)
     omega = float(result.omega[k])
     time = 2 * np.pi / omega * np.arange(Ns) / Ns
     if result.structure.contacts[c].planar:

@@ -7,7 +7,7 @@ amplitude from the linear mode (contacts stuck) to gross slip. The result
 carries the periodic motion at every amplitude, as a
 :class:`~microslip.frequency.FrequencyResponse` does along a frequency sweep
 (``omega`` is then the mode's natural frequency), and synthesises forced
-responses near the mode (:meth:`NonlinearModes.synthesize`).
+responses near the mode (:meth:`NonlinearModes.forced_response`).
 """
 
 from __future__ import annotations
@@ -69,7 +69,7 @@ class NonlinearModes(FrequencyResponse):
     modal_mass, modal_damping : ndarray, shape (points,)
         ``z_1^H M z_1 / a^2`` (dimensionless, 1 for the linear mode) and
         ``z_1^H C z_1 / a^2`` (1/s) of the first harmonic: the single-mode
-        model of :meth:`synthesize`.
+        model of :meth:`forced_response`.
     """
 
     mode: int = 1
@@ -179,14 +179,23 @@ class NonlinearModes(FrequencyResponse):
         cols.update(rest)
         return cols
 
-    def synthesize(self, force, omega=None, *, points: int = 400):
+    def forced_response(self, force, omega=None, *, points: int = 400):
         """The forced response near this mode from the mode alone (single nonlinear mode synthesis).
 
-        See :func:`~microslip.frequency.analyses.synthesis.synthesize`.
+        See :func:`~microslip.frequency.analyses.synthesis.forced_response`: ``force`` (N) the excitation's
+        amplitudes on the DOFs, ``omega`` (rad/s) an optional range to keep, ``points`` about how many
+        points; returns a :class:`~microslip.frequency.SynthesizedResponse`.
         """
-        from .synthesis import synthesize
+        from .synthesis import forced_response
 
-        return synthesize(self, force, omega, points=points)
+        return forced_response(self, force, omega, points=points)
+
+    def synthesize(self, force, omega=None, *, points: int = 400):
+        """Deprecated name of :meth:`forced_response` (the same method; warns)."""
+        from ...common.errors import deprecated
+
+        deprecated("NonlinearModes.synthesize", "NonlinearModes.forced_response")
+        return self.forced_response(force, omega, points=points)
 
 
 #: the smallest modal amplitude (kg^1/2 m) a mode is followed from: the mode is mass-normalised, so its energies are

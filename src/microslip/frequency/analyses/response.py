@@ -21,7 +21,7 @@ from ...common._io import write_csv
 from ...common._progress import Progress
 from ...common.units import plot_factor
 from ...common.errors import CurveInterrupted, IncompleteCurveWarning, PeakOnEdgeWarning
-from ..aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, synthesise
+from ..aft import MAX_PERIODS, UnderResolvedWarning, check_harmonics, time_samples
 from ..numerics.blas import small_dense
 from ..numerics.continuation import StepControl, continuation, newton
 from ..equations.hbm import HarmonicBalance, excitation
@@ -236,7 +236,7 @@ class FrequencyResponse:
         """
         c = self._dof_coefficients(dof)
         if harmonic is None:
-            q = synthesise(c, max(_CURVE_SAMPLES, 8 * self.harmonics))
+            q = time_samples(c, max(_CURVE_SAMPLES, 8 * self.harmonics))
             return np.max(np.abs(q - c[:, :1]), axis=1)
         h = _checks.positive_int("harmonic", harmonic, minimum=0)
         if h > self.harmonics:
@@ -283,7 +283,7 @@ class FrequencyResponse:
             raise ValueError(f"point must be below the number of points {self.points}, got {point}")
         c = self._dof_coefficients(dof)[point]
         Ns = _checks.size("samples", samples, minimum=2 * self.harmonics + 1)
-        return 2 * np.pi / self.omega[point] * np.arange(Ns) / Ns, synthesise(c, Ns)
+        return 2 * np.pi / self.omega[point] * np.arange(Ns) / Ns, time_samples(c, Ns)
 
     def plot(self, dof=0, harmonic: int | None = None, ax=None, *, label: str | None = None, unit: str = "µm",
              frequency_unit: str = "rad/s", **kwargs):

@@ -1,4 +1,4 @@
-"""Forced responses from one nonlinear mode (single nonlinear mode synthesis): :func:`synthesize`.
+"""Forced responses from one nonlinear mode (single nonlinear mode synthesis): :func:`forced_response`.
 
 Near an isolated resonance the forced response of a structure under
 ``Re(F exp(i Omega time))`` is taken as the nonlinear mode at some amplitude,
@@ -34,6 +34,7 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from ...common import _checks
+from ...common.errors import deprecated
 
 #: modal amplitudes of the mode's range sampled for the curve, per point asked for
 _REFINE = 60
@@ -41,7 +42,7 @@ _REFINE = 60
 
 @dataclass(frozen=True, eq=False)
 class SynthesizedResponse:
-    """A forced response synthesised from one nonlinear mode (from :meth:`NonlinearModes.synthesize`).
+    """A forced response synthesised from one nonlinear mode (from :meth:`NonlinearModes.forced_response`).
 
     Attributes
     ----------
@@ -178,7 +179,7 @@ def _frequencies(m1, c1, omega, xi, R) -> np.ndarray:
     return omega * np.sort(real[real > 0])
 
 
-def synthesize(mode, force, omega=None, *, points: int = 400) -> SynthesizedResponse:
+def forced_response(mode, force, omega=None, *, points: int = 400) -> SynthesizedResponse:
     """The forced response under ``Re(F exp(i Omega time))`` near a nonlinear mode, from the mode alone.
 
     The single nonlinear mode approximation of the module docstring: for each
@@ -276,3 +277,9 @@ def synthesize(mode, force, omega=None, *, points: int = 400) -> SynthesizedResp
                              f"give a range that overlaps it, or none")
         Omega, a, theta = Omega[keep], a[keep], theta[keep]
     return SynthesizedResponse(mode, F, Omega, a, theta, w_peak, float(a_peak))
+
+
+def synthesize(mode, force, omega=None, *, points: int = 400) -> SynthesizedResponse:
+    """Deprecated name of :func:`forced_response` (the same function; warns)."""
+    deprecated("microslip.frequency.synthesis.synthesize", "microslip.frequency.synthesis.forced_response")
+    return forced_response(mode, force, omega, points=points)

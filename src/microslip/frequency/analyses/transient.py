@@ -209,7 +209,7 @@ class PeriodMap:
         keys = [h for h in force if isinstance(h, (int, np.integer))] if isinstance(force, Mapping) else []
         coef = excitation(structure, force, max(keys, default=1))
         coef[0] += structure.preload_force()
-        # forcing (steps, ndof) at tau_k = 2 pi k / steps: aft.synthesise's cached table, without its
+        # forcing (steps, ndof) at tau_k = 2 pi k / steps: aft.time_samples's cached table, without its
         # samples >= 2H+1 check (steps_per_period is raised for stability only, never refused here)
         self.f = _aft.tables((coef.shape[0] - 1) // 2, steps)[0] @ coef
         self.packed = structure.packed_models()
