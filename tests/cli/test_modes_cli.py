@@ -84,7 +84,7 @@ def test_modes_needs_a_modes_table_and_frf_ignores_it(config_dir, capsys):
 def test_modes_help_explains_every_option(capsys):
     with pytest.raises(SystemExit):
         main(["modes", "--help"])
-    text = capsys.readouterr().out
+    text = " ".join(capsys.readouterr().out.split())  # the description wrapped to the terminal: words rejoined
     for words in ("config", "--out", "--quiet", "[modes]", "modes.csv", "synthesis.csv", "Exit status"):
         assert words in text
 

@@ -1,7 +1,7 @@
 """The ``microslip`` command line: one sub-command per module of this package.
 
-Each module in :data:`COMMANDS` defines ``add_parser(subparsers)``, which
-registers its sub-command and sets ``func(args) -> int`` as its handler.
+Each sub-command of :data:`COMMANDS` is a module (its name with ``_`` for ``-``) that defines
+``add_parser(subparsers)``, which registers it and sets ``func(args) -> int`` as its handler.
 """
 
 from __future__ import annotations
@@ -12,7 +12,8 @@ import re
 import sys
 import warnings
 
-COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "modes", "sweep", "accuracy", "target"]
+COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "modes", "sweep", "accuracy", "target",
+            "config-reference"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -27,7 +28,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"microslip {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for name in COMMANDS:
-        importlib.import_module(f"{__name__}.{name}").add_parser(sub)
+        importlib.import_module(f"{__name__}.{name.replace('-', '_')}").add_parser(sub)
     return parser
 
 

@@ -17,7 +17,7 @@ def add_parser(sub) -> None:
                     "(low load: the damper slides and damps little; high load: it sticks and the system "
                     "stiffens; the optimum lies between). The TOML configuration is that of 'microslip frf' "
                     "with one [[damper]] table and a [design] table giving the loads and the DOF whose peak is "
-                    "read (format: python -c 'import microslip.config.frf as c; print(c.__doc__)'). "
+                    "read (format: microslip config-reference). "
                     "Writes design.csv (with each load's status), design.png, report.html and report.md. A load whose "
                     "forced response fails, stops at [continuation] max_points, or is highest at an end of the [sweep] "
                     "range (the resonance lies outside it) has no peak: it is marked, left out of the optimum and "

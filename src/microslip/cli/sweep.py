@@ -13,7 +13,7 @@ def add_parser(sub) -> None:
                     "\"contact.sphere.preload\", \"excitation.h1\", \"sweep.engine_order\"), as a grid ([vary]), a "
                     "list ([[case]]), random samples with a seed ([random]) and, for a bladed disk sector, a "
                     "Monte Carlo of blade stiffness mistuning solved on the assembled disk ([mistuning]). Format: "
-                    "python -c 'import microslip.study.spec as s; print(s.__doc__)'. The study is checked against "
+                    "microslip config-reference (its study file section). The study is checked against "
                     "the base configuration before any case is solved. Cases run on Dask: a local cluster of "
                     "--workers processes (one thread each), or a running cluster with --scheduler (e.g. started on "
                     "SLURM with dask-jobqueue; see the README). Writes OUT/cases/ (one file per finished case: a "

@@ -2,14 +2,18 @@
 
 A configuration names a structure (matrices or finite-element files), its
 contacts, dampers and cyclic symmetry, the excitation, the frequency sweep, a
-nonlinear mode (``[modes]``) and a damper design (``[design]``); the format is
-described in :mod:`microslip.config.frf`. The command line (``microslip frf``,
+nonlinear mode (``[modes]``) and a damper design (``[design]``). Every table and key
+is declared once in :mod:`microslip.config.schema`, which the reader checks files
+against and :func:`reference_markdown` renders as the reference (``microslip
+config-reference``), the study files' tables included. The command line (``microslip frf``,
 ``modes``, ``design``) and design studies (:mod:`microslip.study`) read
 configurations through the functions here.
 """
 
 from .frf import (EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, ConfigFiles, FrfConfig, ModesTable,
                   checked, config_from_data, harmonic_key, load_config, read_toml, refuse_unknown)
+from .schema import reference_markdown
 
 # the rest imported above serves the command line and the study files (microslip.study), not users
-__all__ = ["ConfigError", "FrfConfig", "ModesTable", "config_from_data", "load_config", "read_toml"]
+__all__ = ["ConfigError", "FrfConfig", "ModesTable", "config_from_data", "load_config", "read_toml",
+           "reference_markdown"]

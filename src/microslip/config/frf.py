@@ -1,115 +1,18 @@
 """The TOML configuration of ``microslip frf``: a structure, its contacts, the excitation, the sweep.
 
-Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
-``"2kHz"``). Paths are relative to the configuration file. Example::
-
-    title = "Block on an inclined plane"
-
-    [structure]
-    M = [[0.1, 0.0], [0.0, 0.1]]        # kg; or matrices = "model.npz" (arrays M, K, optional C), or
-                                        # file = "blade.mat" (.mat v5/v7.3, .npz, .op4: M, K, optional C;
-                                        # names = {M = "MGG", K = "KGG"} for other names), or M = "M.mtx",
-                                        # K = "K.mtx" (one file per matrix); dof_map = "dofs.csv" (node,
-                                        # component per row) lets contacts and forces name DOFs "1204:x"
-    K = [[1e7, 0.0], [0.0, 1e7]]        # N/m
-    C = [[17.3, 0.0], [0.0, 17.3]]      # N s/m (optional), or rayleigh = [alpha, beta]: C = alpha M + beta K
-    dofs = ["x", "y"]                   # optional names of the DOFs
-
-    [[contact]]                         # one table per contact
-    model = "contact.json"              # from 'microslip tune' (MicroslipModel.save); or a reference tuned when
-                                        # the configuration is read, as 'microslip tune --reference' tunes it:
-                                        # reference = {kind = "punch", flat_radius = "1mm", edge_radius = "5mm"}
-                                        # (kind "sphere": radius; both: E, nu, mu, E2, nu2; the punch's
-                                        # mdr_elements), load = "37.5N" (the tuning load), elements = 4
-    tangential = [0.866, 0.5]           # t = b_t . q: a DOF index, a list per DOF, or {"0" = 1, "1" = -1};
-                                        # two directions for a contact moving on its plane: [dir1, dir2], e.g.
-                                        # [{"0" = 1}, {"1" = 1}], ["12:x", "12:y"] or [[1.0, 0.0], [0.0, 1.0]]
-    normal = [-0.5, 0.866]              # n = b_n . q + approach (omit to impose the approach)
-    preload = "37.5N"                   # static force on the structure along normal, shared between the
-                                        # contact and the structure's springs (the report prints what the
-                                        # contact carries, N0)
-    # approach = "2um"                  # imposed approach at q = 0 (with normal omitted: the normal load is
-                                        # then fixed, e.g. approach of the tuned contact at the wanted load)
-    # name = "damper"
-
-    # [cyclic]                          # one sector of a bladed disk (CyclicStructure)
-    # sectors = 24
-    # left = [0]                        # boundary DOFs (indices or names): right[j] of a sector is left[j] of the next;
-    # right = [1]                       # a list is one node's DOFs: left = [[0, 1, 2]] or [["1014:x", "1014:y"]]
-    # engine_order = 3                  # the travelling wave's engine order (or in [sweep])
-                                        # contacts may then name the next sector's DOFs: {"next:4" = -1}
-    # frame = "cartesian"               # "cylindrical" (default: every DOF in a frame turning with the sector, as
-                                        # ANSYS CECYC/CPCYC, Nastran CYAX give them) or "cartesian" (the global frame:
-                                        # the right boundary is the left one turned by 2 pi / sectors about the axis,
-                                        # each node's [x, y(, z)] with it; "next:j" coefficients are global too)
-    # axis = [0, 0, 1]                  # the disk's axis (default z), through point (m, default the origin)
-    # point = [0, 0, 0]
-    # coordinates = "nodes.csv"         # the boundary nodes' positions (m; required with "cartesian"): a CSV with
-                                        # columns node, x, y(, z) (the DOF map's file may carry them), a table
-                                        # {"1014" = [0.1, 0, 0]}, or [[left nodes' [x, y(, z)]], [right nodes']]
-    # nodes = [[4, 5, 6]]               # "cartesian": the other nodes a "next:j" DOF is in (default: the DOF map's)
-
-    # [[damper]]                        # an under-platform damper (UnderPlatformDamper), one table each
-    # mass = 0.01                       # kg
-    # inertia = 5e-7                    # kg m^2
-    # centrifugal_load = "300N"         # or speed = "1000rad/s" (or "3000rpm") with radius = "0.25m"
-    # damping = 50.0                    # 1/s, mass-proportional (optional)
-    # retention = "1e3N/m"              # N/m: the features keeping the damper in its pocket, a spring from
-                                        # each of X, Y and the arc R to the disk (optional, default 0)
-    # [[damper.interface]]              # one table per interface
-    # model = "flat.json"               # the contacts' law (a list of files: one per point), or reference,
-                                        # load and elements as in [[contact]]
-    # points = [[-2e-3, 1.5e-3], [-1e-3, 2.5e-3]]   # m, on the damper from its centre of mass
-    # angle = 120                       # degrees: the normal, from the damper into the platform ("120deg";
-                                        # "2.1rad"; a bare number of magnitude up to 2 pi needs its unit)
-    # platform = {x = 0, y = 1}         # the platform's DOFs at the points, two different ones (a list: one
-                                        # per point; "next:4" for the next sector's)
-
-    [excitation]                        # amplitudes per DOF (N); "static" for the static force
-    h1 = [0.6, 0.0]                     # one per DOF, or a table of DOFs by name or index (the others 0 N):
-                                        # h1 = {"1113:y" = "1N", "7" = 0.5} or {y = 0.6}
-    # phase_h1 = [0.0, 90.0]            # degrees: F = amplitude * exp(i phase) (a list or a table, as h1)
-    # scale = 2.0                       # multiplies every harmonic's amplitude (not the static force)
-
-    [sweep]
-    omega = [12000, 16500]              # rad/s; or frequency = [1900, 2600] (Hz), or strings with units:
-                                        # "60Hz" and "2kHz" mean 2 pi 60 and 2 pi 2000 rad/s wherever written
-    harmonics = 7
-    # samples = 128                     # AFT samples per period (default 16 H rounded up to 2^k)
-    # reduction = "exact"               # "auto" (default), "exact", "modal" or "none": harmonic balance on the
-    # modes = 60                        # contact DOFs (see frequency_response); modes for "modal"
-    # engine_order = 3                  # with [cyclic]: the excitation's engine order (or in [cyclic])
-
-    [continuation]                      # optional step control (see StepControl)
-    # ds_max = 0.05
-    # max_angle = 0.1
-
-    # [modes]                           # microslip modes: a nonlinear mode (extended periodic motion concept)
-    # mode = 1                          # the linear mode, contacts stuck, it starts from (1: the lowest)
-    # amplitude = [1e-8, 1e-4]          # its modal amplitude range, kg^1/2 m (a = sqrt(m) x for a rigid mass m)
-    # dof = "x"                         # the DOF whose amplitude the plots also show (default: the first plotted)
-    # compare = true                    # also solve [excitation]'s forced response over [sweep] by harmonic
-                                        # balance and compare it with the one synthesised from the mode
-                                        # ([excitation] and [sweep] omega are optional for microslip modes)
-    # nodal_diameter = 3                # with [cyclic]: the mode's nodal diameter (default: its engine_order)
-
-    # [design]                          # microslip design: the damper's peak-response curve
-    # loads = ["3N", "20N", "300N"]     # centrifugal loads of the (one) damper: from sliding to stuck
-    # dof = 2                           # the DOF whose peak is read (an index or a name, "y" or "1113:y")
-
-    [output]
-    # plot = [0]                        # DOFs to plot, indices or names ("x"; default: all, up to 6)
-    # harmonic = 1                      # plotted amplitude: a harmonic, or omit for max |q - q0|
-    # frequency_unit = "Hz"             # of the plots and the report: "Hz" (default) or "rad/s"
-
-Every table refuses a key it does not know, naming the table and the keys it
-accepts (with the closest one when a key looks misspelled).
+The tables and keys, with their types, units, defaults and examples, are declared once in
+:mod:`microslip.config.schema`: this module reads a file against them (every table refuses a key it does
+not know, naming the table and the keys it accepts, the closest one first when a key looks misspelled, and a
+value of the wrong type) and :func:`microslip.config.reference_markdown` renders them as the reference
+(``microslip config-reference``). Every number is SI unless it is a string with a unit (``"37.5N"``,
+``"2um"``, ``"2kHz"``); paths are relative to the configuration file. ``examples/inclined_block.toml`` is a
+complete example.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -122,6 +25,7 @@ from ..common.errors import ConfigError
 from ..frequency.aft import check_harmonics, check_samples
 from ..frequency.numerics.continuation import StepControl
 from ..frequency.structures.structure import Structure
+from .schema import KEYS, REFERENCE, REQUIRED, check_types
 
 try:  # Python >= 3.11
     import tomllib as _toml
@@ -131,22 +35,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     except ModuleNotFoundError:
         _toml = None
 
-_CONTROL_KEYS = {f.name for f in fields(StepControl)}
-#: the keys each table accepts
-KEYS = {
-    "the file": ("title", "structure", "cyclic", "contact", "damper", "excitation", "sweep", "design", "continuation",
-                 "output", "modes"),
-    "[modes]": ("mode", "amplitude", "dof", "compare", "nodal_diameter"),
-    "[cyclic]": ("sectors", "left", "right", "engine_order", "frame", "axis", "point", "coordinates", "nodes"),
-    "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
-    "[[damper.interface]]": ("model", "reference", "load", "elements", "points", "angle", "platform", "name"),
-    "[design]": ("loads", "dof"),
-    "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names"),
-    "[[contact]]": ("model", "reference", "load", "elements", "tangential", "normal", "preload", "approach", "name"),
-    "[sweep]": ("omega", "frequency", "harmonics", "samples", "reduction", "modes", "engine_order"),
-    "[continuation]": tuple(sorted(_CONTROL_KEYS)),
-    "[output]": ("plot", "harmonic", "frequency_unit"),
-}
+# the keys each table accepts, their types, units, defaults and examples: declared once, in .schema
 FREQUENCY_UNITS = ("Hz", "rad/s")
 #: what ``[excitation]`` accepts (its keys name harmonics), and keys to suggest a misspelled one from
 EXCITATION_ACCEPTS = "static, h<harmonic> such as h1, phase_h<harmonic> such as phase_h1, and scale"
@@ -156,13 +45,15 @@ EXCITATION_EXAMPLES = ("static", "h1", "h2", "h3", "phase_h1", "phase_h2", "phas
 #: the references a contact may be tuned on when the configuration is read ('microslip tune --reference'), their
 #: keys (besides kind) and the defaults of the command line
 _REFERENCES = {"sphere": "sphere on a plane", "punch": "flat punch with rounded edges"}
-_REFERENCE_KEYS = {"sphere": ("radius", "E", "nu", "mu", "E2", "nu2"),
-                   "punch": ("flat_radius", "edge_radius", "mdr_elements", "E", "nu", "mu", "E2", "nu2")}
-_REFERENCE_NEEDS = {"sphere": (), "punch": ("flat_radius", "edge_radius")}
-_REFERENCE_DEFAULTS = {"radius": 5e-3, "E": 200e9, "nu": 0.3, "mu": 0.4, "mdr_elements": 2000}
-_REFERENCE_KINDS = {"radius": "length", "flat_radius": "length", "edge_radius": "length", "E": "pressure",
-                    "E2": "pressure", "nu": "dimensionless", "nu2": "dimensionless", "mu": "dimensionless"}
-_REFERENCE_EXAMPLES = {"flat_radius": '"1mm"', "edge_radius": '"5mm"', "E2": '"210GPa"', "nu2": "0.3"}
+_REFERENCE_KEYS = {kind: tuple(k.name for k in REFERENCE.keys if k.name != "kind" and kind in k.applies_to)
+                   for kind in _REFERENCES}
+_REFERENCE_NEEDS = {kind: tuple(k for k in _REFERENCE_KEYS[kind] if REFERENCE.key(k).default == REQUIRED)
+                    for kind in _REFERENCES}
+_REFERENCE_DEFAULTS = {k.name: k.default for k in REFERENCE.keys
+                       if isinstance(k.default, (int, float)) and not isinstance(k.default, bool)}
+_REFERENCE_KINDS = {k.name: {"m": "length", "Pa": "pressure", "": "dimensionless"}[k.unit] for k in REFERENCE.keys
+                    if k.type == "quantity"}
+_REFERENCE_EXAMPLES = {k.name: k.example for k in REFERENCE.keys}
 
 
 def _whole(value, what: str, path, default: int) -> int:
@@ -567,6 +458,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         raise ConfigError(f"{path}: the configuration must be a table of tables, got {type(data).__name__}")
     base = path.parent
     refuse_unknown(data, "the file", path)
+    check_types(data, "the file", path)
 
     # -- structure -------------------------------------------------------------------
     st = _table(_get(data, "structure", "the file", path), "[structure]", path)
@@ -965,6 +857,7 @@ def _table(value, where: str, path, label: str | None = None) -> dict:
     if not isinstance(value, dict):
         raise ConfigError(f"{path}: {label or where} must be a table, got {value!r}")
     refuse_unknown(value, where, path)
+    check_types(value, where, path, label)
     return value
 
 

@@ -1,6 +1,7 @@
 """The study file of ``microslip sweep``: a base configuration and the values to vary, checked before any work.
 
-Format (TOML; paths relative to the study file)::
+An example (TOML; paths relative to the study file; every table and key, declared in
+:mod:`microslip.config.schema`: ``microslip config-reference``)::
 
     base = "inclined_block.toml"        # an frf configuration (microslip frf's format)
     solve = "frf"                       # "frf" (default): forced responses; "modes": nonlinear modes ([modes])
@@ -51,12 +52,10 @@ from ..common import _checks
 from ..common._checks import close_spelling
 from .. import config
 from ..config import ConfigError, ConfigFiles, checked, config_from_data, read_toml
+from ..config.schema import STUDY_KEYS, check_types
 from .key_paths import set_key, set_key_in_place
 
-#: the study file's top-level keys and the keys of its tables
-STUDY_KEYS = {"the study file": ("base", "solve", "title", "vary", "case", "random", "mistuning"),
-              "[random]": ("samples", "seed"),
-              "[mistuning]": ("std", "samples", "seed", "reduction", "modes")}
+# the study file's keys and those of its tables (STUDY_KEYS): declared once, in microslip.config.schema
 SOLVES = ("frf", "modes")
 DISTRIBUTIONS = ("uniform", "normal", "loguniform", "choice")
 #: a number followed by a unit, as written in a configuration ("20N", "2.5um", "-3e-6 m")
@@ -231,6 +230,7 @@ def load_study(path) -> Study:
 
 def _known(table: dict, where: str, path) -> None:
     config.refuse_unknown(table, where, path, STUDY_KEYS)
+    check_types(table, where, path)
 
 
 def _checked_text(value, name: str, path) -> str:
@@ -270,6 +270,7 @@ def _listed(tables, path) -> list:
 def _random(table, path):
     if not isinstance(table, dict):
         raise ConfigError(f"{path}: [random] must be a table, got {table!r}")
+    check_types(table, "[random]", path)
     if "samples" not in table:
         raise ConfigError(f"{path}: [random] needs samples (the number of random cases)")
     samples = checked(path, "", _checks.positive_int, "[random] samples", table["samples"])
