@@ -282,6 +282,8 @@ class Prestress:
             n = zeta.size
         else:
             n = _checks.positive_int("modes", modes)
+            if n > self.structure.ndof:
+                raise ValueError(f"modes must be at most the {self.structure.ndof} DOFs of the structure, got {n}")
             if zeta.size not in (1, n):
                 raise ValueError(f"ratios must be one value or one per mode ({n}), got {zeta.size}")
         ndof = self.structure.ndof
@@ -292,7 +294,7 @@ class Prestress:
         M = self.prestressed.M
         MPhi = np.asarray(M @ m.shapes)
         C = (MPhi * (2 * np.broadcast_to(zeta, (n,)) * m.omega)) @ MPhi.T
-        return 0.5 * (C + C.T)
+        return _checks.finite_result("ratios", zeta, 0.5 * (C + C.T))
 
     def rayleigh_damping(self, ratios, modes=(1, 2)):
         """``C = alpha M + beta K_p`` (N s/m) with the given damping ratios on two prestressed modes.
@@ -323,13 +325,18 @@ class Prestress:
         k1, k2 = (_checks.positive_int(f"modes[{i}]", k) for i, k in enumerate(modes))
         if k1 == k2:
             raise ValueError(f"modes must be two different modes, got {modes!r}")
+        if max(k1, k2) > self.structure.ndof:
+            raise ValueError(f"modes must be at most the {self.structure.ndof} DOFs of the structure, got {modes!r}")
         w = self.modes(max(k1, k2)).omega[[k1 - 1, k2 - 1]]
         # zeta_k = alpha / (2 w_k) + beta w_k / 2, two equations in alpha and beta
         alpha, beta = np.linalg.solve([[0.5 / w[0], 0.5 * w[0]], [0.5 / w[1], 0.5 * w[1]]], z)
         M, K = self.prestressed.M, self.stiffness()
+        _checks.finite_result("ratios", z, (alpha, beta))
         if sp.issparse(M) or sp.issparse(K):
-            return (alpha * sp.csr_matrix(M) + beta * sp.csr_matrix(K)).tocsr()
-        return alpha * np.asarray(M) + beta * np.asarray(K)
+            C = (alpha * sp.csr_matrix(M) + beta * sp.csr_matrix(K)).tocsr()
+            _checks.finite_result("ratios", z, C.data)
+            return C
+        return _checks.finite_result("ratios", z, alpha * np.asarray(M) + beta * np.asarray(K))
 
     def with_damping(self, C) -> Prestress:
         """This prestress with the viscous damping ``C`` (N s/m, ``(ndof, ndof)``, symmetric) on the structure solved.
