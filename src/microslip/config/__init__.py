@@ -9,7 +9,8 @@ configurations through the functions here.
 """
 
 from .frf import (EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, ConfigFiles, FrfConfig, ModesTable,
-                  checked, config_from_data, harmonic_key, load_config, read_toml, refuse_unknown)
+                  PrestressTable, checked, config_from_data, harmonic_key, load_config, read_toml, refuse_unknown)
 
 __all__ = ["EXCITATION_ACCEPTS", "EXCITATION_EXAMPLES", "KEYS", "ConfigError", "ConfigFiles", "FrfConfig", "ModesTable",
-           "checked", "config_from_data", "harmonic_key", "load_config", "read_toml", "refuse_unknown"]
+           "PrestressTable", "checked", "config_from_data", "harmonic_key", "load_config", "read_toml",
+           "refuse_unknown"]

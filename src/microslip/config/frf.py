@@ -93,6 +93,15 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
                                         # ([excitation] and [sweep] omega are optional for microslip modes)
     # nodal_diameter = 3                # with [cyclic]: the mode's nodal diameter (default: its engine_order)
 
+    # [prestress]                        # a static step first (a bolted joint): the static loads (preloads, [excitation]
+    # friction = "released"             # static, the dampers' centrifugal loads) with the friction "released"
+                                        # (frictionless, then every contact's sliders reset there: the dynamics start
+                                        # stuck at that state) or "stuck" (loaded from the unloaded state)
+    # modes = 6                         # linear modes of the prestressed structure reported (contacts stuck there)
+    # modal_damping = [0.01, 0.02]      # C from damping ratios on the prestressed modes, one per mode (replaces C),
+    # rayleigh_damping = [0.01, 0.02]   # or C = alpha M + beta K_p with these ratios on two prestressed modes,
+    # rayleigh_modes = [1, 2]           # these ones (default the first two)
+
     # [design]                          # microslip design: the damper's peak-response curve
     # loads = ["3N", "20N", "300N"]     # centrifugal loads of the (one) damper: from sliding to stuck
     # dof = 2                           # the DOF whose peak is read (an index or a name, "y" or "1113:y")
@@ -134,7 +143,8 @@ _CONTROL_KEYS = {f.name for f in fields(StepControl)}
 #: the keys each table accepts
 KEYS = {
     "the file": ("title", "structure", "cyclic", "contact", "damper", "excitation", "sweep", "design", "continuation",
-                 "output", "modes"),
+                 "output", "modes", "prestress"),
+    "[prestress]": ("friction", "modes", "modal_damping", "rayleigh_damping", "rayleigh_modes"),
     "[modes]": ("mode", "amplitude", "dof", "compare", "nodal_diameter"),
     "[cyclic]": ("sectors", "left", "right", "engine_order", "frame", "axis", "point", "coordinates", "nodes"),
     "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
@@ -281,6 +291,23 @@ class FrfConfig:
     design_loads: np.ndarray | None = None
     design_dof: int | None = None
     nonlinear_mode: ModesTable | None = None
+    prestress: PrestressTable | None = None
+
+
+@dataclass
+class PrestressTable:
+    """The ``[prestress]`` table: the friction state of the static step, the modes reported, a damping fitted on them.
+
+    ``modal_damping``: one damping ratio per prestressed mode (``C`` from them,
+    :meth:`~microslip.frequency.Prestress.modal_damping`); ``rayleigh_damping``:
+    two ratios on the ``rayleigh_modes`` (:meth:`~microslip.frequency.Prestress.rayleigh_damping`).
+    """
+
+    friction: str = "released"
+    modes: int = 6
+    modal_damping: np.ndarray | None = None
+    rayleigh_damping: tuple[float, float] | None = None
+    rayleigh_modes: tuple[int, int] = (1, 2)
 
 
 @dataclass
@@ -742,9 +769,59 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
             mode_table.nodal_diameter = engine_order
         elif engine_order is None and mode_table.nodal_diameter is not None:
             raise ConfigError(f"{path}: [modes] nodal_diameter needs a [cyclic] table (one sector of a bladed disk)")
+    prestress = None
+    if "prestress" in data:
+        if isinstance(structure, CyclicStructure):
+            raise ConfigError(f"{path}: [prestress] is not available for a [cyclic] sector")
+        prestress = prestress_table(_table(data["prestress"], "[prestress]", path), ndof, path)
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
-                     design_loads, design_dof, mode_table)
+                     design_loads, design_dof, mode_table, prestress)
+
+
+def prestress_table(table: dict, ndof: int, path) -> PrestressTable:
+    """``[prestress]`` checked (its keys refused by the caller when unknown): see :class:`PrestressTable`."""
+    from ..frequency.analyses.prestressed import FRICTION_STATES
+
+    out = PrestressTable(modes=min(PrestressTable.modes, ndof))
+    if "friction" in table:
+        out.friction = table["friction"]
+        if out.friction not in FRICTION_STATES:
+            raise ConfigError(f"{path}: [prestress] friction must be one of {', '.join(map(repr, FRICTION_STATES))}, "
+                              f"got {out.friction!r}")
+    if "modes" in table:
+        out.modes = checked(path, "", _checks.positive_int, "[prestress] modes", table["modes"])
+    if "modal_damping" in table and "rayleigh_damping" in table:
+        raise ConfigError(f"{path}: [prestress] give either modal_damping or rayleigh_damping, not both")
+    if "rayleigh_modes" in table and "rayleigh_damping" not in table:
+        raise ConfigError(f"{path}: [prestress] rayleigh_modes goes with rayleigh_damping = [ratio1, ratio2]")
+    if "modal_damping" in table:
+        value = table["modal_damping"]
+        if not isinstance(value, list) or not value:
+            raise ConfigError(f"{path}: [prestress] modal_damping must be a list of damping ratios, one per prestressed "
+                              f"mode from the lowest, e.g. [0.01, 0.02], got {value!r}")
+        out.modal_damping = checked(path, "", _checks.positive_array, "[prestress] modal_damping", value, ndim=1,
+                                    allow_zero=True)
+        out.modes = max(out.modes, out.modal_damping.size)
+    if "rayleigh_damping" in table:
+        value = table["rayleigh_damping"]
+        if not isinstance(value, list) or len(value) != 2:
+            raise ConfigError(f"{path}: [prestress] rayleigh_damping must be two damping ratios [ratio1, ratio2] (on "
+                              f"rayleigh_modes, default the first two), got {value!r}")
+        out.rayleigh_damping = tuple(checked(path, "", _checks.positive_array, "[prestress] rayleigh_damping", value,
+                                             ndim=1, allow_zero=True).tolist())
+        modes = table.get("rayleigh_modes", [1, 2])
+        if not isinstance(modes, list) or len(modes) != 2:
+            raise ConfigError(f"{path}: [prestress] rayleigh_modes must be two mode numbers such as [1, 2], got "
+                              f"{modes!r}")
+        out.rayleigh_modes = tuple(checked(path, "", _checks.positive_int, f"[prestress] rayleigh_modes[{i}]", m)
+                                   for i, m in enumerate(modes))
+        if out.rayleigh_modes[0] == out.rayleigh_modes[1]:
+            raise ConfigError(f"{path}: [prestress] rayleigh_modes must be two different modes, got {modes!r}")
+        out.modes = max(out.modes, *out.rayleigh_modes)
+    if out.modes > ndof:
+        raise ConfigError(f"{path}: [prestress] asks for {out.modes} prestressed modes; the structure has {ndof} DOFs")
+    return out
 
 
 def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> ModesTable:
