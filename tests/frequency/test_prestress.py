@@ -263,3 +263,40 @@ def test_compiled_equations_with_reset_sliders_equal_their_twin():
     assert np.max(np.abs(Rw - Rw2)) <= 1e-12 * np.max(np.abs(Rw2))
     hb.t_ref = np.zeros(1)  # the reference matters here: without it the contact's force differs
     assert np.max(np.abs(hb.evaluate(x, 900.0, jacobian=False) - R)) > 1e-3 * np.max(np.abs(R))
+
+
+# -- a cyclic sector against its assembled disk ----------------------------------------------------------------
+def test_a_prestressed_sector_equals_the_prestressed_assembled_disk():
+    from microslip.frequency import CyclicStructure
+
+    sectors = 5
+    K = np.array([[3e6, -1e6, -1e6, 0.0], [-1e6, 3e6, -1e6, 0.0], [-1e6, -1e6, 3e6, -1e6], [0.0, 0.0, -1e6, 1e6]])
+    M = np.diag([0.05, 0.05, 0.08, 0.03])
+    d = CyclicStructure(M, 1e-6 * K + 2.0 * M, K, sectors=sectors, left=[0], right=[1])
+    model = MicroslipModel([2e5, 3e5], [1e6, 2e6], [0.0, 1e-6], 0.4)
+    # a joint inside the sector (tip on platform), pressed by a preload, and one between the sectors' platforms
+    d.add_contact(model, tangential={3: 1.0, 2: -1.0}, normal={0: 1.0}, preload=30.0, name="root")
+    d.add_contact(model, tangential={2: 1.0, d.next(2): -1.0}, approach=5e-6, name="platforms")
+    d.add_static_force([0.0, 0.0, 0.0, 8.0])  # e.g. a centrifugal load on the tip
+    whole = d.assembled()
+    p_sector = prestress(d, friction="released")
+    p_whole = prestress(whole, friction="released", reduction="none")
+    assert p_sector.tangential_displacement[0] != 0.0  # the reset matters
+    # every sector of the disk stands as the sector does (its independent DOFs: the disk's first sector)
+    ind = d.independent
+    k = ind.size
+    for s in range(sectors):
+        assert np.allclose(p_whole.displacement[s * k:(s + 1) * k], p_sector.displacement[ind], rtol=0,
+                           atol=1e-10 * np.max(np.abs(p_sector.displacement)))
+    assert np.allclose(np.tile(p_sector.normal_force, sectors), p_whole.normal_force, rtol=1e-10)
+    # the forced response of engine order 1 at an amplitude where the joints slip
+    f = np.array([0.0, 0.0, 0.0, 3.0])
+    omega = 0.95 * p_sector.modes(1, nodal_diameter=1).omega[0]
+    r_sector = frequency_point(d, f, omega, harmonics=3, engine_order=1, prestress=p_sector, samples=16 * sectors,
+                               stability=False)
+    r_whole = frequency_point(whole, d.travelling_wave(f, 1)[1], omega, harmonics=3, prestress=p_whole,
+                              samples=16 * sectors, stability=False)
+    assert r_sector.contact_dissipation[0].sum() > 1e-2 * r_sector.excitation_work[0]
+    tip = r_sector.dof_coefficients(3)[0]
+    tip_whole = r_whole.dof_coefficients(k - 1)[0]  # sector 0's tip (independent DOFs 0, 2, 3)
+    assert np.max(np.abs(tip - tip_whole)) <= 1e-8 * np.max(np.abs(tip))

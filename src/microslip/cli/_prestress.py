@@ -44,7 +44,11 @@ def prestressed(cfg, table, force: dict):
 def report_prestress(report, p, table, cfg, out) -> list[str]:
     """The prestress's section of a report (its CSV written to ``out``); returns the lines to print."""
     csv = p.to_csv(out / "prestress.csv")
-    modes = p.modes(min(table.modes, cfg.structure.ndof))
+    sector = getattr(cfg.structure, "independent", None)  # a cyclic sector: its modes in the engine order's diameter
+    if sector is None:
+        modes = p.modes(min(table.modes, cfg.structure.ndof))
+    else:
+        modes = p.modes(min(table.modes, sector.size), nodal_diameter=cfg.engine_order % cfg.structure.sectors)
     hz = cfg.frequency_unit == "Hz"
     damping = ("" if table.modal_damping is None and table.rayleigh_damping is None else
                " The viscous damping was fitted on these modes: "
@@ -65,6 +69,7 @@ def report_prestress(report, p, table, cfg, out) -> list[str]:
     report.table(["mode", f"frequency ({'Hz' if hz else 'rad/s'})"],
                  [[str(k + 1), f"{(modes.frequency if hz else modes.omega)[k]:.6g}"] for k in range(len(modes))],
                  caption="Linear modes of the prestressed structure (contacts stuck at the prestress: the closed "
-                         "elements' stiffness)")
+                         "elements' stiffness)" + ("" if sector is None else
+                                                   f", nodal diameter {cfg.engine_order % cfg.structure.sectors}"))
     return [p.summary(), "prestressed modes (" + ("Hz" if hz else "rad/s") + "): "
             + ", ".join(f"{f:.6g}" for f in (modes.frequency if hz else modes.omega))]

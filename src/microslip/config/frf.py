@@ -771,9 +771,11 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
             raise ConfigError(f"{path}: [modes] nodal_diameter needs a [cyclic] table (one sector of a bladed disk)")
     prestress = None
     if "prestress" in data:
-        if isinstance(structure, CyclicStructure):
-            raise ConfigError(f"{path}: [prestress] is not available for a [cyclic] sector")
         prestress = prestress_table(_table(data["prestress"], "[prestress]", path), ndof, path)
+        if isinstance(structure, CyclicStructure) and (prestress.modal_damping is not None
+                                                       or prestress.rayleigh_damping is not None):
+            raise ConfigError(f"{path}: [prestress] modal_damping and rayleigh_damping are for a structure that is "
+                              f"not cyclic (a sector's prestressed modes depend on the nodal diameter)")
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
                      design_loads, design_dof, mode_table, prestress)

@@ -44,10 +44,12 @@ def prestress(structure: Structure, load=None, *, friction: str = "released", re
 
     Parameters
     ----------
-    structure : Structure
+    structure : Structure or CyclicStructure
         The structure with its contacts; their ``preload`` and the structure's
         static forces (:meth:`~microslip.frequency.Structure.add_static_force`,
-        e.g. centrifugal loads) are static loads of the prestress.
+        e.g. centrifugal loads) are static loads of the prestress. A cyclic
+        sector is prestressed as every sector of its disk (the static loads
+        the same on every sector: nodal diameter 0).
     load : array_like or mapping, optional
         A further static load (N): ``ndof`` values or ``{dof: N}`` (DOF
         indices, or names ``"node:component"`` with a DOF map), real.
@@ -76,7 +78,7 @@ def prestress(structure: Structure, load=None, *, friction: str = "released", re
     TypeError, ValueError
         A parameter of the wrong type or value (the message names it); a
         structure with a direction that nothing but friction holds (it has no
-        static equilibrium with the friction released); a cyclic sector.
+        static equilibrium with the friction released).
     ConvergenceError
         When Newton's method fails on the static problem.
 
@@ -88,9 +90,7 @@ def prestress(structure: Structure, load=None, *, friction: str = "released", re
     """
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
-    if isinstance(structure, CyclicStructure):
-        raise ValueError("structure: a prestress of a cyclic sector is not available; prestress the assembled disk "
-                         "(CyclicStructure.assembled()) or give the static loads to the sector's solvers")
+    cyclic = isinstance(structure, CyclicStructure)
     friction = _checks.one_of("friction", friction, FRICTION_STATES)
     tolerance = _checks.in_range("tolerance", tolerance, 0.0, 1.0, lo_open=True, hi_open=True)
     f = np.zeros(structure.ndof) if load is None else structure.force_vector(load, "load")
@@ -98,12 +98,17 @@ def prestress(structure: Structure, load=None, *, friction: str = "released", re
         raise TypeError(f"load (a static force) must be real, got {_checks._show(load)}")
     loaded = _copy_structure(structure)
     loaded.static_force = structure.static_force + f
-    static, _, (reduction, _) = _equations(loaded, {}, 0, None, MAX_PERIODS, reduction, modes)
+    # a sector's static state is the same in every sector: its diameter 0, which engine order 0 solves
+    static, _, (reduction, _) = _equations(loaded, {}, 0, None, MAX_PERIODS, reduction, modes,
+                                           engine_order=0 if cyclic else None)
     if friction == "released":
         release_friction(static)
     x, N0, T0, closed, T0_2 = _static_state(static, tolerance=tolerance)
     q = static._full(x, 1.0)[0]
     Bt, Bn, n0 = structure.contact_directions()
+    if cyclic:  # the next sector stands as this one does, in its own frame
+        Bt_next, Bn_next = structure.contact_directions_next()
+        Bt, Bn = Bt + Bt_next, Bn + Bn_next
     t, t2, n = q @ Bt, q @ structure.second_tangential_directions(), q @ Bn + n0
     if friction == "released":  # every slider reset where its contact stands: no force, stuck from there
         loaded.contacts = [replace(c, reference=float(t[i]), reference2=float(t2[i]) if c.planar else 0.0)

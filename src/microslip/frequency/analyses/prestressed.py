@@ -26,6 +26,7 @@ import scipy.sparse.linalg as spla
 from ...common import _checks
 from ...common._io import write_csv
 from ..equations.epmc import DENSE_EIGEN, stuck_matrices
+from ..structures.cyclic import CyclicStructure
 from ..structures.structure import Structure, check_symmetric, refuse_indefinite
 
 #: the friction states of a prestress
@@ -44,7 +45,8 @@ class PrestressedModes:
         Natural frequencies (rad/s), ascending.
     shapes : ndarray, shape (ndof, n)
         Mode shapes, mass-normalised (``shapes.T @ M @ shapes = I``, unit kg^-1/2),
-        each with its largest entry positive.
+        each with its largest entry real and positive (a sector's: complex, on its
+        independent DOFs, in the nodal diameter asked for).
     """
 
     omega: np.ndarray
@@ -199,9 +201,15 @@ class Prestress:
         open element adds nothing. Stored like ``K`` (dense or sparse). It is
         the stiffness the dynamic analysis sees at small amplitude.
         """
+        self._refuse_sector("stiffness", "modes(n, nodal_diameter)")
         return stuck_matrices(self.prestressed, self.displacement)[2]
 
-    def modes(self, n: int = 6) -> PrestressedModes:
+    def _refuse_sector(self, what: str, instead: str) -> None:
+        if isinstance(self.structure, CyclicStructure):
+            raise ValueError(f"{what} is for a structure that is not cyclic; a sector's prestressed stiffness depends "
+                             f"on the nodal diameter: use {instead}")
+
+    def modes(self, n: int = 6, nodal_diameter: int | None = None) -> PrestressedModes:
         """The ``n`` lowest linear modes of the structure with its contacts stuck at the prestress.
 
         Parameters
@@ -209,6 +217,11 @@ class Prestress:
         n : int, default 6
             Number of modes (at most ``ndof``; at most ``ndof - 1`` for a
             sparse structure above :data:`~microslip.frequency.equations.epmc.DENSE_EIGEN` DOFs).
+        nodal_diameter : int, optional
+            For a :class:`~microslip.frequency.CyclicStructure` sector (required
+            there): the modes of that nodal diameter (0 to ``N - 1``), on the
+            sector's independent DOFs (complex shapes, mass-normalised
+            ``shapes^H M shapes = I``).
 
         Returns
         -------
@@ -219,22 +232,35 @@ class Prestress:
         ValueError
             ``n`` out of range, or a mode without stiffness (a part moving freely).
         """
-        ndof = self.structure.ndof
+        cyclic = isinstance(self.structure, CyclicStructure)
+        if cyclic:
+            if nodal_diameter is None:
+                raise ValueError(f"nodal_diameter must be given for a CyclicStructure sector (0 to "
+                                 f"{self.structure.sectors - 1})")
+            nd = _checks.positive_int("nodal_diameter", nodal_diameter, minimum=0)
+            if nd >= self.structure.sectors:
+                raise ValueError(f"nodal_diameter must be below the number of sectors {self.structure.sectors}, "
+                                 f"got {nd}")
+            ndof = self.structure.independent.size
+        elif nodal_diameter is not None:
+            raise ValueError(f"nodal_diameter is only for a CyclicStructure sector, got {nodal_diameter!r}")
+        else:
+            nd, ndof = None, self.structure.ndof
         dense = ndof <= DENSE_EIGEN
         n = _checks.positive_int("n", n)
         if n > (ndof if dense else ndof - 1):
             raise ValueError(f"n must be at most {ndof if dense else ndof - 1} (the structure has {ndof} DOFs), "
                              f"got {n}")
-        if n not in self._modes:
-            self._modes[n] = self._solve_modes(n, dense)
-        return self._modes[n]
+        if (n, nd) not in self._modes:
+            self._modes[(n, nd)] = self._solve_modes(n, dense, nd)
+        return self._modes[(n, nd)]
 
-    def _solve_modes(self, n: int, dense: bool) -> PrestressedModes:
-        M, K = self.prestressed.M, self.stiffness()
+    def _solve_modes(self, n: int, dense: bool, nodal_diameter: int | None) -> PrestressedModes:
+        M, _, K = stuck_matrices(self.prestressed, self.displacement, nodal_diameter)
         if dense:
             Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
             Md = M.toarray() if sp.issparse(M) else np.asarray(M)
-            lam, vec = sla.eigh(0.5 * (Kd + Kd.T), Md, subset_by_index=[0, n - 1])
+            lam, vec = sla.eigh(0.5 * (Kd + Kd.conj().T), 0.5 * (Md + Md.conj().T), subset_by_index=[0, n - 1])
             refuse_indefinite(lam, Kd, Md, "the structure with its contacts stuck at the prestress")
         else:
             Ks, Ms = sp.csc_matrix(K), sp.csc_matrix(M)
@@ -243,12 +269,12 @@ class Prestress:
             refuse_indefinite(lam, Ks, Ms, "the structure with its contacts stuck at the prestress")
             order = np.argsort(lam)
             lam, vec = lam[order], vec[:, order]
-            vec = vec / np.sqrt(np.einsum("ik,ik->k", vec, Ms @ vec))
+            vec = vec / np.sqrt(np.real(np.einsum("ik,ik->k", vec.conj(), Ms @ vec)))
         if not lam[0] > 0:
             raise ValueError(f"the structure with its contacts stuck at the prestress has a mode without stiffness "
                              f"(natural frequency {np.sqrt(max(lam[0], 0.0)):.3g} rad/s): a part of it moves freely")
         big = vec[np.argmax(np.abs(vec), axis=0), np.arange(n)]
-        vec = vec * np.sign(big)
+        vec = vec * (np.abs(big) / big)  # largest entry real and positive
         omega, shapes = np.sqrt(lam), vec
         omega.setflags(write=False)
         shapes.setflags(write=False)
@@ -286,6 +312,7 @@ class Prestress:
                 raise ValueError(f"modes must be at most the {self.structure.ndof} DOFs of the structure, got {n}")
             if zeta.size not in (1, n):
                 raise ValueError(f"ratios must be one value or one per mode ({n}), got {zeta.size}")
+        self._refuse_sector("modal_damping", "the assembled disk (CyclicStructure.assembled())")
         ndof = self.structure.ndof
         if ndof > MODAL_DAMPING_LIMIT:
             raise ValueError(f"modal_damping builds a dense ndof x ndof matrix; this structure has {ndof} DOFs "
@@ -317,6 +344,7 @@ class Prestress:
         ndarray or scipy.sparse matrix, shape (ndof, ndof)
             Stored like ``K`` (dense, or sparse CSR).
         """
+        self._refuse_sector("rayleigh_damping", "the assembled disk (CyclicStructure.assembled())")
         z = _checks.positive_array("ratios", ratios, ndim=1, allow_zero=True)
         if z.size != 2:
             raise ValueError(f"ratios must be two damping ratios, got {z.size}")
