@@ -193,6 +193,10 @@ def test_time_integration_from_the_prestress_agrees_with_harmonic_balance():
     # (no reset) moves the mean by half the amplitude
     assert ts.amplitude(1, 1) == pytest.approx(a, rel=1e-3)
     assert abs(ts.coefficients[0, 1] - hb.coefficients[0, 0, 1]) <= 1e-3 * a
+    # started on the harmonic balance solution, its contacts in the state harmonic balance assumes (reset sliders)
+    on = steady_state(s, force, omega, prestress=p, harmonics=9, steps_per_period=2048, start=hb)
+    assert on.amplitude(1, 1) == pytest.approx(a, rel=1e-3)
+    assert abs(on.coefficients[0, 1] - hb.coefficients[0, 0, 1]) <= 1e-3 * a
 
 
 def test_damping_fitted_on_the_prestressed_modes():

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 
@@ -14,31 +12,6 @@ def add_prestress_option(parser) -> None:
                              "the dampers' centrifugal loads): 'released' solves the static state without friction "
                              "and resets the contacts there, 'stuck' loads them from the unloaded state; the "
                              "dynamics start from it (overrides [prestress] friction, or adds that table)")
-
-
-def prestress_table(cfg, friction: str | None):
-    """The configuration's ``[prestress]`` table, with ``--prestress`` FRICTION applied (None: no prestress)."""
-    from ..config import PrestressTable
-
-    table = cfg.prestress
-    if friction is None:
-        return table
-    return PrestressTable(friction=friction) if table is None else replace(table, friction=friction)
-
-
-def prestressed(cfg, table, force: dict):
-    """``(prestress, dynamic force)``: the static state of ``cfg.structure`` under its loads and ``force[0]``,
-    damped as the table asks, and the force without its static part (the prestress carries it)."""
-    from ..frequency import prestress
-
-    static = force.get(0)
-    p = prestress(cfg.structure, None if static is None else np.real(static), friction=table.friction,
-                  reduction=cfg.reduction, modes=cfg.modes)
-    if table.modal_damping is not None:
-        p = p.with_damping(p.modal_damping(table.modal_damping))
-    elif table.rayleigh_damping is not None:
-        p = p.with_damping(p.rayleigh_damping(table.rayleigh_damping, modes=table.rayleigh_modes))
-    return p, {h: v for h, v in force.items() if h != 0}
 
 
 def report_prestress(report, p, table, cfg, out) -> list[str]:

@@ -9,7 +9,7 @@ import numpy as np
 from ..common.units import display_unit
 from ._args import add_output_folder
 from ._contacts import static_tangential
-from ._prestress import add_prestress_option, prestress_table, prestressed, report_prestress
+from ._prestress import add_prestress_option, report_prestress
 
 
 def add_parser(sub) -> None:
@@ -85,21 +85,18 @@ def run(args) -> int:
     from ..frequency import (ConvergenceError, IncompleteCurveWarning, NotPeriodicError, UnderResolvedWarning,
                              frequency_response)
     from ..frequency.analyses.response import CurveInterrupted, PeakOnEdgeWarning, edge_message, incomplete_message
-    from ..config import load_config
+    from ..config import apply_prestress, load_config
     from ..common.report import Report, plural
     from ._contacts import add_section
 
     cfg = load_config(args.config)
     out = Path(args.out)
-    table = prestress_table(cfg, getattr(args, "prestress", None))
     interrupted = None
-    state, force = None, cfg.force
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("ignore", IncompleteCurveWarning)  # reported below, as an error
             warnings.simplefilter("always", UnderResolvedWarning)  # printed and written in the report below
-            if table is not None:
-                state, force = prestressed(cfg, table, cfg.force)
+            state, table, force = apply_prestress(cfg, cfg.force, getattr(args, "prestress", None))
             result = frequency_response(cfg.structure, force, cfg.omega, harmonics=cfg.harmonics,
                                         samples=cfg.samples, control=cfg.control, progress=not args.quiet,
                                         reduction=cfg.reduction, modes=cfg.modes, engine_order=cfg.engine_order,

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ._args import add_output_folder, percent
-from ._prestress import add_prestress_option, prestress_table, prestressed, report_prestress
+from ._prestress import add_prestress_option, report_prestress
 
 #: rows of the report's table: one per this fraction of a decade of amplitude
 _ROWS_PER_DECADE = 2
@@ -144,7 +144,7 @@ def run(args) -> int:
     from ..common.report import Report, plural
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, StepControl, nonlinear_modes
     from ..frequency.analyses.response import CurveInterrupted
-    from ..config import load_config
+    from ..config import apply_prestress, load_config
     from .frf import _static_text
 
     cfg = load_config(args.config, nonlinear=True)
@@ -152,9 +152,9 @@ def run(args) -> int:
     out = Path(args.out)
     structure = cfg.structure
     force = _force(cfg)
-    prestress = prestress_table(cfg, getattr(args, "prestress", None))
-    state = None
-    if 0 in force and prestress is None:  # a static force is part of the state the mode vibrates about
+    prestressing = cfg.prestress is not None or getattr(args, "prestress", None) is not None
+    state = prestress = None
+    if 0 in force and not prestressing:  # a static force is part of the state the mode vibrates about
         structure.add_static_force(force[0].real)
     import warnings
 
@@ -162,8 +162,8 @@ def run(args) -> int:
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", IncompleteCurveWarning)
-            if prestress is not None:  # the static force is the prestress's
-                state, force = prestressed(cfg, prestress, force)
+            if prestressing:  # the static force is the prestress's
+                state, prestress, force = apply_prestress(cfg, force, getattr(args, "prestress", None))
             mode = nonlinear_modes(structure, table.mode, table.amplitude, harmonics=cfg.harmonics,
                                    samples=cfg.samples, reduction=cfg.reduction, modes=cfg.modes,
                                    control=None if cfg.control == StepControl() else cfg.control,

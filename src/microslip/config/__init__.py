@@ -9,8 +9,8 @@ configurations through the functions here.
 """
 
 from .frf import (EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, ConfigFiles, FrfConfig, ModesTable,
-                  PrestressTable, checked, config_from_data, harmonic_key, load_config, read_toml, refuse_unknown)
+                  PrestressTable, apply_prestress, checked, config_from_data, harmonic_key, load_config, read_toml, refuse_unknown)
 
 __all__ = ["EXCITATION_ACCEPTS", "EXCITATION_EXAMPLES", "KEYS", "ConfigError", "ConfigFiles", "FrfConfig", "ModesTable",
-           "PrestressTable", "checked", "config_from_data", "harmonic_key", "load_config", "read_toml",
+           "PrestressTable", "apply_prestress", "checked", "config_from_data", "harmonic_key", "load_config", "read_toml",
            "refuse_unknown"]

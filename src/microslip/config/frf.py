@@ -781,6 +781,33 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
                      design_loads, design_dof, mode_table, prestress)
 
 
+def apply_prestress(cfg: FrfConfig, force: dict, friction: str | None = None):
+    """``(prestress, table, dynamic force)``: the configuration's ``[prestress]`` solved on ``cfg.structure``.
+
+    ``friction`` (``"released"`` or ``"stuck"``, e.g. a command line's) overrides the table's, or prestresses a
+    configuration without one. The static load is ``force[0]`` (N, ``[excitation] static``); the damping the
+    table asks for is fitted on the prestressed modes. Without a prestress: ``(None, None, force)``; else the
+    force without its static part (the prestress carries it).
+    """
+    from dataclasses import replace as _replace
+
+    from ..frequency import prestress
+
+    table = cfg.prestress
+    if friction is not None:
+        table = PrestressTable(friction=friction) if table is None else _replace(table, friction=friction)
+    if table is None:
+        return None, None, force
+    static = force.get(0)
+    p = prestress(cfg.structure, None if static is None else np.real(static), friction=table.friction,
+                  reduction=cfg.reduction, modes=cfg.modes)
+    if table.modal_damping is not None:
+        p = p.with_damping(p.modal_damping(table.modal_damping))
+    elif table.rayleigh_damping is not None:
+        p = p.with_damping(p.rayleigh_damping(table.rayleigh_damping, modes=table.rayleigh_modes))
+    return p, table, {h: v for h, v in force.items() if h != 0}
+
+
 def prestress_table(table: dict, ndof: int, path) -> PrestressTable:
     """``[prestress]`` checked (its keys refused by the caller when unknown): see :class:`PrestressTable`."""
     from ..frequency.analyses.prestressed import FRICTION_STATES
