@@ -101,3 +101,12 @@ def test_prestress_table_errors_name_the_key(chain_config, old, new, words):
     with pytest.raises(ConfigError) as info:
         load_config(chain_config)
     assert words in str(info.value)
+
+
+def test_a_design_study_case_solves_the_prestress(chain_config):
+    from microslip.study.solve import _frf
+
+    for friction, T0 in (("released", 0.0), ("stuck", 1e6 * 40.0 * 2e6 / 3e12)):
+        chain_config.write_text(CONFIG.replace('friction = "released"', f'friction = "{friction}"'))
+        row, _ = _frf(load_config(chain_config))
+        assert row["static T0 joint (N)"] == pytest.approx(T0, abs=1e-9)
