@@ -933,6 +933,29 @@ CASES += [
     case("SweepResult.amplification", lambda: a_sweep().amplification, refused_only=True, dof="x"),
     case("SweepResult.to_csv", lambda: a_sweep().to_csv, kinds=PATH, path="summary.csv"),
 ]
+
+
+def a_prestress():
+    return microslip.frequency.prestress(jenkins_structure(), [1.0], friction="released")
+
+
+def two_dof_prestress():
+    s = Structure(M=np.eye(2), C=None, K=[[2e4, -1e4], [-1e4, 1e4]])
+    s.add_contact(MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0), tangential=1, approach=1e-6)
+    return microslip.frequency.prestress(s, [0.0, 1.0], friction="stuck")
+
+
+CASES += [
+    case("frequency.prestress", lambda: microslip.frequency.prestress, structure=L(jenkins_structure), load=[1.0],
+         friction="released", reduction="none", modes=None, tolerance=1e-10),
+    case("Prestress.modes", lambda: a_prestress().modes, n=1),
+    case("Prestress.modal_damping", lambda: a_prestress().modal_damping, ratios=[0.01], modes=1),
+    case("Prestress.rayleigh_damping", lambda: two_dof_prestress().rayleigh_damping, ratios=[0.01, 0.02],
+         modes=(1, 2)),
+    case("Prestress.with_damping", lambda: a_prestress().with_damping, C=[[2.0]]),
+    case("Prestress.to_csv", lambda: a_prestress().to_csv, kinds=PATH, path="prestress.csv"),
+]
+
 CASE = {c.name: c for c in CASES}
 assert len(CASE) == len(CASES), "two entries of CASES share a name"
 
@@ -958,6 +981,7 @@ NOT_FUZZED = {
     "SweepResult.plot": "draws",
     "ContactReference": "a protocol: what a reference provides, nothing to call",
     "NonlinearModes.synthesize": "the deprecated name of NonlinearModes.forced_response, fuzzed under that name",
+    "Prestress.plot": "draws",
 }
 
 #: classes whose objects the package builds and returns (their constructors are not an entry point)
@@ -965,7 +989,8 @@ RESULTS = {"AccuracyReport", "AFTResult", "PlaneAFTResult", "Contact", "ElementS
            "LoadValidation", "LoopTuning", "Loops", "MDRModel", "MeasuredContact", "ReferenceRun", "Response",
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
            "DesignCurve", "CampbellDiagram", "SpeedCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes",
-           "SynthesizedResponse", "SweepResult", "Study", "Case", "Mistuning", "ContactPatch"}
+           "SynthesizedResponse", "SweepResult", "Study", "Case", "Mistuning", "ContactPatch", "Prestress",
+           "PrestressedModes"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",
                   "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe", "microslip.study")

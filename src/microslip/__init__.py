@@ -39,10 +39,10 @@ from .accuracy import AccuracyReport, accuracy, paths
 from .measured import (FittedBackbone, LoopTuning, MeasuredContact, Validation, fit_backbone, loops, tune_on_loops,
                        validate)
 from .frequency import (CampbellDiagram, ContactCycle, CraigBampton, CyclicStructure, DesignCurve, FrequencyResponse,
-                        NonlinearModes, SpeedCurve, SpeedModel, SteadyState, StepControl, Structure,
+                        NonlinearModes, Prestress, SpeedCurve, SpeedModel, SteadyState, StepControl, Structure,
                         SynthesizedResponse, UnderPlatformDamper, campbell, contact_cycle, craig_bampton,
                         damper_design_curve, damper_speed_curve, frequency_point, frequency_response, nonlinear_modes,
-                        static_solution, steady_state)
+                        prestress, static_solution, steady_state)
 from .study import SweepResult, sweep
 from . import config
 
@@ -79,6 +79,7 @@ __all__ = [
     "FrequencyResponse", "frequency_point", "frequency_response", "static_solution",
     "NonlinearModes", "SynthesizedResponse", "nonlinear_modes",
     "SteadyState", "steady_state",
+    "Prestress", "prestress",
     "ContactCycle", "contact_cycle",
     "DesignCurve", "damper_design_curve",
     "CampbellDiagram", "SpeedCurve", "campbell", "damper_speed_curve",

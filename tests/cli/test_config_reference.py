@@ -112,6 +112,7 @@ def _used(data: dict, tables=schema.FRF_TABLES) -> set:
             child = {"structure": "[structure]", "cyclic": "[cyclic]", "contact": "[[contact]]", "damper": "[[damper]]",
                      "excitation": "[excitation]", "sweep": "[sweep]", "design": "[design]",
                      "continuation": "[continuation]", "output": "[output]", "modes": "[modes]",
+                     "prestress": "[prestress]",
                      "interface": "[[damper.interface]]", "reference": "reference", "vary": "[vary]",
                      "case": "[[case]]", "random": "[random]", "mistuning": "[mistuning]"}.get(key)
             if child in by and isinstance(value, dict):
@@ -143,7 +144,9 @@ def _documents(folder):
                             'reference = {kind = "sphere", radius = "5mm", E = "200GPa", nu = 0.3, mu = 0.4, '
                             'E2 = "210GPa", nu2 = 0.3}\nload = "40N"\nelements = 3\napproach = "1um"')
                    .replace("omega = [12000, 18000]", "frequency = [1900, 2900]")
-                   .replace('reduction = "exact"', 'reduction = "modal"\nmodes = 1'))
+                   .replace('reduction = "exact"', 'reduction = "modal"\nmodes = 1')
+                   + '\n[prestress]\nfriction = "stuck"\nmodes = 2\nrayleigh_damping = [0.01, 0.02]\n'
+                     'rayleigh_modes = [1, 2]\n')
     docs.append((two, True))
     # 3. one finite-element file with its variables' names and a DOF map; a punch tuned when the file is read
     np.savez(folder / "fe.npz", MGG=M, KGG=K)
@@ -154,7 +157,8 @@ def _documents(folder):
                      .replace('model = "sphere_4_elements.json"',
                               'reference = {kind = "punch", flat_radius = "0.5mm", edge_radius = "5mm", '
                               'mdr_elements = 200}\nload = "40N"')
-                     .replace('plot = ["x", "y"]', 'plot = ["7:x", "7:y"]').replace('dof = "x"', 'dof = "7:x"'))
+                     .replace('plot = ["x", "y"]', 'plot = ["7:x", "7:y"]').replace('dof = "x"', 'dof = "7:x"')
+                     + '\n[prestress]\nfriction = "released"\nmodal_damping = [0.01, 0.02]\n')
     docs.append((three, True))
     # 4. the blade pair with its damper as one sector of a disk (engine order in [cyclic]), its design table
     pair = write_config(folder, lambda t: t.replace("damping = 200.0", 'damping = 200.0\nretention = "1e3N/m"')

@@ -41,6 +41,9 @@ def run(args) -> int:
     cfg = load_config(args.config)
     if cfg.design_loads is None:
         raise ConfigError(f"{args.config}: microslip design needs a [design] table (loads, dof)")
+    if cfg.prestress is not None:
+        raise ConfigError(f"{args.config}: [prestress] is read by microslip frf and modes; microslip design varies "
+                          f"the damper's load, which changes the static state at every load: remove [prestress]")
     out = Path(args.out)
     force = {h: v[:cfg.bare.ndof] for h, v in cfg.force.items()}
     interrupted = None

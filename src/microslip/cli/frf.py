@@ -9,6 +9,7 @@ import numpy as np
 from ..common.units import display_unit
 from ._args import add_output_folder
 from ._contacts import static_tangential
+from ._prestress import add_prestress_option, report_prestress
 
 
 def add_parser(sub) -> None:
@@ -33,8 +34,12 @@ def add_parser(sub) -> None:
                     "and in the report. Plots and the report give frequencies in Hz unless [output] "
                     "frequency_unit = \"rad/s\"; frf.csv has both. A contact that opens and closes faster than "
                     "the AFT samples resolve is named in a warning and in the report, with the [sweep] samples "
-                    "that resolve it.")
+                    "that resolve it. With a [prestress] table (or --prestress) the structure is first prestressed "
+                    "under its static loads with the friction released or stuck, the dynamics start from that "
+                    "state, and prestress.csv holds each contact's static state (the report adds the prestressed "
+                    "structure's linear modes).")
     p.add_argument("config", help="TOML configuration file")
+    add_prestress_option(p)
     add_output_folder(p, "microslip-frf")
     p.set_defaults(func=run)
 
@@ -80,7 +85,7 @@ def run(args) -> int:
     from ..frequency import (ConvergenceError, IncompleteCurveWarning, NotPeriodicError, UnderResolvedWarning,
                              frequency_response)
     from ..frequency.analyses.response import CurveInterrupted, PeakOnEdgeWarning, edge_message, incomplete_message
-    from ..config import load_config
+    from ..config import apply_prestress, load_config
     from ..common.report import Report, plural
     from ._contacts import add_section
 
@@ -91,9 +96,11 @@ def run(args) -> int:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("ignore", IncompleteCurveWarning)  # reported below, as an error
             warnings.simplefilter("always", UnderResolvedWarning)  # printed and written in the report below
-            result = frequency_response(cfg.structure, cfg.force, cfg.omega, harmonics=cfg.harmonics,
+            state, table, force = apply_prestress(cfg, cfg.force, getattr(args, "prestress", None))
+            result = frequency_response(cfg.structure, force, cfg.omega, harmonics=cfg.harmonics,
                                         samples=cfg.samples, control=cfg.control, progress=not args.quiet,
-                                        reduction=cfg.reduction, modes=cfg.modes, engine_order=cfg.engine_order)
+                                        reduction=cfg.reduction, modes=cfg.modes, engine_order=cfg.engine_order,
+                                        prestress=state)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip frf: error: {exc}", file=sys.stderr)
         return 1
@@ -124,6 +131,9 @@ def run(args) -> int:
                 f"excitation frequency from {lo:.6g} to {hi:.6g} {cfg.frequency_unit}; {reduced}.")
     report.table(["harmonic", "DOF", "amplitude (N)", "phase (°)"], _excitation_rows(cfg),
                  caption="Excitation: force amplitude on each DOF (static: a constant force)")
+    if state is not None:
+        for line in report_prestress(report, state, table, cfg, out):
+            print(line)
     report.text(f"{result.points} points in {result.elapsed:.3g} s "
                 f"({result.iterations.sum()} Newton iterations). Curve: `frf.csv` (SI units, ω in rad/s and f in "
                 f"Hz).")

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ._args import add_output_folder, percent
+from ._prestress import add_prestress_option, report_prestress
 
 #: rows of the report's table: one per this fraction of a decade of amplitude
 _ROWS_PER_DECADE = 2
@@ -33,8 +34,12 @@ def add_parser(sub) -> None:
                     "and the mode's frequency and damping; shows progress on standard error. Exit status: 0 on "
                     "success, 1 when the solution fails or the mode stops before the end of its amplitude range "
                     "(the results up to there are written), 2 for an invalid configuration, 130 when interrupted "
-                    "(Ctrl-C: the mode up to there is written).")
+                    "(Ctrl-C: the mode up to there is written). With a [prestress] table (or --prestress) the "
+                    "mode vibrates about the prestressed state (the static loads with the friction released or "
+                    "stuck) and starts from the prestressed structure's linear mode; prestress.csv holds each "
+                    "contact's static state.")
     p.add_argument("config", help="TOML configuration file with a [modes] table")
+    add_prestress_option(p)
     add_output_folder(p, "microslip-modes")
     p.set_defaults(func=run)
 
@@ -69,7 +74,8 @@ def _plots(mode, cfg, dof: int):
     return fig
 
 
-def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: bool, lines: list) -> None:
+def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: bool, lines: list,
+               state=None) -> None:
     """The forced response synthesised from the mode, and compared with harmonic balance when asked for."""
     import matplotlib.pyplot as plt
 
@@ -98,7 +104,8 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
         try:
             curve = frequency_response(structure, hb_force, cfg.omega, harmonics=cfg.harmonics, samples=cfg.samples,
                                        control=cfg.control, progress=not quiet, reduction=cfg.reduction,
-                                       modes=cfg.modes, stability=False, engine_order=cfg.engine_order)
+                                       modes=cfg.modes, stability=False, engine_order=cfg.engine_order,
+                                       prestress=state)
         except (ConvergenceError, NotPeriodicError) as exc:
             text += f" Harmonic balance over [sweep], to compare, failed: {exc}."
             compare = False
@@ -137,7 +144,7 @@ def run(args) -> int:
     from ..common.report import Report, plural
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, StepControl, nonlinear_modes
     from ..frequency.analyses.response import CurveInterrupted
-    from ..config import load_config
+    from ..config import apply_prestress, load_config
     from .frf import _static_text
 
     cfg = load_config(args.config, nonlinear=True)
@@ -145,7 +152,9 @@ def run(args) -> int:
     out = Path(args.out)
     structure = cfg.structure
     force = _force(cfg)
-    if 0 in force:  # a static force is part of the state the mode vibrates about
+    prestressing = cfg.prestress is not None or getattr(args, "prestress", None) is not None
+    state = prestress = None
+    if 0 in force and not prestressing:  # a static force is part of the state the mode vibrates about
         structure.add_static_force(force[0].real)
     import warnings
 
@@ -153,10 +162,12 @@ def run(args) -> int:
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", IncompleteCurveWarning)
+            if prestressing:  # the static force is the prestress's
+                state, prestress, force = apply_prestress(cfg, force, getattr(args, "prestress", None))
             mode = nonlinear_modes(structure, table.mode, table.amplitude, harmonics=cfg.harmonics,
                                    samples=cfg.samples, reduction=cfg.reduction, modes=cfg.modes,
                                    control=None if cfg.control == StepControl() else cfg.control,
-                                   progress=not args.quiet, nodal_diameter=table.nodal_diameter)
+                                   progress=not args.quiet, nodal_diameter=table.nodal_diameter, prestress=state)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip modes: error: {exc}", file=sys.stderr)
         return 1
@@ -196,6 +207,9 @@ def run(args) -> int:
                 f"iterations). The mode: `modes.csv` (SI units).")
     report.text(summary)
     print(summary)
+    if state is not None:
+        for line in report_prestress(report, state, prestress, cfg, out):
+            print(line)
     report.table(["modal amplitude (kg^1/2 m)", f"{cfg.dof_names[dof]} harmonic 1 (µm)", f"frequency ({unit})",
                   "damping ratio (%)", "contacts' share (%)"], _rows(mode, cfg, dof),
                  caption="The mode at about two amplitudes per decade and where it damps most")
@@ -211,7 +225,7 @@ def run(args) -> int:
     lines = []
     if 1 in force and np.any(force[1]) and interrupted is None:
         try:
-            _synthesis(report, mode, cfg, dof, force[1], structure, out, args.quiet, lines)
+            _synthesis(report, mode, cfg, dof, force[1], structure, out, args.quiet, lines, state)
         except ValueError as exc:  # no resonance within the mode's range: said, the mode is still written
             report.text(f"**Synthesis**: {exc}.")
             print(f"microslip modes: warning: synthesis: {exc}", file=sys.stderr)

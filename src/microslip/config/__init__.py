@@ -11,9 +11,10 @@ configurations through the functions here.
 """
 
 from .frf import (EXCITATION_ACCEPTS, EXCITATION_EXAMPLES, KEYS, ConfigError, ConfigFiles, FrfConfig, ModesTable,
-                  checked, config_from_data, harmonic_key, load_config, read_toml, refuse_unknown)
+                  PrestressTable, apply_prestress, checked, config_from_data, harmonic_key, load_config, read_toml,
+                  refuse_unknown)
 from .schema import reference_markdown
 
 # the rest imported above serves the command line and the study files (microslip.study), not users
-__all__ = ["ConfigError", "FrfConfig", "ModesTable", "config_from_data", "load_config", "read_toml",
+__all__ = ["ConfigError", "FrfConfig", "ModesTable", "PrestressTable", "config_from_data", "load_config", "read_toml",
            "reference_markdown"]

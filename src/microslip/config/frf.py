@@ -169,6 +169,23 @@ class FrfConfig:
     design_loads: np.ndarray | None = None
     design_dof: int | None = None
     nonlinear_mode: ModesTable | None = None
+    prestress: PrestressTable | None = None
+
+
+@dataclass
+class PrestressTable:
+    """The ``[prestress]`` table: the friction state of the static step, the modes reported, a damping fitted on them.
+
+    ``modal_damping``: one damping ratio per prestressed mode (``C`` from them,
+    :meth:`~microslip.frequency.Prestress.modal_damping`); ``rayleigh_damping``:
+    two ratios on the ``rayleigh_modes`` (:meth:`~microslip.frequency.Prestress.rayleigh_damping`).
+    """
+
+    friction: str = "released"
+    modes: int = 6
+    modal_damping: np.ndarray | None = None
+    rayleigh_damping: tuple[float, float] | None = None
+    rayleigh_modes: tuple[int, int] = (1, 2)
 
 
 @dataclass
@@ -631,9 +648,88 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
             mode_table.nodal_diameter = engine_order
         elif engine_order is None and mode_table.nodal_diameter is not None:
             raise ConfigError(f"{path}: [modes] nodal_diameter needs a [cyclic] table (one sector of a bladed disk)")
+    prestress = None
+    if "prestress" in data:
+        prestress = prestress_table(_table(data["prestress"], "[prestress]", path), ndof, path)
+        if isinstance(structure, CyclicStructure) and (prestress.modal_damping is not None
+                                                       or prestress.rayleigh_damping is not None):
+            raise ConfigError(f"{path}: [prestress] modal_damping and rayleigh_damping are for a structure that is "
+                              f"not cyclic (a sector's prestressed modes depend on the nodal diameter)")
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
-                     design_loads, design_dof, mode_table)
+                     design_loads, design_dof, mode_table, prestress)
+
+
+def apply_prestress(cfg: FrfConfig, force: dict, friction: str | None = None):
+    """``(prestress, table, dynamic force)``: the configuration's ``[prestress]`` solved on ``cfg.structure``.
+
+    ``friction`` (``"released"`` or ``"stuck"``, e.g. a command line's) overrides the table's, or prestresses a
+    configuration without one. The static load is ``force[0]`` (N, ``[excitation] static``); the damping the
+    table asks for is fitted on the prestressed modes. Without a prestress: ``(None, None, force)``; else the
+    force without its static part (the prestress carries it).
+    """
+    from dataclasses import replace as _replace
+
+    from ..frequency import prestress
+
+    table = cfg.prestress
+    if friction is not None:
+        table = PrestressTable(friction=friction) if table is None else _replace(table, friction=friction)
+    if table is None:
+        return None, None, force
+    static = force.get(0)
+    p = prestress(cfg.structure, None if static is None else np.real(static), friction=table.friction,
+                  reduction=cfg.reduction, modes=cfg.modes)
+    if table.modal_damping is not None:
+        p = p.with_damping(p.modal_damping(table.modal_damping))
+    elif table.rayleigh_damping is not None:
+        p = p.with_damping(p.rayleigh_damping(table.rayleigh_damping, modes=table.rayleigh_modes))
+    return p, table, {h: v for h, v in force.items() if h != 0}
+
+
+def prestress_table(table: dict, ndof: int, path) -> PrestressTable:
+    """``[prestress]`` checked (its keys refused by the caller when unknown): see :class:`PrestressTable`."""
+    from ..frequency.analyses.prestressed import FRICTION_STATES
+
+    out = PrestressTable(modes=min(PrestressTable.modes, ndof))
+    if "friction" in table:
+        out.friction = table["friction"]
+        if out.friction not in FRICTION_STATES:
+            raise ConfigError(f"{path}: [prestress] friction must be one of {', '.join(map(repr, FRICTION_STATES))}, "
+                              f"got {out.friction!r}")
+    if "modes" in table:
+        out.modes = checked(path, "", _checks.positive_int, "[prestress] modes", table["modes"])
+    if "modal_damping" in table and "rayleigh_damping" in table:
+        raise ConfigError(f"{path}: [prestress] give either modal_damping or rayleigh_damping, not both")
+    if "rayleigh_modes" in table and "rayleigh_damping" not in table:
+        raise ConfigError(f"{path}: [prestress] rayleigh_modes goes with rayleigh_damping = [ratio1, ratio2]")
+    if "modal_damping" in table:
+        value = table["modal_damping"]
+        if not isinstance(value, list) or not value:
+            raise ConfigError(f"{path}: [prestress] modal_damping must be a list of damping ratios, one per prestressed "
+                              f"mode from the lowest, e.g. [0.01, 0.02], got {value!r}")
+        out.modal_damping = checked(path, "", _checks.positive_array, "[prestress] modal_damping", value, ndim=1,
+                                    allow_zero=True)
+        out.modes = max(out.modes, out.modal_damping.size)
+    if "rayleigh_damping" in table:
+        value = table["rayleigh_damping"]
+        if not isinstance(value, list) or len(value) != 2:
+            raise ConfigError(f"{path}: [prestress] rayleigh_damping must be two damping ratios [ratio1, ratio2] (on "
+                              f"rayleigh_modes, default the first two), got {value!r}")
+        out.rayleigh_damping = tuple(checked(path, "", _checks.positive_array, "[prestress] rayleigh_damping", value,
+                                             ndim=1, allow_zero=True).tolist())
+        modes = table.get("rayleigh_modes", [1, 2])
+        if not isinstance(modes, list) or len(modes) != 2:
+            raise ConfigError(f"{path}: [prestress] rayleigh_modes must be two mode numbers such as [1, 2], got "
+                              f"{modes!r}")
+        out.rayleigh_modes = tuple(checked(path, "", _checks.positive_int, f"[prestress] rayleigh_modes[{i}]", m)
+                                   for i, m in enumerate(modes))
+        if out.rayleigh_modes[0] == out.rayleigh_modes[1]:
+            raise ConfigError(f"{path}: [prestress] rayleigh_modes must be two different modes, got {modes!r}")
+        out.modes = max(out.modes, *out.rayleigh_modes)
+    if out.modes > ndof:
+        raise ConfigError(f"{path}: [prestress] asks for {out.modes} prestressed modes; the structure has {ndof} DOFs")
+    return out
 
 
 def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> ModesTable:

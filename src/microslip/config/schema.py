@@ -164,6 +164,8 @@ FILE = Table("the file", "The top level of the file: a title and the tables belo
     _k("continuation", "table", "", None, "The continuation's step control: `[continuation]`.", "[continuation]"),
     _k("output", "table", "", None, "What is plotted: `[output]`.", "[output]"),
     _k("modes", "table", "", None, "The nonlinear mode of `microslip modes`: `[modes]` (required there).", "[modes]"),
+    _k("prestress", "table", "", None, "A static step before the dynamics (a bolted joint): `[prestress]`.",
+       "[prestress]"),
 ))
 
 STRUCTURE = Table("[structure]", "The linear structure `M q'' + C q' + K q = f`: its matrices inline, from a "
@@ -363,9 +365,24 @@ DESIGN = Table("[design]", "The damper's design curve of `microslip design`: the
     _k("dof", "integer | string | number", "", REQUIRED, "The DOF whose peak is read.", "2", expects=_A_DOF),
 ), "[design]")
 
+PRESTRESS = Table("[prestress]", "A static step first (a bolted joint): the static loads (the contacts' preloads, "
+                  "`[excitation] static`, the dampers' centrifugal loads) with the friction released or stuck; the "
+                  "dynamics then start from that state with every contact's sliders reset there.", (
+    _k("friction", "string", "", "released", "`\"released\"` (a frictionless static solve, then the sliders reset "
+       "there: the dynamics start stuck at that state) or `\"stuck\"` (loaded from the unloaded state).",
+       '"released"', expects='"released" or "stuck"'),
+    _k("modes", "integer", "", None, "Linear modes of the prestressed structure (contacts stuck there) to report.",
+       "6"),
+    _k("modal_damping", "list", "", None, "Damping ratios on the prestressed modes, one per mode: `C` from them "
+       "(replaces `C`; not for a sector).", "[0.01, 0.02]"),
+    _k("rayleigh_damping", "list", "", None, "Two damping ratios: `C = alpha M + beta K_p` with these ratios on two "
+       "prestressed modes (not for a sector).", "[0.01, 0.02]"),
+    _k("rayleigh_modes", "list", "", [1, 2], "The two prestressed modes `rayleigh_damping` is fitted on.", "[1, 2]"),
+), "[prestress]")
+
 #: the tables of the frf configuration, in the order the reference shows them
 FRF_TABLES = (FILE, STRUCTURE, CONTACT, REFERENCE, CYCLIC, DAMPER, INTERFACE, EXCITATION, SWEEP, CONTINUATION,
-              OUTPUT, MODES, DESIGN)
+              OUTPUT, MODES, PRESTRESS, DESIGN)
 
 # --- the study file ----------------------------------------------------------------------------------------------
 

@@ -35,7 +35,11 @@
 * :func:`craig_bampton` -- a smaller :class:`Structure` on kept DOFs plus
   fixed-interface modes, with its recovery matrix;
 * :func:`steady_state` -- direct time integration
-  to the periodic steady state (an independent check).
+  to the periodic steady state (an independent check);
+* :func:`prestress` -- bolt and contact prestress: the static state with the
+  friction released or stuck, then the dynamic analyses from it
+  (``prestress=`` of the solvers), the prestressed structure's linear modes
+  and a damping fitted on them (:class:`Prestress`).
 """
 
 import importlib as _importlib
@@ -61,6 +65,8 @@ from .analyses.response import (FrequencyResponse, IncompleteCurveWarning, frequ
 from .structures.structure import Contact, Structure
 from .analyses.synthesis import SynthesizedResponse
 from .analyses.transient import SteadyState, steady_state
+from .analyses.prestressed import Prestress, PrestressedModes
+from .analyses.prestress import prestress
 
 # The modules' paths before the package was laid out by role keep working (the same module objects).
 _MOVED = {"continuation": "numerics.continuation", "structure": "structures.structure", "cyclic": "structures.cyclic",
@@ -97,6 +103,8 @@ __all__ = [
     "NonlinearModes",
     "NotPeriodicError",
     "PlaneAFTResult",
+    "Prestress",
+    "PrestressedModes",
     "SingularInteriorError",
     "StepControl",
     "SteadyState",
@@ -120,6 +128,7 @@ __all__ = [
     "mistuned_disk",
     "nonlinear_modes",
     "plot_contact_cycles",
+    "prestress",
     "static_solution",
     "steady_state",
     "time_samples",

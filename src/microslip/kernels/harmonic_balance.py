@@ -15,7 +15,7 @@ from .aft import _aft_contact
 
 
 @nb.njit(cache=True, nogil=True)
-def evaluate_dense(x, omega, Kx, Cx, Mx, MD, xi, lo, hi, f, Bt, Bn, n0, kt, kn, gaps, offsets, mu,
+def evaluate_dense(x, omega, Kx, Cx, Mx, MD, xi, lo, hi, f, Bt, Bn, n0, t0, kt, kn, gaps, offsets, mu,
                    E, P, cos2, sin2, cum, max_periods, jacobian,
                    R, J, Rw, FT, FN, JTt, JTn, JNn, periods):  # pragma: no cover - compiled
     """Write ``R`` (n), and if ``jacobian`` ``J`` (n, n) and ``Rw`` (n).
@@ -24,7 +24,8 @@ def evaluate_dense(x, omega, Kx, Cx, Mx, MD, xi, lo, hi, f, Bt, Bn, n0, kt, kn, 
     The linear part is ``Kx + omega (Cx - xi MD) - omega^2 Mx`` (``MD`` is read
     only when ``xi`` is not zero); row ``r`` of each of these matrices is zero
     outside the columns ``lo[r] <= s < hi[r]`` (the harmonic it belongs to), so
-    only those are read and the rest of ``J``'s row is set to zero.
+    only those are read and the rest of ``J``'s row is set to zero. Contact
+    ``c`` sees ``t = Bt[:, c] . q - t0[c]`` and ``n = Bn[:, c] . q + n0[c]``.
     Returns the smallest period count of the contacts (``-1``: one was not periodic).
     """
     n = x.shape[0]
@@ -68,6 +69,7 @@ def evaluate_dense(x, omega, Kx, Cx, Mx, MD, xi, lo, hi, f, Bt, Bn, n0, kt, kn, 
             xt[p] = a
             xn[p] = b
         xn[0] += n0[c]
+        xt[0] -= t0[c]
         lo = offsets[c]
         hi = offsets[c + 1]
         k = _aft_contact(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[c], xt, xn, E, P, cos2, sin2, cum,

@@ -65,9 +65,11 @@ def frf_arguments(cfg) -> dict:
 
 
 def _frf(cfg):
+    from ..config import apply_prestress
     from ..frequency import frequency_response
 
-    result = frequency_response(cfg.structure, cfg.force, cfg.omega, **frf_arguments(cfg))
+    state, _, force = apply_prestress(cfg, cfg.force)  # a [prestress]: the static step first
+    result = frequency_response(cfg.structure, force, cfg.omega, **frf_arguments(cfg), prestress=state)
     amplitude = np.column_stack([result.amplitude(d, cfg.harmonic) for d in cfg.plot_dofs])
     return _frf_row(cfg, result, amplitude), _frf_curves(result, amplitude)
 
@@ -80,6 +82,8 @@ def _mistuned(study: Study, cfg, sample: int):
     from ..frequency.analyses.response import curve_peak
 
     m = study.mistuning
+    if cfg.prestress is not None:
+        raise ValueError("[prestress] is not available with [mistuning] (the mistuned disk is assembled whole)")
     sector = cfg.structure
     scatter = blade_scatter(sector.sectors, m.std, seed=m.seed, sample=sample)
     disk = mistuned_disk(sector, scatter, blade_dofs=range(cfg.bare.ndof))
@@ -139,12 +143,14 @@ def _frf_curves(result, amplitude) -> dict:
 
 
 def _modes(study: Study, cfg):
+    from ..config import apply_prestress
     from ..frequency import nonlinear_modes
 
     t = cfg.nonlinear_mode
+    state = apply_prestress(cfg, cfg.force)[0]  # a [prestress]: the mode vibrates about its state
     mode = nonlinear_modes(cfg.structure, t.mode, t.amplitude, harmonics=cfg.harmonics, samples=cfg.samples,
                            reduction=cfg.reduction, modes=cfg.modes, control=cfg.control,
-                           nodal_diameter=t.nodal_diameter)
+                           nodal_diameter=t.nodal_diameter, prestress=state)
     amplitude = np.column_stack([mode.amplitude(d, 1) for d in cfg.plot_dofs])
     k = int(np.argmax(mode.damping_ratio))
     row = {"linear frequency (Hz)": float(mode.linear_frequency / (2 * np.pi)),

@@ -32,6 +32,7 @@ from ..reduction.choice import modal_error
 from .response import (CurveInterrupted, FrequencyResponse, IncompleteCurveWarning, _check_determined,
                        _check_resolution, _static_state, follow)
 from ..structures.structure import Structure
+from .prestressed import prestressed_structure
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -255,7 +256,8 @@ def default_control(lo: float, hi: float) -> StepControl:
 def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4), *, harmonics: int = 3,
                     samples: int | None = None, reduction: str = "auto", modes: int | None = None,
                     control: StepControl | None = None, progress: bool = False,
-                    max_periods: int = MAX_PERIODS, nodal_diameter: int | None = None) -> NonlinearModes:
+                    max_periods: int = MAX_PERIODS, nodal_diameter: int | None = None,
+                    prestress=None) -> NonlinearModes:
     """A damped nonlinear mode over a range of amplitudes (extended periodic motion concept).
 
     The unforced structure with the extra damping ``-xi M q'`` is solved for its
@@ -309,6 +311,12 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         to engine order ``k``), condensed exactly in each diameter;
         ``mode`` counts the modes of that diameter. The result reports this
         sector (:attr:`NonlinearModes.engine_order` is ``k``).
+    prestress : Prestress, optional
+        Vibrate about the static state of :func:`~microslip.frequency.prestress`
+        on this structure: its :attr:`~microslip.frequency.Prestress.prestressed`
+        structure is solved (the result's ``structure``), and the linear mode
+        the nonlinear one starts from is :meth:`Prestress.modes
+        <microslip.frequency.Prestress.modes>`'s.
 
     Returns
     -------
@@ -336,6 +344,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     start = time.perf_counter()
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+    structure = prestressed_structure(structure, prestress)
     diameter = _check_diameter(structure, nodal_diameter)
     mode = _check_mode(structure, mode)
     lo, hi = _amplitude_range(amplitude)

@@ -30,6 +30,7 @@ from ..equations.build import build_equations
 from ..equations.cyclic_balance import check_engine_order, phase_operator
 from ..equations.reduced import ReducedHarmonicBalance
 from ..reduction.choice import modal_error
+from .prestressed import prestressed_structure
 from .stability import assess
 from ..structures.structure import Structure, direction, dof_label
 
@@ -545,9 +546,12 @@ def _static_state(hb, *, tolerance: float = 1e-10):
     structure = hb.structure
     # start from the structure with every contact element closed and stuck
     rhs = hb.f.copy()
+    Bt, Bn = hb.static_directions()
     for i, c in enumerate(structure.contacts):
         m = c.model
-        rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * hb.static_directions()[1][:, i]
+        rhs += (m.kn @ m.gaps - m.kn.sum() * c.approach) * Bn[:, i]
+        # stuck where the sliders were reset (a prestress's), not at t = 0
+        rhs += m.kt.sum() * (c.reference * Bt[:, i] + c.reference2 * hb.Bt2[:, i])
     # the residual's scale: the loads, or the contacts' interference forces when nothing else loads it
     r_scale = max(float(np.max(np.abs(rhs))), float(np.max(np.abs(hb.f))), 1e-30)
     K = hb.stuck_stiffness()
@@ -568,7 +572,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
                        control: StepControl | None = None, progress: bool = False,
                        max_periods: int = MAX_PERIODS, reduction: str = "auto",
                        modes: int | None = None, engine_order: int | None = None,
-                       stability: bool = True) -> FrequencyResponse:
+                       stability: bool = True, prestress=None) -> FrequencyResponse:
     """Forced response of a structure with microslip contacts over a frequency range.
 
     Harmonic balance with ``harmonics`` harmonics plus the static term (the
@@ -622,6 +626,13 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         locate the folds and other bifurcations between points, while the Hill
         problem has at most ``stability.HILL_LIMIT`` (20000) unknowns (else, and
         for a cyclic sector, :attr:`FrequencyResponse.stable` is None).
+    prestress : Prestress, optional
+        Start from the static state of :func:`~microslip.frequency.prestress`
+        on this structure (the static loads and friction state there, the
+        sliders reset at it with the friction released): its
+        :attr:`~microslip.frequency.Prestress.prestressed` structure is solved
+        (and is the result's ``structure``); ``force`` then holds harmonics
+        ``>= 1`` only.
     engine_order : int, optional
         For a :class:`~microslip.frequency.CyclicStructure` (required there):
         the engine order ``EO`` of the travelling-wave excitation; ``force``
@@ -656,6 +667,7 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     stability = _checks.flag("stability", stability)
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+    structure = prestressed_structure(structure, prestress, force)
     with small_dense(structure, check_harmonics(harmonics, minimum=0)):  # small systems solved many times
         hb, x, x_scale, r_scale, static = _first_point(structure, force, harmonics, samples, max_periods, lo, hi,
                                                        reduction, modes, engine_order)
@@ -798,7 +810,7 @@ def _first_point(structure, force, harmonics, samples, max_periods, lo, hi, redu
 def frequency_point(structure: Structure, force, omega: float, *, harmonics: int = 5, samples: int | None = None,
                     max_periods: int = MAX_PERIODS, reduction: str = "auto",
                     modes: int | None = None, engine_order: int | None = None,
-                    stability: bool = True) -> FrequencyResponse:
+                    stability: bool = True, prestress=None) -> FrequencyResponse:
     """The harmonic balance solution at one frequency, reached from the static state by Newton's method.
 
     Where the response has several solutions at ``omega`` (past a fold) this is
@@ -807,7 +819,7 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
 
     Parameters
     ----------
-    structure, force, harmonics, samples, max_periods, reduction, modes, engine_order, stability
+    structure, force, harmonics, samples, max_periods, reduction, modes, engine_order, stability, prestress
         As in :func:`frequency_response`.
     omega : float
         Excitation frequency (rad/s).
@@ -820,6 +832,9 @@ def frequency_point(structure: Structure, force, omega: float, *, harmonics: int
     start = time.perf_counter()
     omega = HarmonicBalance._omega(omega)
     stability = _checks.flag("stability", stability)
+    if not isinstance(structure, Structure):
+        raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+    structure = prestressed_structure(structure, prestress, force)
     hb, x, _, _, static = _first_point(structure, force, harmonics, samples, max_periods, omega, omega, reduction,
                                        modes, engine_order)
     result = _collect(hb, x[None, :], np.array([omega]), np.array([0]), static, True)

@@ -39,6 +39,7 @@ from ...kernels import (aft as _aft, plane_march as _plane_march, transient as _
                         transient_plane as _transient_plane)
 from ..aft import MAX_HARMONICS, MAX_PERIODS, MAX_TABLE, check_periodic, check_table
 from ..equations.hbm import excitation
+from .prestressed import prestressed_structure
 from .response import FrequencyResponse, static_solution
 from ..structures.structure import Structure, direction
 
@@ -126,7 +127,8 @@ def _periodic_start(structure: Structure, coefficients, steps: int):
     q = _aft.tables(H, steps)[0] @ coefficients  # tau_k = 2 pi k / steps
     Bt, Bn, n0 = structure.contact_directions()
     Bt2 = structure.second_tangential_directions()
-    t, t2, n = q @ Bt, q @ Bt2, q @ Bn + n0
+    ref, ref2 = structure.tangential_references()
+    t, t2, n = q @ Bt - ref, q @ Bt2 - ref2, q @ Bn + n0  # t from where the sliders were reset
     kt, kn, gaps, offsets, mu = structure.packed_models()
     planar = _planar(structure)
     sliders = np.zeros((2, kt.size))
@@ -134,7 +136,8 @@ def _periodic_start(structure: Structure, coefficients, steps: int):
     for i in range(len(structure.contacts)):
         lo, hi = offsets[i], offsets[i + 1]
         law = (kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i])
-        mean = coefficients[0] @ Bt[:, i], coefficients[0] @ Bt2[:, i], coefficients[0] @ Bn[:, i] + n0[i]
+        mean = (coefficients[0] @ Bt[:, i] - ref[i], coefficients[0] @ Bt2[:, i] - ref2[i],
+                coefficients[0] @ Bn[:, i] + n0[i])
         roll = [np.roll(x[:, i], -1) for x in (t, t2, n)]  # tau_1, ..., tau_(steps-1), 2 pi: the period ends at 0
         if planar[i]:  # the AFT's own periodic state, on these samples
             periods = _plane_march.periodic_state_of_samples(*law, *mean, *roll, MAX_PERIODS, sliders[:, lo:hi])
@@ -147,6 +150,7 @@ def _periodic_start(structure: Structure, coefficients, steps: int):
             march(*law, roll[0], roll[2], s, T, N, NO_WORK, NO_ELEMENTS, NO_CONDITIONS)
             if np.array_equal(before, s):
                 break
+    sliders += np.repeat(np.stack([ref, ref2]), np.diff(offsets), axis=1)  # back to where t is measured from
     return q[-1].copy(), q[0].copy(), sliders.ravel() if planar.any() else sliders[0].copy()
 
 
@@ -226,15 +230,20 @@ class PeriodMap:
         if self.planar.any():
             both = np.zeros((2, kt.size))
             sliders = both[0]
+        ref, ref2 = self.structure.tangential_references()  # the sliders' reset positions: t is measured from there
         for i in range(len(self.structure.contacts)):
             lo, hi = offsets[i], offsets[i + 1]
             if self.planar[i]:
-                both[:, lo:hi] = _plane_march.static_sliders(self.structure.contacts[i].model, self.Bt[:, i] @ q,
-                                                             self.Bt2[:, i] @ q, self.Bn[:, i] @ q + self.n0[i])
+                both[:, lo:hi] = _plane_march.static_sliders(self.structure.contacts[i].model,
+                                                             self.Bt[:, i] @ q - ref[i], self.Bt2[:, i] @ q - ref2[i],
+                                                             self.Bn[:, i] @ q + self.n0[i])
+                both[0, lo:hi] += ref[i]
+                both[1, lo:hi] += ref2[i]
                 continue
-            march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([self.Bt[:, i] @ q]),
+            march(kt[lo:hi], kn[lo:hi], gaps[lo:hi], mu[i], np.array([self.Bt[:, i] @ q - ref[i]]),
                   np.array([self.Bn[:, i] @ q + self.n0[i]]), sliders[lo:hi], np.empty(1), np.empty(1), NO_WORK,
                   NO_ELEMENTS, NO_CONDITIONS)
+            sliders[lo:hi] += ref[i]
         return q.copy(), q, both.ravel() if self.planar.any() else sliders
 
     def integrate(self, q_prev, q, sliders, out) -> None:
@@ -262,7 +271,7 @@ class PeriodMap:
 
 def steady_state(structure: Structure, force, omega: float, *, steps_per_period: int = 4096,
                  harmonics: int = 7, tolerance: float = 1e-7, max_periods: int = 5000,
-                 progress: bool = False, start: FrequencyResponse | None = None) -> SteadyState:
+                 progress: bool = False, start: FrequencyResponse | None = None, prestress=None) -> SteadyState:
     """Integrate in time until the periodic steady state.
 
     Parameters
@@ -293,6 +302,12 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
         contacts in the state harmonic balance assumes for it (see the
         module: the steady state of a contact with elements that stick
         throughout depends on where it starts).
+    prestress : Prestress, optional
+        Start from the static state of :func:`~microslip.frequency.prestress`
+        on this structure (at rest there by default, the sliders where the
+        prestress left them): its :attr:`~microslip.frequency.Prestress.prestressed`
+        structure is integrated; ``force`` then holds harmonics ``>= 1`` only.
+        A ``start`` is then a solution with the same prestress.
 
     Returns
     -------
@@ -300,6 +315,7 @@ def steady_state(structure: Structure, force, omega: float, *, steps_per_period:
     """
     if not isinstance(structure, Structure):
         raise TypeError(f"structure must be a microslip Structure, got {type(structure).__name__}")
+    structure = prestressed_structure(structure, prestress, force)
     omega = _checks.positive_scalar("omega", omega)
     _checks.finite_result("omega", omega, omega * omega)  # the step's M / dt^2
     steps = _checks.size("steps_per_period", steps_per_period, minimum=8)

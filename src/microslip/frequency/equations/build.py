@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+import numpy as np
+
 from ..aft import MAX_PERIODS
 from ..reduction.choice import (choose_reduction, cyclic_linear_part, cyclic_reduction, linear_part,
                                 retained_dofs)
@@ -101,3 +103,19 @@ def build_equations(structure: Structure, force, static_force, harmonics: int, *
     dynamic = DampedReducedBalance if damped else ReducedHarmonicBalance
     return Equations(ReducedHarmonicBalance(structure, static_force, 0, linear),
                      dynamic(structure, force, harmonics, linear, **kw), reduction, modes)
+
+
+def release_friction(static: HarmonicBalance) -> HarmonicBalance:
+    """The static problem ``static`` (``H = 0``) with its contacts' friction released, in place; returned.
+
+    The contacts' tangential directions are taken out of the problem: they
+    carry no tangential force and add no tangential stiffness, so its
+    solution is the frictionless static equilibrium (the normal loads, which
+    do not depend on the tangential displacement, are the contacts' own).
+    """
+    if static.H != 0:
+        raise ValueError(f"static must be a static problem (H = 0), got H = {static.H}")
+    for name in ("Bt", "Bt2", "Bt_next", "Gt"):  # the one- and two-direction, and a sector's next-sector, forms
+        if hasattr(static, name):
+            setattr(static, name, np.zeros_like(getattr(static, name)))
+    return static

@@ -84,6 +84,7 @@ class CyclicHarmonicBalance(ReducedHarmonicBalance):
         xt = np.ascontiguousarray(self.Gt @ x)
         xn = np.ascontiguousarray(self.Gn @ x)
         xn[:, 0] += self.n0
+        xt[:, 0] -= self.t_ref
         return xt, xn
 
     def _contact_residual(self) -> np.ndarray:

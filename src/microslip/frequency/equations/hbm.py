@@ -155,6 +155,8 @@ class HarmonicBalance:
         self.periods = np.zeros(nc, dtype=np.int64)
         # contacts on their planes: the second tangential force and the derivatives it adds (zero elsewhere)
         self.planar = np.array([c.planar for c in structure.contacts], dtype=bool)
+        # where each contact's sliders were reset (m): its law sees t - reference (zero unless prestressed)
+        self.t_ref, self.t2_ref = structure.tangential_references()
         self.Bt2 = np.zeros((unknown_dofs, nc))  # the second directions on the unknowns (set by each form)
         self.FT2 = np.zeros((nc, nb))
         self.JT12, self.JT21, self.JT22, self.JT2n = (np.zeros((nc, nb, nb)) for _ in range(4))
@@ -177,11 +179,14 @@ class HarmonicBalance:
         xt = np.ascontiguousarray((X @ self.Bt).T)
         xn = np.ascontiguousarray((X @ self.Bn).T)
         xn[:, 0] += self.n0
+        xt[:, 0] -= self.t_ref
         return xt, xn
 
     def _local2(self, x) -> np.ndarray:
         """Coefficients of every contact's second tangential displacement (m), ``(nc, 2H+1)`` (zero on one direction)."""
-        return np.ascontiguousarray((np.reshape(x, (self.nb, self.ndof)) @ self.Bt2).T)
+        xt2 = np.ascontiguousarray((np.reshape(x, (self.nb, self.ndof)) @ self.Bt2).T)
+        xt2[:, 0] -= self.t2_ref
+        return xt2
 
     def _aft(self, x) -> None:
         if not self.nc:
@@ -265,7 +270,7 @@ class HarmonicBalance:
         Rw = np.empty(n) if jacobian else self._Rw_dummy
         MD, xi = self._extra_damping()
         worst = _hbm.evaluate_dense(np.ascontiguousarray(x, dtype=np.float64), float(omega), self.Kx, self.Cx,
-                                    self.Mx, MD, float(xi), *self._columns, self.f, self.Bt, self.Bn, self.n0,
+                                    self.Mx, MD, float(xi), *self._columns, self.f, self.Bt, self.Bn, self.n0, self.t_ref,
                                     *self.packed, *self.tables, self.max_periods, jacobian, R, J, Rw, self.FT, self.FN, self.JTt, self.JTn,
                                     self.JNn, self.periods)
         if worst < 0:

@@ -293,6 +293,13 @@ class Contact:
     tangential2 : ndarray, shape (ndof,), or None
         The second tangential direction of a contact moving on its plane
         (``t2 = tangential2 . q``); None for a contact along one direction.
+    reference, reference2 : float
+        Where the contact's sliders were reset (m): its elements carry no
+        tangential force at ``t = reference`` (and ``t2 = reference2`` on its
+        plane), the contact marched from there as from its unloaded state.
+        Zero (the unloaded structure) unless a prestress with the friction
+        released set them at its static displacement
+        (:func:`~microslip.frequency.prestress`).
     """
 
     model: MicroslipModel
@@ -302,6 +309,8 @@ class Contact:
     approach: float
     name: str
     tangential2: np.ndarray | None = None
+    reference: float = 0.0
+    reference2: float = 0.0
 
     @property
     def planar(self) -> bool:
@@ -505,6 +514,15 @@ class Structure:
         nc = len(self.contacts)
         return np.array([np.zeros(self.ndof) if c.tangential2 is None else c.tangential2
                          for c in self.contacts]).T.reshape(self.ndof, nc)
+
+    def tangential_references(self) -> tuple[np.ndarray, np.ndarray]:
+        """Where each contact's sliders were reset (m), ``(reference, reference2)``, shape ``(nc,)`` each.
+
+        A contact's tangential displacement enters its law relative to these
+        (:attr:`Contact.reference`); zero unless a prestress set them.
+        """
+        return (np.array([c.reference for c in self.contacts], dtype=float),
+                np.array([c.reference2 for c in self.contacts], dtype=float))
 
     def add_static_force(self, force) -> None:
         """Add an external static force (N), ``(ndof,)`` (e.g. a centrifugal load), acting in every solution."""
