@@ -72,6 +72,17 @@ eigenvalues nearest to 0 are found by shift-invert Arnoldi
 ``0.87 omega`` in size). Dense LAPACK runs with one BLAS thread here: on a loaded
 machine OpenBLAS's threads make calls of this size a hundred times slower.
 
+The modal problem (``reduction="modal"``, or an exact reduction above
+:data:`WHOLE_LIMIT`) is not formed above :data:`DENSE_LIMIT` unknowns (``method=
+"structured"`` of :func:`assess`, the default): its linear part is block-diagonal over
+the harmonics (diagonal over the modes under classical damping) and its contact part
+has the rank of the retained unknowns, so the shift-invert products cost a solve of
+the linear part per harmonic and one of a capacitance system of the retained
+unknowns (:class:`_ModalHill`), and the Arnoldi iteration starts from the previous
+point's eigenvectors. The eigenvalues are those of the formed problem, to the
+Arnoldi tolerance (``method="full"`` forms and factorises it at every point, the
+reference the tests compare with).
+
 Limit: where a contact element just reaches its slip limit somewhere on the orbit
 (the onset of microslip, a contact dissipating almost nothing), the friction force
 has a kink on the orbit and its linearisation depends on which side of it the AFT
