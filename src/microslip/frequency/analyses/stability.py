@@ -221,17 +221,18 @@ class HillProblem:
         off 0 by ``1e-6 omega``, which changes nothing else.
         """
         n = self.n
+        D1, D2 = (sp.csr_matrix(A) for A in (self.D1, self.D2))  # block-sparse: cheap products
         for sigma in (0.0, 1e-6 * self.omega):
-            solve = self._shifted_solver(sigma)
+            solve = _factor(self.J0 + sigma * D1 + sigma ** 2 * D2 if sigma else self.J0)
             if solve is not None:
                 break
         else:
             raise np.linalg.LinAlgError("Hill's problem is singular at and near 0")
-        apply_D1, apply_D2 = self._products()
+        shifted = D1 + sigma * D2
 
         def op(z):  # (A - sigma B)^-1 B z
-            a, b = z[:n], apply_D2(z[n:])
-            y = -solve(b + apply_D1(a) + sigma * apply_D2(a))
+            a, b = z[:n], D2 @ z[n:]
+            y = -solve(b + shifted @ a)
             return np.concatenate([y, a + sigma * y])
 
         linear = spla.LinearOperator((2 * n, 2 * n), matvec=op, dtype=float)
@@ -244,21 +245,6 @@ class HillProblem:
                 self.needed = int(np.count_nonzero(np.abs(lam - sigma) < self.omega))
                 return lam
             k = min(2 * k, most)
-
-    def _shifted_solver(self, sigma: float):
-        """``solve(b)``: ``(J0 + sigma D1 + sigma^2 D2)^-1 b``, None when that matrix is exactly singular."""
-        D1, D2 = self._sparse_parts()
-        return _factor(self.J0 + sigma * D1 + sigma ** 2 * D2 if sigma else self.J0)
-
-    def _sparse_parts(self):
-        if not hasattr(self, "_csr"):
-            self._csr = tuple(sp.csr_matrix(A) for A in (self.D1, self.D2))  # block-sparse: cheap products
-        return self._csr
-
-    def _products(self):
-        """``(apply_D1, apply_D2)``: the products with ``D1`` and ``D2`` of a vector ``(n,)``."""
-        D1, D2 = self._sparse_parts()
-        return D1.__matmul__, D2.__matmul__
 
     def exponents(self) -> np.ndarray:
         """The Floquet exponents (1/s), by decreasing real part (see :func:`principal_exponents`)."""
@@ -278,10 +264,9 @@ class _ModalHill(HillProblem):
 
     ``Q^-1 = A^-1 - A^-1 Phi^T Jc (I + G Jc)^-1 Phi A^-1``.
 
-    The eigenvalues nearest the shift come from a block Krylov iteration started
-    from the previous point's eigenvectors (``basis``), with the stopping rule of
-    :meth:`HillProblem._nearest`; the Arnoldi iteration of :class:`HillProblem`
-    on the same products is the fallback.
+    The eigenvalues nearest the shift come from the Arnoldi iteration and the
+    stopping rule of :meth:`HillProblem._nearest`, started from the previous
+    point's eigenvectors (``basis``, ``(2n, k)``, or None).
     """
 
     def __init__(self, model, Jc, omega: float, start: int, basis=None):
@@ -304,12 +289,11 @@ class _ModalHill(HillProblem):
         """``(A - sigma B)^-1 B`` of the companion form applied to ``z`` ``(2n,)`` (``D2 = I``), its second half
         scaled by ``1 / omega`` (the same eigenvalues; both halves of an eigenvector ``(p, lambda p / omega)`` of one
         size near the disc, which the iteration's accuracy needs)."""
-        n, omega = self.n, self.omega
-        apply_D1, _ = self._products()
+        n, omega, model = self.n, self.omega, self.model
 
         def op(z):
             a = z[:n]
-            y = -solve(omega * z[n:] + apply_D1(a) + sigma * a)
+            y = -solve(omega * z[n:] + model.apply_D1(a, omega) + sigma * a)
             return np.concatenate([y, (a + sigma * y) / omega])
 
         return op
@@ -356,10 +340,6 @@ class _ModalHill(HillProblem):
             return y - L @ (W @ model.project(y))
 
         return solve
-
-    def _products(self):
-        model, omega = self.model, self.omega
-        return (lambda a: model.apply_D1(a, omega)), (lambda b: b)
 
 
 class _ModalParts:
@@ -596,7 +576,7 @@ def hill_problem(hb: HarmonicBalance, x, omega: float) -> HillProblem | None:
     stability is not computed: more than :data:`HILL_LIMIT` unknowns.
     """
     x, omega = hb._point(x, omega)
-    builder = _Builder(hb)
+    builder = _Builder(hb, "full")  # formed: its matrices J0, D1, D2 are the caller's to inspect
     return builder.problem(x, omega) if builder.assessed else None
 
 
