@@ -72,6 +72,17 @@ eigenvalues nearest to 0 are found by shift-invert Arnoldi
 ``0.87 omega`` in size). Dense LAPACK runs with one BLAS thread here: on a loaded
 machine OpenBLAS's threads make calls of this size a hundred times slower.
 
+The modal problem (``reduction="modal"``, or an exact reduction above
+:data:`WHOLE_LIMIT`) is not formed above :data:`DENSE_LIMIT` unknowns (``method=
+"structured"`` of :func:`assess`, the default): its linear part is block-diagonal over
+the harmonics (diagonal over the modes under classical damping) and its contact part
+has the rank of the retained unknowns, so the shift-invert products cost a solve of
+the linear part per harmonic and one of a capacitance system of the retained
+unknowns (:class:`_ModalHill`), and the Arnoldi iteration starts from the previous
+point's eigenvectors. The eigenvalues are those of the formed problem, to the
+Arnoldi tolerance (``method="full"`` forms and factorises it at every point, the
+reference the tests compare with).
+
 Limit: where a contact element just reaches its slip limit somewhere on the orbit
 (the onset of microslip, a contact dissipating almost nothing), the friction force
 has a kink on the orbit and its linearisation depends on which side of it the AFT
@@ -96,6 +107,7 @@ from ..numerics.blas import one_blas_thread
 from ..equations.hbm import HarmonicBalance, harmonic_operators
 from ..reduction.modal import ModalCondensation
 from ..reduction.choice import DEFAULT_MODES
+from ..reduction.condensation import CLASSICAL
 
 #: unknowns of the quadratic eigenproblem up to which it is solved densely (every eigenvalue); above, the
 #: iterative solver is faster (a 40-mode blade model, H = 3, 280 unknowns: 194 ms dense, 6 ms iterative)
@@ -109,11 +121,19 @@ WHOLE_LIMIT = 4000
 NEAREST_START = 8
 #: eigenvalues the iterative solver asks for at most
 NEAREST_LIMIT = 400
+#: the structured solver's Arnoldi iteration (a modal model's Hill problem): its smallest basis, and the
+#: eigenvalues it asks for beyond those the previous point's disc |lambda| <= omega held
+ARNOLDI_BASIS = 20
+ARNOLDI_EXTRA = 2
 #: two eigenvalues whose real parts and imaginary parts modulo omega agree to this share of omega are
 #: copies of one Floquet exponent (at the two edges of the strip)
 COPY_TOLERANCE = 1e-3
 #: a Floquet exponent is unstable when its real part exceeds ``TOLERANCE * omega``
 TOLERANCE = 1e-7
+#: how :func:`assess` solves the Hill problem of a modal model: without forming it (the linear part inverted
+#: per harmonic, the contacts through a capacitance system of the retained unknowns) or formed and factorised
+METHODS = {"structured": "the linear part per harmonic and the contacts' low rank",
+           "full": "the formed problem, factorised at every point"}
 #: an exponent with ``|Im| >= (1 - PD_BAND) omega / 2`` gives negative multipliers (period doubling)
 PD_BAND = 1e-6
 
@@ -231,6 +251,180 @@ class HillProblem:
         return principal_exponents(self.eigenvalues(), self.omega, 2 * self.m)
 
 
+class _ModalHill(HillProblem):
+    """Hill's problem of a modal model, solved without forming ``J0``.
+
+    Its linear part is block-diagonal over the harmonics (diagonal over the modes
+    under classical damping) and its contact part has the rank of the retained
+    unknowns, so each shifted solve is one of the linear part plus a capacitance
+    system of the retained unknowns (Sherman--Morrison--Woodbury). With
+    ``Q(sigma) = A(sigma) + Phi^T Jc (I + R Jc)^-1 Phi`` (the module docstring's
+    modal problem, ``A`` its linear part) and ``G(sigma) = R + Phi A(sigma)^-1 Phi^T``
+    (the modal model's receptance of the retained unknowns, harmonic-major):
+
+    ``Q^-1 = A^-1 - A^-1 Phi^T Jc (I + G Jc)^-1 Phi A^-1``.
+
+    The eigenvalues nearest the shift come from the Arnoldi iteration and the
+    stopping rule of :meth:`HillProblem._nearest`, started from the previous
+    point's eigenvectors (``basis``, ``(2n, k)``, or None).
+    """
+
+    def __init__(self, model, Jc, omega: float, start: int, basis=None):
+        self.J0 = self.D1 = self.D2 = None  # never formed
+        self.m, self.n, self.omega = model.modes, model.nb * model.modes, float(omega)
+        self.start, self.needed = start, 0
+        self.model, self.Jc, self.basis = model, Jc, basis
+        self.vectors = None  # after eigenvalues(): the real parts of the disc's eigenvectors (the next start)
+
+    def eigenvalues(self) -> np.ndarray:
+        for sigma in (0.0, 1e-6 * self.omega):
+            solve = self._shifted_solver(sigma)
+            if solve is not None:
+                break
+        else:
+            raise np.linalg.LinAlgError("Hill's problem is singular at and near 0")
+        return self._arnoldi(solve, sigma)
+
+    def _companion(self, solve, sigma: float):
+        """``(A - sigma B)^-1 B`` of the companion form applied to ``z`` ``(2n,)`` (``D2 = I``), its second half
+        scaled by ``1 / omega`` (the same eigenvalues; both halves of an eigenvector ``(p, lambda p / omega)`` of one
+        size near the disc, which the iteration's accuracy needs)."""
+        n, omega, model = self.n, self.omega, self.model
+
+        def op(z):
+            a = z[:n]
+            y = -solve(omega * z[n:] + model.apply_D1(a, omega) + sigma * a)
+            return np.concatenate([y, (a + sigma * y) / omega])
+
+        return op
+
+    def _arnoldi(self, solve, sigma: float) -> np.ndarray:
+        """The eigenvalues nearest ``sigma`` covering the disc ``|lambda - sigma| < omega`` (the rule of
+        :meth:`HillProblem._nearest`), the iteration started from the previous point's eigenvectors."""
+        op = self._companion(solve, sigma)
+        size = 2 * self.n
+        linear = spla.LinearOperator((size, size), matvec=op, dtype=float)
+        v0 = None
+        if self.basis is not None and self.basis.shape[0] == size:  # and a little of every direction
+            v0 = self.basis.sum(axis=1) + 1e-3 * np.random.default_rng(0).standard_normal(size) / np.sqrt(size)
+        most = min(size - 2, NEAREST_LIMIT)
+        k = min(max(self.start, 1), most)
+        while True:
+            ncv = min(max(2 * k + 1, ARNOLDI_BASIS), size)
+            mu, X = spla.eigs(linear, k=k, which="LM", tol=1e-10, v0=v0, ncv=ncv)
+            lam = sigma + 1.0 / mu
+            if np.max(np.abs(lam - sigma)) >= self.omega or k >= most:
+                inside = np.abs(lam - sigma) < self.omega
+                self.needed = int(np.count_nonzero(inside))
+                self.vectors = X[:, inside].real
+                return lam
+            k = min(2 * k, most)
+
+    def _shifted_solver(self, sigma: float):
+        model = self.model
+        inverse = model.inverse_linear(self.omega, sigma)
+        if inverse is None:
+            return None
+        r = model.nb * model.retained
+        L = model.apply_inverse(inverse, model.Phi_t)  # A^-1 Phi^T, (n, r)
+        G = model.project(L) + model.R  # the receptance R + Phi A^-1 Phi^T, (r, r)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", sla.LinAlgWarning)  # a zero pivot: refused just below
+            lu, piv = sla.lu_factor(np.eye(r) + G @ self.Jc, check_finite=False)
+        if not np.all(np.diag(lu)):
+            return None
+        W = self.Jc @ sla.lu_solve((lu, piv), np.eye(r), check_finite=False)  # Jc (I + G Jc)^-1
+
+        def solve(b):
+            y = model.apply_inverse(inverse, b)
+            return y - L @ (W @ model.project(y))
+
+        return solve
+
+
+class _ModalParts:
+    """The parts of a modal model's Hill problem that do not change along a curve (for :class:`_ModalHill`).
+
+    Harmonic ``h >= 1`` of the linear part ``A(sigma)`` acts on the cosine and sine
+    coefficients ``(a, b)`` of the modes as ``[[K, E], [-E, K]]`` with
+    ``K = Lambda - h^2 omega^2 + sigma Cm + sigma^2``, ``E = h omega (Cm + 2 sigma)``:
+    on ``a - i b`` it is the complex matrix ``K + i E``, whose inverse ``P + i Q``
+    acts as ``[[P, Q], [-Q, P]]``; ``h = 0`` is ``K`` with ``h = 0``. Under classical
+    damping (off-diagonal modal damping below
+    :data:`~microslip.frequency.reduction.condensation.CLASSICAL` of its largest
+    entry) ``P`` and ``Q`` are diagonal and every product is elementwise, with each
+    coefficient's partner (cosine <-> sine of its harmonic) gathered by :attr:`partner`.
+    Vectors are flat, harmonic-major ``(n,)`` or ``(n, p)``, ``n = (2H+1) modes``.
+    """
+
+    def __init__(self, linear, H: int, D):
+        self.H, self.nb, self.D = H, 2 * H + 1, D
+        m = self.modes = linear.modes
+        self.Lam = np.asarray(linear.eigenvalues, dtype=float)
+        self.Cm = np.asarray(linear.modal_damping, dtype=float)
+        off = np.abs(self.Cm - np.diag(np.diag(self.Cm)))
+        classical = off.size == 0 or off.max() <= CLASSICAL * max(float(np.abs(self.Cm).max()), 1e-300)
+        self.damping = np.diag(self.Cm).copy() if classical else None
+        self.phi_r = np.asarray(linear.phi_r, dtype=float)
+        mr = self.retained = self.phi_r.shape[0]
+        self.Phi_t = np.kron(np.eye(self.nb), self.phi_r.T)  # Phi^T, (n, nb mr)
+        self.R = np.kron(np.eye(self.nb), np.asarray(linear.residual, dtype=float))
+        p = np.arange(self.nb)
+        self.harmonic = (p + 1) // 2  # of each row of coefficients
+        self.sign = np.where(p == 0, 0.0, np.where(p % 2 == 1, 1.0, -1.0))  # +1 cosine, -1 sine
+        partner = np.where(p == 0, 0, np.where(p % 2 == 1, p + 1, p - 1))
+        self.partner = (partner[:, None] * m + np.arange(m)[None, :]).ravel()
+        if self.damping is not None:
+            self.c_flat = np.tile(self.damping, self.nb)
+            self.d_flat = np.repeat(self.sign * self.harmonic, m)  # D a = d_flat * a[partner]
+
+    def inverse_linear(self, omega: float, sigma: float):
+        """``A(sigma)^-1``: ``(P, Q)`` flat ``(n,)`` each (classical damping; ``Q`` signed per row) or
+        ``(H+1, modes, modes)`` each; None when ``A(sigma)`` is singular."""
+        h = np.arange(self.H + 1, dtype=float)
+        if self.damping is not None:
+            Z = (self.Lam[None, :] - (h * omega)[:, None] ** 2 + sigma * self.damping[None, :] + sigma ** 2
+                 + 1j * (h * omega)[:, None] * (self.damping[None, :] + 2.0 * sigma))
+            if not np.all(Z):
+                return None
+            Zi = 1.0 / Z
+            return Zi.real[self.harmonic].ravel(), (self.sign[:, None] * Zi.imag[self.harmonic]).ravel()
+        eye = np.eye(self.modes)
+        Z = (np.diag(self.Lam)[None] - (h * omega)[:, None, None] ** 2 * eye + sigma * self.Cm
+             + sigma ** 2 * eye + 1j * (h * omega)[:, None, None] * (self.Cm + 2.0 * sigma * eye))
+        try:
+            Zi = np.linalg.inv(Z)
+        except np.linalg.LinAlgError:
+            return None
+        return Zi.real.copy(), Zi.imag.copy()
+
+    def apply_inverse(self, inverse, x) -> np.ndarray:
+        """``A^-1 x`` for ``x`` ``(n,)`` or ``(n, p)``."""
+        P, Q = inverse
+        if P.ndim == 1:
+            if x.ndim == 2:
+                P, Q = P[:, None], Q[:, None]
+            return P * x + Q * x[self.partner]
+        Y = x.reshape(self.nb, self.modes, -1)
+        out = np.empty_like(Y)
+        out[0] = P[0] @ Y[0]
+        out[1::2] = P[1:] @ Y[1::2] + Q[1:] @ Y[2::2]
+        out[2::2] = P[1:] @ Y[2::2] - Q[1:] @ Y[1::2]
+        return out.reshape(x.shape)
+
+    def project(self, y) -> np.ndarray:
+        """``Phi y``: the retained unknowns ``(nb mr,)`` or ``(nb mr, p)`` of modal coefficients ``y``."""
+        Y = y.reshape(self.nb, self.modes, -1)
+        return (self.phi_r @ Y).reshape((self.nb * self.retained,) + y.shape[1:])
+
+    def apply_D1(self, a, omega: float) -> np.ndarray:
+        """``(I (x) Cm + 2 omega D (x) I) a`` for ``a`` ``(n,)``."""
+        if self.damping is not None:
+            return self.c_flat * a + (2.0 * omega) * self.d_flat * a[self.partner]
+        A = a.reshape(self.nb, self.modes)
+        return (A @ self.Cm + (2.0 * omega) * (self.D @ A)).ravel()
+
+
 def _factor(A):
     """``solve(b)`` with a factorisation of ``A`` (sparse or dense), None when ``A`` is exactly singular."""
     if sp.issparse(A):
@@ -268,7 +462,7 @@ def principal_exponents(lam, omega: float, count: int) -> np.ndarray:
         if np.any((np.abs(v.real - keep.real) <= tol) & (np.abs(d - shift) * omega <= tol) & (shift != 0)):
             continue
         keep = np.append(keep, v)
-    return keep[np.argsort(-keep.real, kind="stable")]
+    return keep[np.lexsort((-keep.imag, -keep.real))]  # by decreasing real part, a pair's +Im first
 
 
 def _kron(a, b, sparse: bool):
@@ -289,9 +483,11 @@ class _Builder:
     :attr:`assessed` is False when the Hill problem has more than :data:`HILL_LIMIT` unknowns.
     """
 
-    def __init__(self, hb: HarmonicBalance):
+    def __init__(self, hb: HarmonicBalance, method: str = "structured"):
         self.hb = hb
+        self.method = method
         self.start = NEAREST_START  # the iterative solver's first request, from the point before
+        self.basis = None  # the structured solver's start: the point before's eigenvectors
         nb = hb.nb
         self.D, self.W = harmonic_operators(hb.H)
         linear = getattr(hb, "linear", None)
@@ -318,6 +514,9 @@ class _Builder:
         if not sparse:
             Minv = np.linalg.inv(_dense(M))  # D2^-1 = I (x) M^-1, applied block by block
             self.solve_D2 = lambda B: np.einsum("ij,hjk->hik", Minv, B.reshape(nb, m, -1)).reshape(B.shape)
+        if self.kind == "modal" and sparse and method == "structured":
+            self.parts = _ModalParts(linear, hb.H, self.D)
+            return
         if self.kind == "modal":
             self.Phi = np.kron(I, linear.phi_r)  # (nb m_r, nb modes)
             self.R = np.kron(I, linear.residual)
@@ -337,7 +536,9 @@ class _Builder:
             J0 = J0.tocsc() if sp.issparse(J0) else J0
         else:
             hb._aft(x)
-            Jc = np.asarray(hb._contact_jacobian()) if hb.nc else np.zeros((hb.n, hb.n))  # on the retained DOFs
+            Jc = _dense(hb._contact_jacobian()) if hb.nc else np.zeros((hb.n, hb.n))  # on the retained DOFs
+            if hasattr(self, "parts"):
+                return _ModalHill(self.parts, Jc, omega, self.start, self.basis)
             if self.kind == "modal":
                 X = np.linalg.solve(np.eye(Jc.shape[0]) + self.R @ Jc, self.Phi)
                 J0 = self.Lam + omega * self.DC - omega ** 2 * self.WI + self.Phi.T @ (Jc @ X)
@@ -351,6 +552,9 @@ class _Builder:
         problem = self.problem(x, omega)
         lam = problem.exponents()
         self.start = max(NEAREST_START, problem.needed + problem.needed // 4 + 2)
+        if isinstance(problem, _ModalHill):
+            self.start = problem.needed + ARNOLDI_EXTRA
+        self.basis = getattr(problem, "vectors", None)
         return lam
 
     def _whole(self, Jc, omega: float):
@@ -372,7 +576,7 @@ def hill_problem(hb: HarmonicBalance, x, omega: float) -> HillProblem | None:
     stability is not computed: more than :data:`HILL_LIMIT` unknowns.
     """
     x, omega = hb._point(x, omega)
-    builder = _Builder(hb)
+    builder = _Builder(hb, "full")  # formed: its matrices J0, D1, D2 are the caller's to inspect
     return builder.problem(x, omega) if builder.assessed else None
 
 
@@ -424,7 +628,8 @@ def _crossing(a: float, b: float) -> float:
     return float(np.clip(a / (a - b), 0.0, 1.0)) if a != b and a * b <= 0 else 0.5
 
 
-def assess(hb: HarmonicBalance, xs, omegas) -> tuple[np.ndarray | None, np.ndarray | None, list[Bifurcation]]:
+def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured"
+           ) -> tuple[np.ndarray | None, np.ndarray | None, list[Bifurcation]]:
     """Stability of every point of a curve and the bifurcations between them.
 
     Parameters
@@ -435,6 +640,10 @@ def assess(hb: HarmonicBalance, xs, omegas) -> tuple[np.ndarray | None, np.ndarr
         Solutions (m) along the curve, in its order.
     omegas : ndarray, shape (points,)
         Their frequencies (rad/s).
+    method : {"structured", "full"}, default "structured"
+        How the Hill problem of a modal model is solved: ``"structured"`` never
+        forms it (:data:`METHODS`); ``"full"`` forms and factorises it at every
+        point. Both find the same eigenvalues by the same iteration.
 
     Returns
     -------
@@ -448,9 +657,11 @@ def assess(hb: HarmonicBalance, xs, omegas) -> tuple[np.ndarray | None, np.ndarr
         branch point), a complex pair (Neimark--Sacker) or a pair at
         ``|Im| = omega / 2`` (period doubling).
     """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
     xs = np.asarray(xs, dtype=float)
     omegas = np.asarray(omegas, dtype=float)
-    builder = _Builder(hb)
+    builder = _Builder(hb, method)
     if not builder.assessed:
         return None, None, []
     with one_blas_thread():

@@ -1,0 +1,159 @@
+"""The cost of stability along a reduced curve: Hill's method by the structured solver against the formed problem.
+
+Run:  python benchmarks/bench_stability.py            (H = 5; about a minute)
+      python benchmarks/bench_stability.py --repeat 3 --harmonics 7
+
+The case is the 1000-DOF scikit-fem blade of ``bench_fe_scale.py`` with 10 platform contacts, H = 5, its
+exact-reduced forced response over 1200-1800 Hz. Above ``stability.WHOLE_LIMIT`` unknowns the stability of
+an exact reduction is that of a 60-mode modal model of the structure (660 unknowns at H = 5), so this is the
+modal Hill problem at every point. In one process, after a warm-up curve (Numba's kernels loaded):
+
+* the curve without stability (``stability=False``);
+* the same curve with stability by the structured solver (the default: the problem is never formed, the
+  linear part is inverted per harmonic and the contacts go through a capacitance system of the retained
+  unknowns, the Arnoldi iteration starts from the previous point's eigenvectors);
+* the same curve with stability from the formed problem (``stability.assess(..., method="full")``: the
+  problem assembled and factorised at every point, as before the structured solver).
+
+A second, smaller case shows the path the structured solver does not take: the 300-DOF blade (456 DOFs) with 10
+contacts at H = 3 has a whole-structure Hill problem of 3192 unknowns, below ``stability.WHOLE_LIMIT``, which is
+formed and factorised (sparse) at every point; timed as it is, and with ``WHOLE_LIMIT`` lowered so that its
+stability comes from the structured 60-mode modal model (the verdicts of both compared point by point).
+
+Each is timed ``--repeat`` times, best of; wall time and this process's CPU time are both printed (the machine
+is shared: CPU time moves less with its load). The ratios are "stability adds X of the curve". Then the
+verdicts of both methods at every point of one curve are compared: points with equal verdicts, the
+bifurcations, and the largest difference of the leading exponents relative to omega.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import os
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import save_results  # noqa: E402
+from bench_fe_scale import RANGE, blade_case  # noqa: E402
+
+#: stability may add at most this share of the curve's time (issue 26, item 6)
+TARGET = 0.5
+
+
+def timed(fn, repeat: int):
+    """``(wall s, cpu s, result)``: the best of ``repeat`` calls of ``fn()``."""
+    wall, cpu, out = np.inf, np.inf, None
+    for _ in range(repeat):
+        t0, c0 = time.perf_counter(), time.process_time()
+        out = fn()
+        wall, cpu = min(wall, time.perf_counter() - t0), min(cpu, time.process_time() - c0)
+    return wall, cpu, out
+
+
+def whole_structure(repeat: int) -> dict:
+    """The 456-DOF blade at H = 3: stability on the whole structure (formed, as it is) and on the structured modal
+    model (``WHOLE_LIMIT`` lowered), against the curve alone; CPU seconds and the verdict agreement."""
+    from microslip import frequency_response
+    from microslip.frequency.analyses import stability
+
+    structure, force, _, _ = blade_case(300, 10)
+    run = lambda stability=True: frequency_response(structure, force, RANGE, harmonics=3,  # noqa: E731
+                                                    reduction="exact", stability=stability)
+    run(stability=False)
+    alone = timed(lambda: run(stability=False), repeat)[1]
+    _, whole, a = timed(run, repeat)
+    limit = stability.WHOLE_LIMIT
+    stability.WHOLE_LIMIT = 0
+    try:
+        _, modal, b = timed(run, repeat)
+    finally:
+        stability.WHOLE_LIMIT = limit
+    equal = int(np.count_nonzero(a.stable == b.stable))
+    gap = float(np.nanmax(np.abs(a.leading_exponent - b.leading_exponent) / a.omega))
+    print(f"{structure.ndof}-DOF blade, H = 3, {a.points} points, cpu s: curve {alone:.3f}; whole structure "
+          f"(formed) adds {(whole - alone) / alone:.0%}; 60-mode modal model (structured) adds "
+          f"{(modal - alone) / alone:.0%}; verdicts equal at {equal} of {a.points}, leading exponents within "
+          f"{gap:.1e} of omega (the modal model leaves out the omitted modes' damping)")
+    return {"dofs": structure.ndof, "points": int(a.points), "curve": alone, "whole": whole, "modal": modal,
+            "equal_verdicts": equal, "leading_gap_over_omega": gap}
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--harmonics", type=int, default=5)
+    parser.add_argument("--repeat", type=int, default=2)
+    args = parser.parse_args(argv)
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    from microslip import frequency_response
+    from microslip.frequency.analyses import response, stability
+
+    H = args.harmonics
+    structure, force, _, _ = blade_case(1000, 10)
+    run = lambda stability=True: frequency_response(structure, force, RANGE, harmonics=H,  # noqa: E731
+                                                    reduction="exact", stability=stability)
+    captured = {}
+    assess = response.assess
+
+    def spy(hb, xs, omegas, method="structured"):
+        captured["args"] = (hb, xs, omegas)
+        return assess(hb, xs, omegas, method)
+
+    warnings.simplefilter("ignore")  # an under-resolved contact energy is not what is measured here
+    run(stability=False)  # warm-up
+    rows = {}
+    rows["without"] = timed(lambda: run(stability=False), args.repeat)
+    response.assess = spy
+    try:
+        rows["structured"] = timed(run, args.repeat)
+        response.assess = functools.partial(assess, method="full")
+        rows["full"] = timed(run, args.repeat)
+    finally:
+        response.assess = assess
+    points = int(rows["without"][2].points)
+
+    print(f"1000-DOF blade, 10 contacts, exact reduction, H = {H}, {points} points "
+          f"(best of {args.repeat}; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)")
+    print(f"{'':34}{'wall s':>9}{'cpu s':>9}{'adds (wall)':>13}{'adds (cpu)':>12}")
+    base_w, base_c = rows["without"][:2]
+    figures = {"H": H, "points": points, "dofs": structure.ndof, "target_adds": TARGET}
+    for key, label in (("without", "curve without stability"), ("full", "with stability, formed problem"),
+                       ("structured", "with stability, structured")):
+        w, c = rows[key][:2]
+        adds = ("", "") if key == "without" else (f"{(w - base_w) / base_w:13.0%}", f"{(c - base_c) / base_c:12.0%}")
+        print(f"{label:34}{w:9.3f}{c:9.3f}{adds[0]:>13}{adds[1]:>12}")
+        figures[key] = {"wall": w, "cpu": c}
+    for clock in ("wall", "cpu"):
+        full = figures["full"][clock] - figures["without"][clock]
+        new = figures["structured"][clock] - figures["without"][clock]
+        figures[f"adds_{clock}"] = {"full": full / figures["without"][clock],
+                                    "structured": new / figures["without"][clock],
+                                    "speed_up": full / new if new > 0 else float("inf")}
+    print(f"stability itself {figures['adds_cpu']['speed_up']:.1f}x faster (cpu; wall "
+          f"{figures['adds_wall']['speed_up']:.1f}x); target: stability adds at most {TARGET:.0%} "
+          f"-> {'met' if figures['adds_cpu']['structured'] <= TARGET else 'missed'} (cpu)")
+
+    hb, xs, omegas = captured["args"]
+    new = stability.assess(hb, xs, omegas)
+    old = stability.assess(hb, xs, omegas, method="full")
+    equal = int(np.count_nonzero(new[0] == old[0]))
+    gap = np.nanmax(np.minimum(np.abs(new[1] - old[1]), np.abs(new[1] - np.conj(old[1]))) / omegas)
+    same_bifurcations = [(b.kind, round(b.point, 6)) for b in new[2]] == [(b.kind, round(b.point, 6))
+                                                                          for b in old[2]]
+    print(f"verdicts equal at {equal} of {omegas.size} points ({int(np.count_nonzero(~old[0]))} unstable); "
+          f"bifurcations {'the same' if same_bifurcations else 'DIFFER'} ({len(old[2])}); "
+          f"leading exponents within {gap:.1e} of omega")
+    figures["agreement"] = {"equal_verdicts": equal, "points": int(omegas.size), "same_bifurcations":
+                            same_bifurcations, "leading_gap_over_omega": float(gap)}
+    figures["whole_structure"] = whole_structure(args.repeat)
+    print("saved", save_results("stability", figures))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,135 @@
+"""The structured solver of a modal model's Hill problem (never formed: the linear part per harmonic, the contacts
+through a capacitance system of the retained unknowns) against the formed problem, point by point along curves:
+the same verdicts, leading exponents and bifurcations."""
+
+import sys
+
+import numpy as np
+import pytest
+
+from microslip import MicroslipModel, Sphere, tune
+from microslip.frequency import Structure, frequency_response
+from microslip.frequency.analyses import stability
+from microslip.frequency.analyses.response import MAX_PERIODS, _equations
+
+from _paths import EXAMPLES
+
+sys.path.insert(0, str(EXAMPLES))
+from inclined_block import FORCE as BLOCK_FORCE  # noqa: E402  (the example is the test case)
+
+
+def both_methods(structure, force, omega, harmonics, reduction, modes=None, samples=None):
+    """``(curve, structured, full)``: a curve without stability and :func:`stability.assess` of its points by
+    each method."""
+    curve = frequency_response(structure, force, omega, harmonics=harmonics, samples=samples,
+                               reduction=reduction, modes=modes, stability=False)
+    _, hb, _ = _equations(structure, force, harmonics, samples, MAX_PERIODS, reduction, modes)
+    xs = curve.coefficients.reshape(curve.points, -1)
+    return curve, stability.assess(hb, xs, curve.omega), stability.assess(hb, xs, curve.omega, method="full")
+
+
+def agree(curve, structured, full):
+    """The same verdict at every point, the same bifurcations, the leading exponents to the Arnoldi tolerance."""
+    stable, leading, found = structured
+    assert stable is not None and np.array_equal(stable, full[0])
+    assert [b.kind for b in found] == [b.kind for b in full[2]]
+    for a, b in zip(found, full[2]):
+        # interpolated between the same two points from exponents equal to the Arnoldi tolerance
+        assert a.point == pytest.approx(b.point, abs=1e-6)
+    # both from shift-invert Arnoldi with tolerance 1e-10 on the same problem: 1e-8 of omega leaves room for the
+    # conditioning of the eigenvalues; a conjugate pair may come in either order
+    both = np.isfinite(leading) & np.isfinite(full[1])
+    assert np.array_equal(both, np.isfinite(full[1]))
+    gap = np.minimum(np.abs(leading - full[1]), np.abs(leading - np.conj(full[1])))[both]
+    assert np.all(gap <= 1e-8 * curve.omega[both])
+
+
+def block_with_arm():
+    """The inclined block (its second mode bends back on itself between two folds) with a light stiff arm of
+    four masses on its x: a structure whose modal model keeps more modes than the contact has DOFs."""
+    n = 6
+    M = np.diag([0.1, 0.1] + [0.005] * 4)
+    K = np.zeros((n, n))
+    K[0, 0] = K[1, 1] = 1e7
+    chain = [0, 2, 3, 4, 5]
+    for a, b in zip(chain[:-1], chain[1:]):
+        K[np.ix_([a, b], [a, b])] += 2e8 * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    C = 2 * 0.005 * np.sqrt(3e7 / 0.1) * M
+    s = Structure(M, C, K)
+    a = np.radians(30)
+    s.add_contact(tune(Sphere.paper(), 37.5, elements=4), tangential={0: np.cos(a), 1: np.sin(a)},
+                  normal={0: -np.sin(a), 1: np.cos(a)}, preload=37.5, name="sphere")
+    return s, np.concatenate([BLOCK_FORCE, np.zeros(n - 2)])
+
+
+def test_a_curve_with_folds_gets_the_verdicts_of_the_formed_problem(monkeypatch):
+    monkeypatch.setattr(stability, "DENSE_LIMIT", 10)  # 55 unknowns: the iterative solvers, formed or not
+    s, f = block_with_arm()
+    curve, structured, full = both_methods(s, f, (16000, 17500), 5, "modal", modes=5)
+    assert [b.kind for b in full[2]] == ["fold", "fold"]
+    assert not full[0].all()  # the branch between the folds is unstable
+    agree(curve, structured, full)
+
+
+def test_non_classical_damping(monkeypatch):
+    """A dashpot at one end of a chain: modal damping with off-diagonal terms (the linear part's harmonic blocks
+    are inverted as matrices); a Jenkins contact that slips; 5 modes, H = 5: 55 unknowns."""
+    monkeypatch.setattr(stability, "DENSE_LIMIT", 10)
+    n = 6
+    K = 2e7 * (np.eye(n) * 2 - np.eye(n, k=1) - np.eye(n, k=-1))
+    K[-1, -1] = 2e7
+    C = 1e-6 * K
+    C[0, 0] += 40.0
+    s = Structure(0.01 * np.eye(n), C, K)
+    s.add_contact(MicroslipModel(kt=[1e6], kn=[1e8], gaps=[0.0], mu=1.0), tangential=n - 1, approach=1e-8)
+    f = np.zeros(n)
+    f[-1] = 5.0
+    curve, structured, full = both_methods(s, f, (8000, 13000), 5, "modal", modes=5)
+    linear = _equations(s, f, 5, None, MAX_PERIODS, "modal", 5)[1].linear
+    assert stability._ModalParts(linear, 5, np.eye(11)).damping is None  # the matrix path
+    agree(curve, structured, full)
+
+
+def test_a_plane_contact(monkeypatch):
+    """A chain of masses in x and y with a contact on its plane at the free end (two tangential directions);
+    7 modes, H = 3: 49 unknowns."""
+    monkeypatch.setattr(stability, "DENSE_LIMIT", 10)
+    n = 4
+    K = np.zeros((2 * n, 2 * n))
+    for axis, k in ((0, 1e5), (1, 1.2e5)):
+        idx = np.arange(axis, 2 * n, 2)
+        for a, b in zip(idx[:-1], idx[1:]):
+            K[np.ix_([a, b], [a, b])] += k * np.array([[1, -1], [-1, 1]])
+        K[idx[0], idx[0]] += k
+    s = Structure(np.eye(2 * n) * 0.2, 1e-4 * K, K)
+    model = MicroslipModel(kt=[3e4, 2e4, 1e4], kn=[2e6, 2e6, 2e6], gaps=[0.0, 0.3e-6, 0.6e-6], mu=0.5)
+    s.add_contact(model, tangential=[{2 * n - 2: 1.0}, {2 * n - 1: 1.0}], approach=1e-6)
+    force = np.zeros(2 * n)
+    force[2 * n - 2:] = 1.6 * np.array([np.cos(np.radians(30)), np.sin(np.radians(30))])
+    curve, structured, full = both_methods(s, force, (150.0, 350.0), 3, "modal", modes=7)
+    assert curve.contact_dissipation.max() > 0  # the contact slips
+    agree(curve, structured, full)
+
+
+def test_a_finite_element_blade_behind_an_exact_reduction(monkeypatch):
+    """The scikit-fem blade of about 400 DOFs (classical damping): with WHOLE_LIMIT lowered, the exact
+    reduction's stability comes from a 60-mode modal model, 420 unknowns at H = 3."""
+    pytest.importorskip("skfem")
+    from microslip.fe import blade
+
+    monkeypatch.setattr(stability, "WHOLE_LIMIT", 0)
+    b = blade(300, contact_nodes=1)
+    s = Structure(b.M, 2e-7 * b.K, b.K, dof_map=b.dof_map)
+    for node in b.platform_nodes:
+        s.add_contact(MicroslipModel(kt=[2e6], kn=[2e8], gaps=[0.0], mu=0.1), tangential={f"{node}:x": 1.0},
+                      normal={f"{node}:y": 1.0}, preload=50.0)
+    f = s.force_vector({f"{b.tip_node}:x": 12.0})
+    curve, structured, full = both_methods(s, f, (9000.0, 9800.0), 3, "exact")
+    agree(curve, structured, full)
+
+
+def test_the_method_is_checked():
+    s, f = block_with_arm()
+    _, hb, _ = _equations(s, f, 3, None, MAX_PERIODS, "modal", 5)
+    with pytest.raises(ValueError, match="method must be one of"):
+        stability.assess(hb, np.zeros((1, hb.n)), [16000.0], method="dense")
