@@ -128,21 +128,18 @@ class DampedBalance(HarmonicBalance):
         return w.astype(complex), zero, zero
 
 
-def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None = None):
-    """``(lambda, phi, M, C)``: linear mode ``mode`` (1: the lowest) of the structure with its contacts stuck at ``q0``.
+def stuck_matrices(structure: Structure, q0, nodal_diameter: int | None = None):
+    """``(M, C, K)``: the structure's matrices with its contacts stuck at the static state ``q0``.
 
-    The contacts add the stiffness of the elements closed at the static state
-    ``q0`` (m, ``(ndof,)``): ``sum kt`` along ``b_t`` (and along the second
-    tangential direction of a contact on its plane), ``sum kn`` along ``b_n``.
-    ``phi`` is mass-normalised (``phi^H M phi = 1``, unit ``kg^-1/2``), its
-    largest entry real and positive; ``lambda`` is its squared natural frequency
-    (rad^2/s^2); ``M`` and ``C`` the mass and damping matrices it goes with. For a
-    :class:`~.cyclic.CyclicStructure` the mode is that of ``nodal_diameter``, on
-    the sector's independent DOFs (complex unless the diameter is 0 or ``N/2``),
-    with that diameter's matrices (:meth:`~.cyclic.CyclicStructure.matrices`):
-    a contact to the next sector acts along ``b_own + exp(-i phi) b_next``.
-    An indefinite stiffness (a negative eigenvalue among the ``mode`` lowest) is
-    refused by name.
+    The contacts add the stiffness of the elements closed at ``q0`` (m,
+    ``(ndof,)``): ``sum kt`` along ``b_t`` (and along the second tangential
+    direction of a contact on its plane), ``sum kn`` along ``b_n``. For a
+    :class:`~.cyclic.CyclicStructure` the matrices are those of
+    ``nodal_diameter`` on the sector's independent DOFs
+    (:meth:`~.cyclic.CyclicStructure.matrices`, complex Hermitian unless the
+    diameter is 0 or ``N/2``), a contact to the next sector acting along
+    ``b_own + exp(-i phi) b_next``; otherwise ``nodal_diameter`` is None and
+    they are the structure's own (``(ndof, ndof)``, kg, N s/m, N/m).
     """
     Bt, Bn, n0 = structure.contact_directions()
     if nodal_diameter is None:
@@ -168,6 +165,22 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
                 K = K + k * (col.conj() @ col.T)
             elif k:
                 K = K + k * np.outer(h.conj(), h)
+    return M, C, K
+
+
+def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None = None):
+    """``(lambda, phi, M, C)``: linear mode ``mode`` (1: the lowest) of the structure with its contacts stuck at ``q0``.
+
+    The matrices are :func:`stuck_matrices`'. ``phi`` is mass-normalised
+    (``phi^H M phi = 1``, unit ``kg^-1/2``), its largest entry real and
+    positive; ``lambda`` is its squared natural frequency (rad^2/s^2); ``M``
+    and ``C`` the mass and damping matrices it goes with. For a
+    :class:`~.cyclic.CyclicStructure` the mode is that of ``nodal_diameter``,
+    on the sector's independent DOFs (complex unless the diameter is 0 or
+    ``N/2``). An indefinite stiffness (a negative eigenvalue among the
+    ``mode`` lowest) is refused by name.
+    """
+    M, C, K = stuck_matrices(structure, q0, nodal_diameter)
     n = K.shape[0]
     if n <= (SPARSE_EIGEN if sp.issparse(K) else DENSE_EIGEN):
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
