@@ -829,6 +829,7 @@ CASES += [
     case("SpeedModel.at", lambda: speed_model_with_contact().at, omega_rot=300.0, contacts=True, damper=True),
     case("microslip.campbell", lambda: microslip.frequency.campbell, model=L(speed_model_with_contact),
          speeds=[0.0, 100.0, 200.0], modes=2, engine_orders=[1, 2], contacts="both"),
+    case("frequency.excited_diameter", lambda: microslip.frequency.excited_diameter, engine_order=5, sectors=8),
     case("CampbellDiagram.hertz", lambda: a_campbell().hertz, system="stuck"),
     case("CampbellDiagram.to_csv", lambda: a_campbell().to_csv, kinds=PATH, path="campbell.csv"),
     case("microslip.damper_speed_curve", lambda: microslip.frequency.damper_speed_curve, refused_only=True,

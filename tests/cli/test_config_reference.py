@@ -112,7 +112,7 @@ def _used(data: dict, tables=schema.FRF_TABLES) -> set:
             child = {"structure": "[structure]", "cyclic": "[cyclic]", "contact": "[[contact]]", "damper": "[[damper]]",
                      "excitation": "[excitation]", "sweep": "[sweep]", "design": "[design]",
                      "continuation": "[continuation]", "output": "[output]", "modes": "[modes]",
-                     "prestress": "[prestress]",
+                     "prestress": "[prestress]", "speed": "[speed]", "campbell": "[campbell]",
                      "interface": "[[damper.interface]]", "reference": "reference", "vary": "[vary]",
                      "case": "[[case]]", "random": "[random]", "mistuning": "[mistuning]"}.get(key)
             if child in by and isinstance(value, dict):
@@ -130,7 +130,10 @@ def _documents(folder):
     docs = []
     # 1. the inclined block, inline matrices: the excitation, sweep, continuation, output and modes tables
     block = _block(folder, lambda t: t.replace("engine_order = 3\n", "").replace(
-        "dof = \"x\"", "dof = \"x\"\nmode = 1\ncompare = false"))
+        "dof = \"x\"", "dof = \"x\"\nmode = 1\ncompare = false")
+        + '\n[speed]\nat = ["0rpm", "6000rpm"]\nK = [[1.1e7, 0.0], [0.0, 1.1e7]]\n'
+          '\n[campbell]\nspeeds = ["0rpm", "8000rpm"]\npoints = 5\nengine_orders = [1, 2]\nmodes = 2\n'
+          'contacts = "both"\nnodal_diameters = [0]\n')
     docs.append((block, True))
     # 2. matrices from an .npz, Rayleigh damping, a sphere tuned when the file is read, the range in Hz
     M, K = np.diag([0.1, 0.1]), np.diag([1e7, 1e7])

@@ -111,7 +111,7 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
 
 @pytest.mark.parametrize("old, new, message", [
     ("[sweep]", "[swep]", "the file has an unknown key 'swep'; did you mean 'sweep'\\? \\(it accepts title, "
-     "structure, cyclic, contact, damper, excitation, sweep, design, continuation, output, modes, prestress\\)"),
+     "structure, cyclic, contact, damper, excitation, sweep, design, continuation, output, modes, prestress, speed, campbell\\)"),
     # a misspelled key used to be ignored: the contact carried 0 N, H fell back to 5, the damping vanished
     ('preload = "37.5N"', 'pre_load = "37.5N"', "\\[\\[contact\\]\\] has an unknown key 'pre_load'; did you mean "
      "'preload'\\? \\(it accepts model, reference, load, elements, tangential, normal, preload, approach, name\\)"),

@@ -156,6 +156,18 @@ def test_plane_twins_agree_on_random_walks(model, path):
     assert_plane_twins_agree(model, *path, np.zeros((model.elements, 2)))
 
 
+@settings(max_examples=60, deadline=None)
+@given(model=models(max_elements=8), path=plane_walks(), exponent=st.floats(-320.0, -140.0))
+def test_plane_twins_agree_at_tiny_magnitudes(model, path, exponent):
+    """Paths, gaps and sliders scaled to 1e-320..1e-140 m, on both sides of the 3e-151 m below which
+    the element scales the stretch before squaring it, subnormals included: still bit for bit."""
+    scale = 10.0 ** exponent / UM
+    tiny = MicroslipModel(kt=model.kt, kn=model.kn, gaps=model.gaps * scale, mu=model.mu)
+    t, n = path
+    assert_plane_twins_agree(tiny, t * scale, n * scale, t[:model.elements][::-1] * 0.5 * scale
+                             if t.shape[0] >= model.elements else np.zeros((model.elements, 2)))
+
+
 def test_plane_twins_agree_where_elements_open_and_close_again_on_an_orbit():
     model = MicroslipModel(kt=[8e6, 5e6, 3e6], kn=[1e7, 7e6, 3e6], gaps=[0.0, 0.9e-6, 1.5e-6], mu=0.4)
     k = np.arange(2000)

@@ -206,6 +206,64 @@ def test_friction_law_on_the_plane_and_non_negative_normal_forces(model, path):
     np.testing.assert_allclose(r.Ti.sum(axis=1), r.T, rtol=0, atol=4 * model.elements * EPS * magnitude + 1e-300)
 
 
+def test_a_slip_far_below_the_square_root_of_the_smallest_float_reaches_the_edge_of_the_disc():
+    """Found by hypothesis: a stretch of 3e-184 m, whose square (and the stick radius's, 5e-249 m)
+    underflows to zero, stuck with a force 1e65 times mu N. The element scales tiny stretches by a
+    power of two before squaring them: it slips onto the edge of the disc (to a few ulps) and its
+    slider stops a stick radius short of t."""
+    model = MicroslipModel(kt=[1e5], kn=[1e5], gaps=[0.0], mu=1.0)
+    t, n = np.array([[0.0, 2.96531793e-184]]), np.array([5.20170045e-249])
+    r = model.simulate(t, n)
+    assert r.condition[0, 0] == SLIP
+    np.testing.assert_allclose(r.T[0], [0.0, model.mu * r.N[0]], rtol=4 * EPS, atol=0)
+    np.testing.assert_allclose(r.state.sliders[0], t[0] - r.T[0] / model.kt[0], rtol=4 * EPS, atol=0)
+
+
+@settings(max_examples=100, deadline=None)
+@given(model=models(), path=plane_paths(), exponent=st.floats(-300.0, -150.0))
+def test_friction_law_on_the_plane_at_tiny_magnitudes(model, path, exponent):
+    """Paths and gaps scaled to 1e-300..1e-150 m, where the squares of the stretch and of the stick
+    radius underflow: still ``|T_i| <= mu N_i`` and a slipping element on the edge of its disc.
+    Tolerances: 1e-12 relative is far above the few ulps of the square root, division and products
+    (and of the norm taken here); the absolute floor ``kt_i 2^-1074`` is the rounding of a subnormal
+    stick radius (or normal force) at the smallest of these scales, where n - gap can be subnormal."""
+    scale = 10.0 ** exponent / UM
+    tiny = MicroslipModel(kt=model.kt, kn=model.kn, gaps=model.gaps * scale, mu=model.mu)
+    t, n = path[0] * scale, path[1] * scale
+    r = tiny.simulate(t, n)
+    size = np.hypot(r.Ti[..., 0], r.Ti[..., 1])
+    limit = tiny.mu * r.Ni
+    floor = tiny.kt * 2.0 ** -1074
+    assert (size <= limit * (1 + 1e-12) + floor).all()
+    slip = r.condition == SLIP
+    assert (size[slip] >= (limit * (1 - 1e-12) - floor)[slip]).all()
+    assert (r.Ti[r.condition == OPEN] == 0).all()
+
+
+@settings(max_examples=60, deadline=None)
+@given(model=models(), seed=st.integers(0, 2**32 - 1), power=st.integers(560, 800))
+def test_a_tiny_path_is_the_same_path_scaled_exactly(model, seed, power):
+    """Paths and gaps times ``c = 2^-power`` (1e-241..3e-169: below the 3e-151 m where the element
+    rescales, with every intermediate still a normal float): normal forces, sliders and conditions
+    are the unscaled path's (times ``c``) bit for bit, as a power of two commutes with every rounded
+    operation on normal floats; a slipping element's force is rounded there as ``mu N_i (e / |e|)``
+    rather than ``(mu N_i / |d|) d``, the same to 4 ulps of its size (two products and a division
+    each way). The friction work scales with ``c^2`` (which underflows here) and is left out."""
+    rng = np.random.default_rng(seed)
+    steps = 60
+    t = np.cumsum(rng.normal(0.0, 0.5 * UM, (steps, 2)), axis=0)
+    n = 1.0 * UM + np.cumsum(rng.normal(0.0, 0.3 * UM, steps))
+    c = 2.0 ** -power
+    one = model.simulate(t, n)
+    tiny = MicroslipModel(kt=model.kt, kn=model.kn, gaps=model.gaps * c, mu=model.mu).simulate(t * c, n * c)
+    np.testing.assert_array_equal(tiny.condition, one.condition)
+    np.testing.assert_array_equal(tiny.N, one.N * c)
+    np.testing.assert_array_equal(tiny.state.sliders, one.state.sliders * c)
+    size = np.hypot(one.Ti[..., 0], one.Ti[..., 1])[..., None] * c
+    assert (np.abs(tiny.Ti - one.Ti * c) <= 4 * EPS * size).all()
+    assert (np.abs(tiny.T - one.T * c) <= 4 * EPS * model.elements * size.sum(axis=1)).all()
+
+
 @settings(max_examples=100, deadline=None)
 @given(model=models(), path=plane_paths())
 def test_friction_work_on_the_plane_is_never_negative(model, path):

@@ -12,7 +12,7 @@ import re
 import sys
 import warnings
 
-COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "modes", "sweep", "accuracy", "target",
+COMMANDS = ["reproduce", "tune", "simulate", "frf", "design", "modes", "campbell", "sweep", "accuracy", "target",
             "config-reference"]
 
 

@@ -170,6 +170,8 @@ class FrfConfig:
     design_dof: int | None = None
     nonlinear_mode: ModesTable | None = None
     prestress: PrestressTable | None = None
+    speed: SpeedTable | None = None
+    campbell: CampbellTable | None = None
 
 
 @dataclass
@@ -186,6 +188,25 @@ class PrestressTable:
     modal_damping: np.ndarray | None = None
     rayleigh_damping: tuple[float, float] | None = None
     rayleigh_modes: tuple[int, int] = (1, 2)
+
+
+@dataclass
+class SpeedTable:
+    """The ``[speed]`` table: the stiffness (N/m) at 2 or 3 rotation speeds (rad/s), ``[structure]``'s at the first."""
+
+    at: np.ndarray
+    stiffness: list
+
+
+@dataclass
+class CampbellTable:
+    """The ``[campbell]`` table of ``microslip campbell`` (SI units): the speeds and what to draw."""
+
+    speeds: np.ndarray
+    engine_orders: tuple = (1, 2, 3, 4, 5, 6)
+    modes: int = 6
+    contacts: str = "both"
+    nodal_diameters: list | None = None
 
 
 @dataclass
@@ -438,11 +459,13 @@ def read_toml(path) -> dict:
         raise ConfigError(f"{path}: not a text file (UTF-8): {exc}") from None
 
 
-def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
+def load_config(path, *, nonlinear: bool = False, campbell: bool = False) -> FrfConfig:
     """Read and check a ``microslip frf`` configuration file.
 
     With ``nonlinear`` (``microslip modes``) the ``[modes]`` table is required and
-    ``[excitation]`` and the range of ``[sweep]`` are optional.
+    ``[excitation]`` and the range of ``[sweep]`` are optional. With ``campbell``
+    (``microslip campbell``) ``[speed]`` is required, ``[excitation]`` and
+    ``[sweep]`` are optional and a ``[cyclic]`` sector needs no engine order.
 
     Raises
     ------
@@ -451,10 +474,11 @@ def load_config(path, *, nonlinear: bool = False) -> FrfConfig:
     ConfigError
         Invalid TOML or contents; the message names the table and key.
     """
-    return config_from_data(read_toml(path), path, nonlinear=nonlinear)
+    return config_from_data(read_toml(path), path, nonlinear=nonlinear, campbell=campbell)
 
 
-def config_from_data(data: dict, path, *, nonlinear: bool = False, files: ConfigFiles | None = None) -> FrfConfig:
+def config_from_data(data: dict, path, *, nonlinear: bool = False, files: ConfigFiles | None = None,
+                     campbell: bool = False) -> FrfConfig:
     """Check and build a configuration from the contents of a TOML file (:func:`read_toml`).
 
     Parameters
@@ -464,7 +488,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     path : str or Path
         The file they come from: other files are relative to its folder, and
         messages name it.
-    nonlinear : bool, default False
+    nonlinear, campbell : bool, default False
         As in :func:`load_config`.
     files : ConfigFiles, optional
         Where to read the files the configuration names (default: read them now).
@@ -545,7 +569,8 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
     names = names + [f"damper{k} {axis}" for k in range(len(dampers)) for axis in ("X", "Y", "R")]
 
     # -- excitation ----------------------------------------------------------------------
-    ex = data.get("excitation", {}) if nonlinear else _get(data, "excitation", "the file", path)
+    optional = nonlinear or campbell  # [excitation] and [sweep]'s range
+    ex = data.get("excitation", {}) if optional else _get(data, "excitation", "the file", path)
     if not isinstance(ex, dict):
         raise ConfigError(f"{path}: [excitation] must be a table, got {ex!r}")
     force = {}
@@ -578,8 +603,8 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
             raise ConfigError(f"{path}: [excitation] {key} has no amplitude {key[6:]!r}")
 
     # -- sweep ---------------------------------------------------------------------------
-    sw = _table(data.get("sweep", {}) if nonlinear else _get(data, "sweep", "the file", path), "[sweep]", path)
-    if "omega" in sw and "frequency" in sw or not (nonlinear or "omega" in sw or "frequency" in sw):
+    sw = _table(data.get("sweep", {}) if optional else _get(data, "sweep", "the file", path), "[sweep]", path)
+    if "omega" in sw and "frequency" in sw or not (optional or "omega" in sw or "frequency" in sw):
         raise ConfigError(f"{path}: [sweep] needs exactly one of omega (rad/s) or frequency (Hz)")
     if "omega" in sw:
         omega = _frequency_range(sw["omega"], "[sweep] omega", path, "rad/s")
@@ -602,7 +627,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
             raise ConfigError(f"{path}: the engine order is given twice, in [cyclic] and in [sweep]: keep one")
         engine_order = checked(path, "", _checks.positive_int, "[sweep] engine_order", sw["engine_order"],
                                 minimum=0)
-    elif isinstance(structure, CyclicStructure) and engine_order is None:
+    elif isinstance(structure, CyclicStructure) and engine_order is None and not campbell:
         raise ConfigError(f"{path}: a [cyclic] sector needs its engine order: engine_order in [cyclic] or [sweep]")
     samples = sw.get("samples")
     if samples is not None:
@@ -655,9 +680,18 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
                                                        or prestress.rayleigh_damping is not None):
             raise ConfigError(f"{path}: [prestress] modal_damping and rayleigh_damping are for a structure that is "
                               f"not cyclic (a sector's prestressed modes depend on the nodal diameter)")
+    speed = _speed_table(data["speed"], bare, st, base, path, files) if "speed" in data else None
+    if campbell and speed is None:
+        raise ConfigError(f"{path}: microslip campbell needs a [speed] table: the stiffness at 2 or 3 rotation "
+                          f"speeds, e.g. at = [\"0rpm\", \"6000rpm\"] and K = [\"K6000.mtx\"]")
+    if campbell and dampers:
+        raise ConfigError(f"{path}: microslip campbell does not take a [[damper]] table yet (its load m r Omega^2 "
+                          f"follows the speed: build a SpeedModel(..., damper=, radius=) in Python)")
+    campbell_table = (_campbell_table(data.get("campbell", {}), speed, bare, path) if "campbell" in data or campbell
+                      else None)
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
-                     design_loads, design_dof, mode_table, prestress)
+                     design_loads, design_dof, mode_table, prestress, speed, campbell_table)
 
 
 def apply_prestress(cfg: FrfConfig, force: dict, friction: str | None = None):
@@ -729,6 +763,84 @@ def prestress_table(table: dict, ndof: int, path) -> PrestressTable:
         out.modes = max(out.modes, *out.rayleigh_modes)
     if out.modes > ndof:
         raise ConfigError(f"{path}: [prestress] asks for {out.modes} prestressed modes; the structure has {ndof} DOFs")
+    return out
+
+
+def _speed_table(table, bare: Structure, st: dict, base: Path, path, files: ConfigFiles) -> SpeedTable:
+    """``[speed]`` checked: 2 or 3 speeds, and the stiffness at each but the first (``[structure]``'s)."""
+    table = _table(table, "[speed]", path)
+    at = _get(table, "at", "[speed]", path)
+    if isinstance(at, (str, bytes)) or not isinstance(at, list) or len(at) not in (2, 3):
+        raise ConfigError(f"{path}: [speed] at must be a list of 2 or 3 rotation speeds, [structure] K's first, "
+                          f"e.g. [\"0rpm\", \"6000rpm\"], got {at!r}")
+    speeds = np.array([_angular_frequency(v, f"[speed] at[{i}]", path, "rad/s") for i, v in enumerate(at)])
+    K = _get(table, "K", "[speed]", path)
+    if isinstance(K, str) or not isinstance(K, list) or (K and not isinstance(K[0], (str, list))):
+        raise ConfigError(f"{path}: [speed] K must be a list of the stiffness matrices at at[1:] (file names or "
+                          f"inline matrices), got {K!r}")
+    if K and all(isinstance(row, list) and row and not isinstance(row[0], (list, str)) for row in K):
+        K = [K]  # one inline matrix, a list of rows of numbers
+    if len(K) != speeds.size - 1:
+        raise ConfigError(f"{path}: [speed] K must hold one matrix per speed after the first ({speeds.size - 1}: "
+                          f"[structure] K is at at[0]), got {len(K)}")
+    mats = [bare.K]
+    for i, value in enumerate(K):
+        what = f"[speed] K[{i}]"
+        if isinstance(value, str):
+            file = base / value
+            if not file.is_file():
+                raise FileNotFoundError(f"{path}: {what} file {str(file)!r} does not exist")
+            from ..fe.files import read_matrix
+
+            name = (st.get("names") or {}).get("K", "K")
+            files.paths.add(file)
+            A = checked(path, f"{what}: ", files._once, ("matrix", str(file), name), lambda: read_matrix(file, name))
+        else:
+            A = _matrix(value, what, path)
+        if A.shape != bare.K.shape:
+            raise ConfigError(f"{path}: {what} has shape {A.shape}; [structure] K has {bare.K.shape}")
+        mats.append(A)
+    return SpeedTable(speeds, mats)
+
+
+def _campbell_table(table, speed: SpeedTable | None, bare: Structure, path) -> CampbellTable:
+    """``[campbell]`` checked (the speeds' range, the points, engine orders, modes, systems, diameters)."""
+    table = _table(table, "[campbell]", path)
+    if "speeds" in table:
+        value = table["speeds"]
+        if isinstance(value, (str, bytes)) or not isinstance(value, list) or len(value) != 2:
+            raise ConfigError(f"{path}: [campbell] speeds must be a range [start, end] of rotation speeds, e.g. "
+                              f"[\"0rpm\", \"8000rpm\"], got {value!r}")
+        lo, hi = (_angular_frequency(v, f"[campbell] speeds[{i}]", path, "rad/s") for i, v in enumerate(value))
+    elif speed is not None:
+        lo, hi = 0.0, float(speed.at.max())
+    else:
+        raise ConfigError(f"{path}: [campbell] needs speeds = [start, end] without a [speed] table")
+    if not 0.0 <= lo < hi:
+        raise ConfigError(f"{path}: [campbell] speeds must rise from a start >= 0, got {lo!r} to {hi!r} rad/s")
+    points = _whole(table.get("points"), "[campbell] points", path, 41)
+    if points < 2:
+        raise ConfigError(f"{path}: [campbell] points must be at least 2, got {points}")
+    points = checked(path, "", _checks.size, "[campbell] points", points)
+    out = CampbellTable(np.linspace(lo, hi, points))
+    if "engine_orders" in table:
+        value = table["engine_orders"]
+        if not isinstance(value, list) or not value:
+            raise ConfigError(f"{path}: [campbell] engine_orders must be a list of whole numbers >= 1, got {value!r}")
+        out.engine_orders = tuple(checked(path, "", _checks.positive_int, f"[campbell] engine_orders[{i}]", e)
+                                  for i, e in enumerate(value))
+    out.modes = (checked(path, "", _checks.positive_int, "[campbell] modes", table["modes"]) if "modes" in table
+                 else min(6, bare.ndof))
+    if "contacts" in table:
+        out.contacts = checked(path, "", _checks.one_of, "[campbell] contacts", table["contacts"],
+                               ("both", "stuck", "free"))
+    if "nodal_diameters" in table:
+        value = table["nodal_diameters"]
+        if not isinstance(value, list) or not value:
+            raise ConfigError(f"{path}: [campbell] nodal_diameters must be a list of whole numbers >= 0, got "
+                              f"{value!r}")
+        out.nodal_diameters = [checked(path, "", _checks.positive_int, f"[campbell] nodal_diameters[{i}]", d,
+                                       minimum=0) for i, d in enumerate(value)]
     return out
 
 

@@ -166,6 +166,9 @@ FILE = Table("the file", "The top level of the file: a title and the tables belo
     _k("modes", "table", "", None, "The nonlinear mode of `microslip modes`: `[modes]` (required there).", "[modes]"),
     _k("prestress", "table", "", None, "A static step before the dynamics (a bolted joint): `[prestress]`.",
        "[prestress]"),
+    _k("speed", "table", "", None, "The stiffness over rotation speed (`SpeedModel`): `[speed]` (required by "
+       "`microslip campbell`).", "[speed]"),
+    _k("campbell", "table", "", None, "The Campbell diagram of `microslip campbell`: `[campbell]`.", "[campbell]"),
 ))
 
 STRUCTURE = Table("[structure]", "The linear structure `M q'' + C q' + K q = f`: its matrices inline, from a "
@@ -380,9 +383,29 @@ PRESTRESS = Table("[prestress]", "A static step first (a bolted joint): the stat
     _k("rayleigh_modes", "list", "", [1, 2], "The two prestressed modes `rayleigh_damping` is fitted on.", "[1, 2]"),
 ), "[prestress]")
 
+SPEED = Table("[speed]", "The stiffness over rotation speed (`SpeedModel`): `K(Omega) = K0 + Omega^2 K1 "
+              "(+ Omega^4 K2)` through 2 or 3 speeds, `[structure] K` at the first.", (
+    _k("at", "list", "rad/s", REQUIRED, "The 2 or 3 rotation speeds: `[structure] K`'s first, then one per matrix "
+       "of `K` (numbers in rad/s, or strings with units).", '["0rpm", "6000rpm"]'),
+    _k("K", "list", "N/m", REQUIRED, "The stiffness at the other speeds: files (`.mtx`, `.npz`, `.mat`, `.op4`: "
+       "the variable `K`, or `[structure] names.K`) or inline matrices.", '["K6000.mtx"]'),
+), "[speed]")
+
+CAMPBELL = Table("[campbell]", "The Campbell diagram of `microslip campbell` (every key optional).", (
+    _k("speeds", "list", "rad/s", "0 to the last of `[speed] at`", "The range `[start, end]` of rotation speeds.",
+       '["0rpm", "8000rpm"]'),
+    _k("points", "integer", "", 41, "Evenly spaced speeds over the range.", "41"),
+    _k("engine_orders", "list", "", [1, 2, 3, 4, 5, 6], "The engine-order lines drawn and crossed.", "[1, 2, 3, 4]"),
+    _k("modes", "integer", "", "6 or the DOFs", "Modes per system (per nodal diameter with `[cyclic]`).", "6"),
+    _k("contacts", "string", "", "both", "`\"stuck\"` (at the static state), `\"free\"` (no contacts) or "
+       "`\"both\"`.", '"both"', expects='"stuck", "free" or "both"'),
+    _k("nodal_diameters", "list", "", "all, 0 to sectors // 2", "With `[cyclic]`: the nodal diameters solved.",
+       "[0, 1, 2]"),
+), "[campbell]")
+
 #: the tables of the frf configuration, in the order the reference shows them
 FRF_TABLES = (FILE, STRUCTURE, CONTACT, REFERENCE, CYCLIC, DAMPER, INTERFACE, EXCITATION, SWEEP, CONTINUATION,
-              OUTPUT, MODES, PRESTRESS, DESIGN)
+              OUTPUT, MODES, PRESTRESS, DESIGN, SPEED, CAMPBELL)
 
 # --- the study file ----------------------------------------------------------------------------------------------
 

@@ -23,7 +23,8 @@
 * :class:`SpeedModel` -- stiffness at 2 or 3 rotation speeds fitted as
   ``K0 + Omega^2 K1 (+ Omega^4 K2)``, the damper's load ``m r Omega^2``;
   :func:`campbell` its Campbell diagram (stuck and free systems, engine-order
-  crossings), :func:`damper_speed_curve` the peak response against speed;
+  crossings; a cyclic sector's per nodal diameter, :func:`excited_diameter`),
+  :func:`damper_speed_curve` the peak response against speed;
 * :func:`damper_design_curve` -- peak response against the damper's
   centrifugal load, the curve used to choose a damper;
 * :func:`blade_scatter`, :func:`mistuned_disk`, :func:`blade_peaks`,
@@ -53,7 +54,7 @@ from .structures.cyclic import CyclicStructure
 from .structures.damper import DamperContact, UnderPlatformDamper
 from .analyses.design import DesignCurve, damper_design_curve
 from .structures.speed import SpeedModel
-from .analyses.campbell import CampbellDiagram, SpeedCurve, campbell, damper_speed_curve
+from .analyses.campbell import CampbellDiagram, SpeedCurve, campbell, damper_speed_curve, excited_diameter
 from .reduction.condensation import SingularInteriorError
 from .analyses.contact_cycle import ContactCycle, contact_cycle, plot_contact_cycles
 from .equations.hbm import HarmonicBalance
@@ -89,6 +90,7 @@ __all__ = [
     "SpeedModel",
     "campbell",
     "damper_speed_curve",
+    "excited_diameter",
     "BranchPointWarning",
     "Contact",
     "ContactCycle",

@@ -46,6 +46,14 @@ STICK = 1
 SLIP = 2
 #: the smallest ``|d|^2`` (m^2) :func:`plane_step` divides by (``2^-1000``: its reciprocal is finite)
 DD2_MIN = 2.0 ** -1000
+#: a stretch and stick radius all below this (m, ``2^-500``, 3e-151 m) are scaled by :data:`TINY_SCALE` in
+#: :func:`plane_step`: their squares would underflow (to zero below 1e-162 m, losing digits above)
+TINY = 2.0 ** -500
+#: the power of two (exact) that scales a tiny stretch and radius: the smallest subnormal stretch becomes
+#: ``2^-474`` (its square normal), the largest tiny one ``2^100`` (its square far from overflowing)
+TINY_SCALE = 2.0 ** 600
+#: the cap on the ``q = 1 / |d|`` :func:`plane_step` returns: finite for a subnormal stretch (below ``2^-1023`` m)
+Q_MAX = 2.0 ** 1023
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -130,11 +138,20 @@ def plane_step(kt, rk, mkn, kn, nk, tx, ty, sx, sy):  # pragma: no cover - compi
     division side by side, not one after the other, which shortens the
     wait of a march on its slider by a third), ``s = t - (r d) q`` (``r d``
     is ready before ``q``), ``T = (mkn nk q) d``. ``|d|^2`` is ``dx^2 + dy^2``: the callers keep
-    displacements below 1e100 m, so it never overflows; a stretch whose
-    square underflows sticks, and below ``sqrt(DD2_MIN)`` (3e-151 m) the
-    division takes ``DD2_MIN`` for ``|d|^2`` (a slip there moves the slider
-    and sets the force short of the edge of the disc, by less than 3e-151 m
-    and ``mu kn`` times that: no finite value overflows to infinity).
+    displacements below 1e100 m, so it never overflows.
+
+    Tiny stretches: when ``|dx|``, ``|dy|`` and ``r`` are all below
+    :data:`TINY` (3e-151 m), their squares would underflow (below 1e-162 m
+    both are zero and the element would stick with ``|T| >> mu N_i``), so
+    ``d`` and ``r`` are first multiplied by :data:`TINY_SCALE` (a power of
+    two: exact), ``e = scale d``, ``q = sqrt(|e|^2) (scale^-1 / |e|^2)``
+    (``1 / (scale |e|)``), ``s = t - (r_s e) q`` (``r_s = scale r``) and
+    ``T = mkn nk (e / |e|)`` (not ``(mkn nk / |e|) e``, which underflows),
+    so that the force is on the edge of the disc to rounding down to the
+    smallest subnormal stretch. Above :data:`TINY` the scale is 1 and every
+    number is the unscaled formula's, bit for bit. The ``q`` returned is
+    ``1 / |d|``, capped at :data:`Q_MAX` for a subnormal stretch;
+    ``DD2_MIN`` keeps it finite at ``d = 0`` (in stick).
 
     The one element update of the package on the plane: ``march_plane``
     (:func:`MicroslipModel.simulate <microslip.model.MicroslipModel.simulate>`),
@@ -146,17 +163,26 @@ def plane_step(kt, rk, mkn, kn, nk, tx, ty, sx, sy):  # pragma: no cover - compi
     r = rk * nk
     dx = tx - sx
     dy = ty - sy
-    dd2 = dx * dx + dy * dy
-    slipped = dd2 > r * r
-    q = math.sqrt(dd2) * (1.0 / max(dd2, DD2_MIN))
-    al = r * q
+    tiny = max(abs(dx), abs(dy), r) < TINY  # the squares below would underflow
+    scale = TINY_SCALE if tiny else 1.0  # a power of two (exact); 1 above TINY: the unscaled numbers, bit for bit
+    unscale = 1.0 / TINY_SCALE if tiny else 1.0  # exact too
+    ex = dx * scale
+    ey = dy * scale
+    rs = r * scale
+    dd2 = ex * ex + ey * ey
+    slipped = dd2 > rs * rs
+    q = math.sqrt(dd2) * (unscale / max(dd2, DD2_MIN))  # 1 / (scale |e|), e = scale d
+    qe = q * scale  # 1 / |e|
+    al = rs * qe
     g = mkn * nk * q
-    Tx = (g * dx if slipped else kt * dx) if closed else 0.0
-    Ty = (g * dy if slipped else kt * dy) if closed else 0.0
-    new_sx = (tx - (r * dx) * q if slipped else sx) if closed else tx  # r dx while q is computed: a shorter wait
-    new_sy = (ty - (r * dy) * q if slipped else sy) if closed else ty
+    f = mkn * nk
+    # slip: (mkn nk / |d|) d, unless tiny: mu N_i (e / |e|), without the underflow of mu N_i / |e|
+    Tx = ((f * (ex * qe) if tiny else g * dx) if slipped else kt * dx) if closed else 0.0
+    Ty = ((f * (ey * qe) if tiny else g * dy) if slipped else kt * dy) if closed else 0.0
+    new_sx = (tx - (rs * ex) * q if slipped else sx) if closed else tx  # rs e while q is computed: a shorter wait
+    new_sy = (ty - (rs * ey) * q if slipped else sy) if closed else ty
     code = (SLIP if slipped else STICK) if closed else OPEN
-    return Tx, Ty, kn * max(nk, 0.0), code, new_sx, new_sy, al, q
+    return Tx, Ty, kn * max(nk, 0.0), code, new_sx, new_sy, al, min(qe * scale, Q_MAX)
 
 
 @nb.njit(cache=True, nogil=True, inline="always", error_model="numpy")
@@ -342,13 +368,21 @@ def march_plane_reference(kt, kn, gaps, mu, t, n, s):
             Ni = kn[i] * max(depth, 0.0)
             r = mu * kn[i] / kt[i] * depth  # the stick radius mu N_i / kt
             dx, dy = tx - s[i][0], ty - s[i][1]  # the stretch d = t - s
-            d2 = dx * dx + dy * dy
+            tiny = max(abs(dx), abs(dy), r) < TINY  # their squares would underflow: scale by a power of two
+            scale = TINY_SCALE if tiny else 1.0
+            ex, ey, rs = dx * scale, dy * scale, r * scale  # e = scale d, exact
+            d2 = ex * ex + ey * ey
             if depth <= 0.0:  # open: no force, the slider at t
                 Tx, Ty, new, c = 0.0, 0.0, [tx, ty], OPEN
-            elif d2 > r * r:  # the trial force kt d leaves the disc: back onto its edge along d
-                q = math.sqrt(d2) * (1.0 / max(d2, DD2_MIN))  # 1 / |d|, as plane_step computes it
-                g = mu * kn[i] * depth * q  # mu N_i / |d|
-                Tx, Ty, new, c = g * dx, g * dy, [tx - r * dx * q, ty - r * dy * q], SLIP
+            elif d2 > rs * rs:  # the trial force kt d leaves the disc: back onto its edge along d
+                q = math.sqrt(d2) * ((1.0 / scale) / max(d2, DD2_MIN))  # 1 / (scale |e|), as plane_step computes it
+                if tiny:  # mu N_i e / |e|
+                    qe = q * scale
+                    Tx, Ty = mu * kn[i] * depth * (ex * qe), mu * kn[i] * depth * (ey * qe)
+                else:  # (mu N_i / |d|) d
+                    g = mu * kn[i] * depth * q
+                    Tx, Ty = g * dx, g * dy
+                new, c = [tx - rs * ex * q, ty - rs * ey * q], SLIP
             else:
                 Tx, Ty, new, c = kt[i] * dx, kt[i] * dy, s[i], STICK
             row_W.append(max(Tx * (new[0] - s[i][0]) + Ty * (new[1] - s[i][1]), 0.0))

@@ -437,6 +437,7 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
     Parameters
     ----------
     structure : Structure
+        Or a :class:`CyclicStructure` sector: its static state, the same in every sector.
     force : array_like or mapping, optional
         The static force (N): a vector of ``ndof`` values, or the static part
         (key ``0``) of a mapping ``{h: vector}`` as :func:`frequency_response` takes.
@@ -459,7 +460,9 @@ def static_solution(structure: Structure, force=None, *, tolerance: float = 1e-1
         if np.iscomplexobj(f):
             raise TypeError(f"force (a static force) must be real, got {_checks._show(force)}")
         static_force = {0: f}
-    static, _, _ = _equations(structure, static_force, 0, None, MAX_PERIODS, reduction, modes)
+    # a cyclic sector's static state is its zero-diameter one (every sector alike), whatever the excitation
+    diameter = 0 if isinstance(structure, CyclicStructure) else None
+    static, _, _ = _equations(structure, static_force, 0, None, MAX_PERIODS, reduction, modes, engine_order=diameter)
     x = _static_state(static, tolerance=tolerance)[0]
     return static._full(x, 1.0)[0]
 

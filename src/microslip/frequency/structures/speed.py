@@ -76,7 +76,8 @@ class SpeedModel:
     cyclic : mapping, optional
         ``sectors``, ``left``, ``right`` (and ``frame``, ``axis``, ``point``,
         ``coordinates``, ``nodes``) of :class:`CyclicStructure`: :meth:`at` then
-        returns a sector.
+        returns a sector. Default: those of ``contacts`` when it is a
+        :class:`CyclicStructure` (a sector's template), else none.
     dof_map : microslip.fe.DofMap, optional
         Names of the DOFs.
 
@@ -114,6 +115,8 @@ class SpeedModel:
                 mats.append(Structure(self.M, None, K).K)
             except (ValueError, TypeError) as exc:
                 raise type(exc)(f"stiffness[{i}]: {exc}") from None
+        if cyclic is None and isinstance(contacts, CyclicStructure):  # a sector's template: its symmetry and frame
+            cyclic = contacts._cyclic_arguments()
         self._cyclic = None if cyclic is None else dict(_checks.mapping("cyclic", cyclic))
         if self._cyclic is not None:  # the symmetry checked once, on M
             try:
