@@ -7,8 +7,10 @@ Every number is SI unless it is a string with a unit (``"37.5N"``, ``"2um"``,
 
     [structure]
     M = [[0.1, 0.0], [0.0, 0.1]]        # kg; or matrices = "model.npz" (arrays M, K, optional C), or
-                                        # file = "blade.mat" (.mat v5/v7.3, .npz, .op4: M, K, optional C;
-                                        # names = {M = "MGG", K = "KGG"} for other names), or M = "M.mtx",
+                                        # file = "blade.mat" (.mat v5/v7.3, .npz, .op4, ANSYS .full, Nastran
+                                        # DMIG .pch/.bdf: M, K, optional C; names = {M = "MGG", K = "KGG"}
+                                        # for other names; format = "harwell-boeing", "abaqus", ... when the
+                                        # suffix does not say it), or M = "M.mtx",
                                         # K = "K.mtx" (one file per matrix); dof_map = "dofs.csv" (node,
                                         # component per row) lets contacts and forces name DOFs "1204:x"
     K = [[1e7, 0.0], [0.0, 1e7]]        # N/m
@@ -140,7 +142,7 @@ KEYS = {
     "[[damper]]": ("mass", "inertia", "centrifugal_load", "speed", "radius", "damping", "retention", "interface"),
     "[[damper.interface]]": ("model", "reference", "load", "elements", "points", "angle", "platform", "name"),
     "[design]": ("loads", "dof"),
-    "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names"),
+    "[structure]": ("M", "K", "C", "rayleigh", "dofs", "matrices", "file", "dof_map", "names", "format"),
     "[[contact]]": ("model", "reference", "load", "elements", "tangential", "normal", "preload", "approach", "name"),
     "[sweep]": ("omega", "frequency", "harmonics", "samples", "reduction", "modes", "engine_order"),
     "[continuation]": tuple(sorted(_CONTROL_KEYS)),
@@ -976,9 +978,10 @@ def _structure_files(st: dict, base: Path, path, files: ConfigFiles):
     by_file = "file" in st
     by_name = any(isinstance(st.get(k), str) for k in ("M", "K", "C"))
     if not (by_file or by_name):
-        if "dof_map" in st:
-            raise ConfigError(f"{path}: [structure] dof_map goes with matrices read from files (file = ... or "
-                              f"M = \"M.mtx\", ...)")
+        for k in ("dof_map", "format"):
+            if k in st:
+                raise ConfigError(f"{path}: [structure] {k} goes with matrices read from files (file = ... or "
+                                  f"M = \"M.mtx\", ...)")
         return None
     if by_file and by_name:
         raise ConfigError(f"{path}: [structure] give either file = ... or one file per matrix, not both")
@@ -992,9 +995,12 @@ def _structure_files(st: dict, base: Path, path, files: ConfigFiles):
     dof_map = base / st["dof_map"] if "dof_map" in st else None
     from ..fe.files import OneMatrixFile
 
+    if "format" in st and not isinstance(st["format"], str):
+        raise ConfigError(f"{path}: [structure] format must be a string such as \"harwell-boeing\", got "
+                          f"{st['format']!r}")
     try:
         return files.matrices(base / st["file"] if by_file else None, dof_map=dof_map, names=st.get("names"),
-                              **kwargs)
+                              **kwargs, **({"format": st["format"]} if "format" in st else {}))
     except OneMatrixFile as exc:
         raise ConfigError(f"{path}: [structure] file = {st['file']!r} is a {exc.kind} file, which holds a single "
                           f"matrix: say which matrix each file is, M = \"M{exc.path.suffix}\", K = "
