@@ -35,6 +35,9 @@ def _parse(path: Path):
     if "\0" in text:
         raise FileFormatError(path, f"byte {text.index(chr(0))} is a NUL: not a Nastran text file",
                               text.count("\n", 0, text.index("\0")) + 1)
+    if text and not text.endswith("\n"):  # a cut inside the last line could leave a shorter number, still a number
+        raise FileFormatError(path, "the file does not end with a line break: it may be truncated (if its last line "
+                                    "is complete, end it with a line break)", text.count("\n") + 1)
     punch = "BEGIN BULK" not in text.upper()
     log = logging.getLogger("microslip.fe.dmig")
     log.addHandler(logging.NullHandler())
