@@ -26,7 +26,7 @@ What an engineer does with a commercial code's matrices, end to end, with the mo
    design curve** (peak tip response against the damper's load) at the operating speed.
 
 Run ``python examples/blade_sector_3d.py [--out DIR] [--quick]`` (``--quick``: a coarse mesh and two
-loads, under a minute). It writes ``blade_sector_3d.png`` and ``blade_sector.pch`` into ``DIR``
+loads, about 15 s of computing). It writes ``blade_sector_3d.png`` and ``blade_sector.pch`` into ``DIR``
 (default: ``./microslip-examples``).
 """
 
@@ -42,7 +42,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from microslip import Sphere, mdr, tune
 from microslip.fe import natural_frequencies, read_matrices

@@ -9,8 +9,6 @@ FORMAT=MATRIX INPUT`` writes; ``FORMAT=COORDINATE``: "row, column, value"). Dama
 with a FileFormatError naming the file and the line (text) or the record (binary).
 """
 
-import shutil
-
 import numpy as np
 import pytest
 import scipy.io

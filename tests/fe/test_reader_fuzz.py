@@ -113,7 +113,8 @@ def _write_files(folder: Path):
     (folder / "job_STIF1.mtx").write_text("".join(
         f"{grid[i][0]}, {grid[i][1]}, {grid[j][0]}, {grid[j][1]}, {v!r}\n" for i, j, v in
         zip(coo.row.tolist(), coo.col.tolist(), coo.data.tolist())))
-    (folder / "coord_MASS1.mtx").write_text("".join(f"{i + 1},{i + 1},{v!r}\n" for i, v in enumerate(np.diag(M))))
+    (folder / "coord_MASS1.mtx").write_text("".join(f"{i + 1},{i + 1},{v!r}\n"
+                                                    for i, v in enumerate(np.diag(M).tolist())))
 
 
 # -- damage ---------------------------------------------------------------------------------------------------

@@ -111,9 +111,11 @@ def read(path: Path) -> sp.csr_matrix:
         text = raw.decode("ascii")
     except UnicodeDecodeError as err:
         raise FileFormatError(path, f"byte {err.start} is not text (ASCII): a damaged file, or a binary one (ANSYS "
-                                    f"HBMAT writes text with Form = ASCII)", raw.count(b"\n", 0, err.start) + 1) from None
+                                    f"HBMAT writes text with Form = ASCII)",
+                              raw.count(b"\n", 0, err.start) + 1) from None
     if not text.endswith("\n"):
-        raise FileFormatError(path, "the file does not end with a line break: it may be truncated", text.count("\n") + 1)
+        raise FileFormatError(path, "the file does not end with a line break: it may be truncated",
+                              text.count("\n") + 1)
     lines = text.replace("\r\n", "\n").split("\n")[:-1]
     if len(lines) < 4:
         raise FileFormatError(path, f"a Harwell-Boeing file starts with 4 header lines; the file has {len(lines)}",
