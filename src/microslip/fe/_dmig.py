@@ -10,6 +10,7 @@ symmetric, components 1..6 (a scalar point's component 0 is refused), no term wr
 
 from __future__ import annotations
 
+import contextlib
 import io
 import logging
 from pathlib import Path
@@ -44,7 +45,8 @@ def _parse(path: Path):
     log.propagate = False
     model = bdf.BDF(debug=None, log=log)
     try:
-        model.read_bdf(str(path), xref=False, punch=punch, validate=True)
+        with contextlib.redirect_stdout(io.StringIO()):  # pyNastran prints some complaints instead of raising
+            model.read_bdf(str(path), xref=False, punch=punch, validate=True)
     except (FileNotFoundError, PermissionError, ImportError, MemoryError):
         raise
     except Exception as err:  # the parser's own errors: a damaged card
