@@ -26,8 +26,8 @@ What an engineer does with a commercial code's matrices, end to end, with the mo
    design curve** (peak tip response against the damper's load) at the operating speed.
 
 Run ``python examples/blade_sector_3d.py [--out DIR] [--quick]`` (600 DOFs, six loads: about 30 s of
-computing; ``--quick``: 270 DOFs and two loads, about 15 s). It writes ``blade_sector_3d.png`` and ``blade_sector.pch`` into ``DIR``
-(default: ``./microslip-examples``).
+computing; ``--quick``: 270 DOFs and two loads, about 15 s). It writes ``blade_sector_3d.png`` and
+``blade_sector.pch`` into ``DIR`` (default: ``./microslip-examples``).
 """
 
 from __future__ import annotations

@@ -264,6 +264,8 @@ def test_format_is_checked_and_offered_in_the_configuration(tmp_path):
         read_matrix(tmp_path / "K.mtx", format="ansys")
     (tmp_path / "K.txt").write_text(STIF)
     (tmp_path / "M.txt").write_text(MASS)
+    s = Structure.from_files(M=tmp_path / "M.txt", K=tmp_path / "K.txt", format="abaqus")
+    assert s.dof_index("2:y") == 3 and s.K[3, 1] == -1.5e6
     from microslip.config import load_config
 
     toml = tmp_path / "frf.toml"
