@@ -155,7 +155,7 @@ def _documents(folder):
     np.savez(folder / "fe.npz", MGG=M, KGG=K)
     (folder / "dofs.csv").write_text("node,component\n7,x\n7,y\n")
     three = block.with_name("block3.toml")
-    three.write_text(text.replace(structure, '[structure]\nfile = "fe.npz"\nnames = {M = "MGG", K = "KGG"}\n'
+    three.write_text(text.replace(structure, '[structure]\nfile = "fe.npz"\nformat = "npz"\nnames = {M = "MGG", K = "KGG"}\n'
                                               'dof_map = "dofs.csv"\n\n')
                      .replace('model = "sphere_4_elements.json"',
                               'reference = {kind = "punch", flat_radius = "0.5mm", edge_radius = "5mm", '

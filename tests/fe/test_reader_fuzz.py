@@ -2,7 +2,9 @@
 
 Valid files of every format (Matrix Market, MATLAB v4, v5 plain and compressed, v7.3, ``.npz`` with
 named arrays and as ``save_npz`` writes one matrix, Nastran OP4 as text -- pyNastran's and Nastran's
-layouts -- and binary, a DOF map CSV, a saved Craig-Bampton model) are damaged in seeded ways, and
+layouts -- and binary, a DOF map CSV, a saved Craig-Bampton model, ansys-mapdl-reader's example ANSYS
+``.full`` file, Harwell-Boeing ``RSA``, Nastran DMIG written by pyNastran, Abaqus matrix output in both
+of its text layouts) are damaged in seeded ways, and
 each damaged file is read in a child process: a reader that crashed the interpreter would take
 the test run with it, and the child runs with a memory limit so that an allocation from a damaged
 size cannot hurt the machine.
@@ -12,13 +14,16 @@ never another exception, a crash, a hang, a NaN, or an allocation the file does 
 that changes structure (truncation, indices, sizes) and any damage of a file with a checksum
 (``.npz``) must be found. A changed value of a format without a checksum (a digit of a text file,
 a byte of a double in a binary one) cannot be found: such a read need only give finite matrices.
-Nor can a MATLAB v5 or OP4 file cut exactly between two variables (neither format marks its end),
+Nor can a MATLAB v5 or OP4 file cut exactly between two variables (neither format marks its end), a
+DMIG or Abaqus file cut exactly at the end of a line (a punch file needs no ``ENDDATA``, Abaqus writes no
+count: the entries after the cut are lost),
 or one whose byte changed the name of the optional damping matrix C: it reads as a file without
 that matrix, the others unchanged.
 """
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -56,7 +61,16 @@ FILES = {
     "binary_big.op4": ("matrices", True),
     "dofs.csv": ("dof_map", True),
     "reduced.npz": ("craig_bampton", False),
+    "example.full": ("matrices", True),
+    "K.rsa": ("matrix", True),
+    "sector.pch": ("dmig", True),
+    "job_STIF1.mtx": ("matrix", True),
+    "coord_MASS1.mtx": ("matrix", True),
 }
+#: files without an end marker or a count: a cut at the end of a line drops the entries after it, unseen
+CUT_AT_LINES = {"sector.pch", "job_STIF1.mtx", "coord_MASS1.mtx"}
+#: files of formats whose text is damaged character by character too
+_TEXT = (".mtx", ".op4", ".csv", ".rsa", ".pch")
 
 
 def _write_files(folder: Path):
@@ -82,6 +96,25 @@ def _write_files(folder: Path):
     s.add_contact(MicroslipModel(kt=[1e4], kn=[1e6], gaps=[0.0], mu=1.0), tangential={0: 1.0, 2: -1.0},
                   approach=1e-6)
     craig_bampton(s, [0, 2], 2).save(folder / "reduced.npz")
+    from ansys.mapdl.reader import examples
+
+    shutil.copyfile(examples.fullfile, folder / "example.full")
+    scipy.io.hb_write(folder / "lower.rua", sp.csc_matrix(sp.tril(K)))
+    lines = (folder / "lower.rua").read_text().split("\n")
+    (folder / "K.rsa").write_text("\n".join(lines[:2] + ["RSA" + lines[2][3:]] + lines[3:]))
+    from pyNastran.bdf.bdf import BDF
+
+    nastran = BDF(debug=None)
+    coo = sp.coo_matrix(sp.tril(K))
+    grid = [(n, {"x": 1, "y": 2, "rz": 6}[c]) for n, c in zip(NODES, COMPONENTS)]
+    nastran.add_dmig("KAAX", 6, 2, 0, 0, 0, [grid[j] for j in coo.col], [grid[i] for i in coo.row], Real=coo.data)
+    nastran.add_dmig("MAAX", 6, 2, 0, 0, 0, grid, grid, Real=np.diag(M))
+    nastran.write_bdf(str(folder / "sector.pch"), size=16, is_double=True, enddata=False)
+    (folder / "job_STIF1.mtx").write_text("".join(
+        f"{grid[i][0]}, {grid[i][1]}, {grid[j][0]}, {grid[j][1]}, {v!r}\n" for i, j, v in
+        zip(coo.row.tolist(), coo.col.tolist(), coo.data.tolist())))
+    (folder / "coord_MASS1.mtx").write_text("".join(f"{i + 1},{i + 1},{v!r}\n"
+                                                    for i, v in enumerate(np.diag(M).tolist())))
 
 
 # -- damage ---------------------------------------------------------------------------------------------------
@@ -97,7 +130,7 @@ def _damaged_copies(folder: Path, name: str, rng) -> list[tuple[str, str, bytes]
         b = bytearray(raw)
         b[pos] ^= 1 << bit
         out.append((f"bit {bit} of byte {pos} flipped", "value", bytes(b)))
-    if name.endswith((".mtx", ".op4", ".csv")) and raw[:1] != b"\x18" and raw[:4] != b"\0\0\0\x18":
+    if name.endswith(_TEXT) and raw[:1] != b"\x18" and raw[:4] != b"\0\0\0\x18":
         text = raw.decode()
         junk = "x.-+eE 9\t#,;N"
         for pos in rng.integers(0, len(text), 15):
@@ -229,6 +262,28 @@ def _array_edits(folder: Path) -> list[tuple[str, str, str, bytes]]:
     return out
 
 
+def _commercial_edits(folder: Path) -> list[tuple[str, str, str, bytes]]:
+    """Sizes, offsets and indices of the ANSYS .full and Harwell-Boeing files set out of range."""
+    out = []
+    raw = (folder / "example.full").read_bytes()
+    header = 105  # the full-file header record's first data word
+    for word, value in ((0, 99), (header + 1, 10**8), (header + 1, 964), (header + 1, 962), (header + 7, 2),
+                        (header + 8, 10**6), (header + 18, 537), (header + 22, 10**9), (header + 22, 200000),
+                        (header + 35, 130137), (header + 32, 320), (536, 7), (538, 5000), (538, 0), (541, 3),
+                        (214, 0)):
+        b = bytearray(raw)
+        b[4 * word:4 * word + 4] = np.array([value], "<i4").tobytes()
+        out.append(("example.full", f"word {word} = {value}", "structure", bytes(b)))
+    lines = (folder / "K.rsa").read_text().split("\n")
+    for no, start, value in ((1, 0, 99), (1, 14, 0), (2, 14, 10**9), (2, 14, 5), (2, 28, 7), (2, 42, 3),
+                             (2, 56, 3)):
+        line = lines[no]
+        edited = line[:start] + f"{value:14d}" + line[start + 14:]
+        out.append(("K.rsa", f"line {no + 1} field at {start} = {value}", "structure",
+                    "\n".join(lines[:no] + [edited] + lines[no + 1:]).encode()))
+    return out
+
+
 # -- the child that reads ----------------------------------------------------------------------------------------
 CHILD = r"""
 import json, resource, sys, warnings
@@ -249,6 +304,9 @@ def read(kind, path, base):
         return {"M": m.M, "K": m.K, **({"C": m.C} if m.C is not None else {})}
     if kind == "dof_map":
         return {"names": read_matrices(base, dof_map=path).dof_map.names}
+    if kind == "dmig":
+        m = read_matrices(path, names={"M": "MAAX", "K": "KAAX"})
+        return {"M": m.M, "K": m.K, "names": m.dof_map.names}
     cb = CraigBampton.load(path)
     s = cb.structure
     return {"M": s.M, "C": s.C, "K": s.K, "recovery": cb.recovery, "keep": cb.keep, "frequencies": cb.frequencies,
@@ -332,12 +390,13 @@ def fuzzed(tmp_path_factory):
     rng = np.random.default_rng(SEED)
     edits = [(name, label, kind, content) for name in FILES
              for label, kind, content in _damaged_copies(folder, name, rng)]
-    edits += _text_edits(folder) + _binary_edits(folder) + _array_edits(folder)
+    edits += _text_edits(folder) + _binary_edits(folder) + _array_edits(folder) + _commercial_edits(folder)
     jobs = []
     for k, (name, label, kind, content) in enumerate(edits):
         path = damaged / f"{k:04d}_{name}"
         path.write_bytes(content)
         jobs.append({"name": name, "label": label, "damage": kind, "path": str(path), "original": str(folder / name),
+                     "line_end": content.endswith(b"\n"),
                      "kind": FILES[name][0], "base": str(folder / "base.npz")})
     jobs_file = damaged / "jobs.json"
     jobs_file.write_text(json.dumps(jobs))
@@ -360,6 +419,8 @@ def _verdict(job, r) -> str | None:
         return None
     if not r["finite"]:
         return "returned a non-finite value"
+    if job["label"].startswith("truncated") and job["name"] in CUT_AT_LINES and job["line_end"]:
+        return None
     if r["outcome"] == "changed" and (job["damage"] == "structure" or not FILES[job["name"]][1]):
         return "returned other matrices than the undamaged file's, without an error"
     if r["outcome"] == "fewer" and not (job["label"].startswith("truncated") or job["damage"] == "value"

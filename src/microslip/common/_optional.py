@@ -5,7 +5,8 @@ from __future__ import annotations
 import importlib
 
 #: module -> the package that provides it on PyPI
-_PROVIDERS = {"h5py": "h5py", "pyNastran.op4.op4": "pyNastran", "skfem": "scikit-fem", "dask.distributed":
+_PROVIDERS = {"h5py": "h5py", "pyNastran.op4.op4": "pyNastran", "pyNastran.bdf.bdf": "pyNastran",
+              "ansys.mapdl.reader": "ansys-mapdl-reader", "skfem": "scikit-fem", "dask.distributed":
               "dask[distributed]", "xarray": "xarray", "zarr": "zarr", "pandas": "pandas", "pyarrow": "pyarrow"}
 
 

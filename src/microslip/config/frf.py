@@ -1074,9 +1074,10 @@ def _structure_files(st: dict, base: Path, path, files: ConfigFiles):
     by_file = "file" in st
     by_name = any(isinstance(st.get(k), str) for k in ("M", "K", "C"))
     if not (by_file or by_name):
-        if "dof_map" in st:
-            raise ConfigError(f"{path}: [structure] dof_map goes with matrices read from files (file = ... or "
-                              f"M = \"M.mtx\", ...)")
+        for k in ("dof_map", "format"):
+            if k in st:
+                raise ConfigError(f"{path}: [structure] {k} goes with matrices read from files (file = ... or "
+                                  f"M = \"M.mtx\", ...)")
         return None
     if by_file and by_name:
         raise ConfigError(f"{path}: [structure] give either file = ... or one file per matrix, not both")
@@ -1090,9 +1091,12 @@ def _structure_files(st: dict, base: Path, path, files: ConfigFiles):
     dof_map = base / st["dof_map"] if "dof_map" in st else None
     from ..fe.files import OneMatrixFile
 
+    if "format" in st and not isinstance(st["format"], str):
+        raise ConfigError(f"{path}: [structure] format must be a string such as \"harwell-boeing\", got "
+                          f"{st['format']!r}")
     try:
         return files.matrices(base / st["file"] if by_file else None, dof_map=dof_map, names=st.get("names"),
-                              **kwargs)
+                              **kwargs, **({"format": st["format"]} if "format" in st else {}))
     except OneMatrixFile as exc:
         raise ConfigError(f"{path}: [structure] file = {st['file']!r} is a {exc.kind} file, which holds a single "
                           f"matrix: say which matrix each file is, M = \"M{exc.path.suffix}\", K = "

@@ -194,6 +194,9 @@ STRUCTURE = Table("[structure]", "The linear structure `M q'' + C q' + K q = f`:
        "of every row, so contacts and forces may name DOFs `\"1204:x\"`.", '"dofs.csv"'),
     _k("names", "table", "", '{M = "M", K = "K", C = "C"}', "The variables of `file` holding each matrix, when "
        "they are named otherwise.", '{M = "MGG", K = "KGG"}'),
+    _k("format", "string", "", "from the suffix", "The format of the matrix files when their suffix does not say "
+       "it: `\"matrix-market\"`, `\"matlab\"`, `\"npz\"`, `\"op4\"`, `\"ansys-full\"`, `\"harwell-boeing\"`, "
+       "`\"nastran-dmig\"` or `\"abaqus\"`.", '"abaqus"'),
 ), "[structure]")
 
 CONTACT = Table("[[contact]]", "A contact attached to the structure: its law (a model file, or a reference "

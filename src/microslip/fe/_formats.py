@@ -24,16 +24,22 @@ import numpy as np
 import scipy.io
 import scipy.sparse as sp
 
-from . import _mat4, _mat5, _matrix_market, _op4
+from . import _abaqus, _ansys_full, _dmig, _harwell_boeing, _mat4, _mat5, _matrix_market, _op4
 from ._errors import FileFormatError
 from ..common.errors import MissingVariable, OneMatrixFile
 from ._limits import MAX_ENTRIES, MAX_ROWS
 from ._optional import require
 from ._sparse import compressed, entries
 
-#: suffix -> format name, as the messages say it
-SUFFIXES = {".mtx": "Matrix Market", ".mm": "Matrix Market", ".mat": "MATLAB", ".npz": "NumPy .npz",
-            ".op4": "Nastran OP4"}
+#: format= name -> the format as the messages say it
+FORMATS = {"matrix-market": "Matrix Market", "matlab": "MATLAB", "npz": "NumPy .npz", "op4": "Nastran OP4",
+           "ansys-full": "ANSYS .full", "harwell-boeing": "Harwell-Boeing", "nastran-dmig": "Nastran DMIG",
+           "abaqus": "Abaqus matrix output"}
+
+#: suffix -> format= name (``.mtx`` is Matrix Market when the file starts with ``%``, Abaqus output otherwise)
+SUFFIXES = {".mtx": "matrix-market", ".mm": "matrix-market", ".mat": "matlab", ".npz": "npz", ".op4": "op4",
+            ".full": "ansys-full", ".rua": "harwell-boeing", ".rsa": "harwell-boeing", ".hb": "harwell-boeing",
+            ".pch": "nastran-dmig", ".bdf": "nastran-dmig", ".dat": "nastran-dmig", ".nas": "nastran-dmig"}
 
 #: keys of a file written by scipy.sparse.save_npz (compressed rows/columns, or coordinates)
 _COMPRESSED = ("data", "indices", "indptr", "shape")
@@ -64,7 +70,33 @@ def _pick(path: Path, found: dict, wanted: list[str]) -> dict:
 _ONLY = "\0"
 
 
-def only(path: Path) -> tuple[str | None, object]:
+def format_of(path: Path, format: str | None = None) -> str:
+    """The ``format=`` name of ``path``: ``format`` when given (checked), else from the suffix.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``format`` or suffix (the message lists those known).
+    """
+    if format is not None:
+        if not isinstance(format, str) or format not in FORMATS:
+            raise ValueError(f"format must be one of {', '.join(map(repr, FORMATS))}, got {format!r}")
+        return format
+    suffix = path.suffix.lower()
+    if suffix not in SUFFIXES:
+        kinds = ", ".join(f"{s} ({FORMATS[k]})" for s, k in SUFFIXES.items())
+        raise ValueError(f"{path}: unknown matrix file suffix {path.suffix!r}; expected one of {kinds}, or say the "
+                         f"format: format={'|'.join(FORMATS)}")
+    if suffix == ".mtx" and path.is_file():  # Abaqus writes jobname_STIF1.mtx too: commas, no Matrix Market banner
+        with open(path, "rb") as f:
+            head = f.read(4096)
+        first = next((line for line in head.split(b"\n") if line.strip() and not line.startswith(b"**")), b"")
+        if not head.startswith(b"%") and (b"," in first or head.startswith(b"**")):
+            return "abaqus"
+    return SUFFIXES[suffix]
+
+
+def only(path: Path, format: str | None = None) -> tuple[str | None, object]:
     """``(name, matrix)`` of a file holding one matrix (name None for a single-matrix format).
 
     Raises
@@ -73,17 +105,18 @@ def only(path: Path) -> tuple[str | None, object]:
         The file holds several variables (the message lists them) or none.
     """
     try:
-        return None, read(path, [_ONLY])[_ONLY]
+        return None, read(path, [_ONLY], format)[_ONLY]
     except MissingVariable as err:
         if len(err.held) != 1:
             listed = ", ".join(err.held) if err.held else "no variables"
             raise ValueError(f"{path}: holds {listed}; name the variable to read") from None
         name = err.held[0]
-    return name, read(path, [name])[name]
+    return name, read(path, [name], format)[name]
 
 
-def read(path: Path, wanted: list[str]) -> dict:
-    """``{name: matrix}`` for the ``wanted`` names of the file at ``path`` (format from the suffix).
+def read(path: Path, wanted: list[str], format: str | None = None) -> dict:
+    """``{name: matrix}`` for the ``wanted`` names of the file at ``path`` (format from the suffix, or
+    ``format``). A matrix whose rows the file labels by node and DOF comes as a :class:`._labelled.Labelled`.
 
     Raises
     ------
@@ -94,24 +127,23 @@ def read(path: Path, wanted: list[str]) -> dict:
     OneMatrixFile
         Several names wanted from a single-matrix file.
     """
-    suffix = path.suffix.lower()
-    if suffix not in SUFFIXES:
-        kinds = ", ".join(f"{s} ({k})" for s, k in SUFFIXES.items())
-        raise ValueError(f"{path}: unknown matrix file suffix {path.suffix!r}; expected one of {kinds}")
+    kind = format_of(path, format)
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no such file")
-    reader = {".mtx": _matrix_market_file, ".mm": _matrix_market_file, ".mat": _mat, ".npz": _npz, ".op4": _op4_file}
+    reader = {"matrix-market": _matrix_market_file, "matlab": _mat, "npz": _npz, "op4": _op4_file,
+              "ansys-full": _ansys_full_file, "harwell-boeing": _harwell_boeing_file, "nastran-dmig": _dmig_file,
+              "abaqus": _abaqus_file}
     try:
-        found = reader[suffix](path, wanted)
+        found = reader[kind](path, wanted)
     except (*_PASSED, MissingVariable):
         raise
     except MemoryError:
         raise FileFormatError(path, "declares more data than the memory holds (a damaged size field?)") from None
     except _DAMAGE as err:
-        raise FileFormatError(path, f"not a readable {SUFFIXES[suffix]} file ({type(err).__name__}: {err})") from None
+        raise FileFormatError(path, f"not a readable {FORMATS[kind]} file ({type(err).__name__}: {err})") from None
     if isinstance(found, _One):
         if len(wanted) != 1:
-            raise OneMatrixFile(path, SUFFIXES[suffix], wanted)
+            raise OneMatrixFile(path, FORMATS[kind], wanted)
         return {wanted[0]: found.matrix}
     return found
 
@@ -366,3 +398,25 @@ def _npz(path: Path, wanted: list[str]):
 # -- Nastran OP4 -----------------------------------------------------------------------------------
 def _op4_file(path: Path, wanted: list[str]) -> dict:
     return _pick(path, _op4.read(path), wanted)
+
+
+# -- the commercial codes' files -------------------------------------------------------------------
+def _ansys_full_file(path: Path, wanted: list[str]) -> dict:
+    return _pick(path, _ansys_full.read(path), wanted)
+
+
+def _harwell_boeing_file(path: Path, wanted: list[str]) -> _One:
+    return _One(_harwell_boeing.read(path))
+
+
+def _abaqus_file(path: Path, wanted: list[str]) -> _One:
+    return _One(_abaqus.read(path))
+
+
+def _dmig_file(path: Path, wanted: list[str]) -> dict:
+    found = _dmig.read(path, [w for w in wanted if w != _ONLY])
+    held = found.pop("held")
+    missing = [w for w in wanted if w not in found]
+    if missing:
+        raise MissingVariable(path, missing, held)
+    return found

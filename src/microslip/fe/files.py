@@ -11,11 +11,28 @@ Formats, chosen by the file's suffix:
                         or ``"csc"``, default ``"csr"``) or ``NAME_row, NAME_col, NAME_data,
                         NAME_shape``; or a whole file written by ``scipy.sparse.save_npz`` (one matrix)
 ``.op4``                Nastran OUTPUT4, text or binary (32-bit), dense or sparse, BIGMAT or not
+``.full``               ANSYS full file (ansys-mapdl-reader): stiffness ``K``, mass ``M``, damping ``C``
+                        when held, rows labelled by node and DOF, constrained DOFs removed
+``.rua``, ``.rsa``,     Harwell-Boeing (ANSYS ``HBMAT``, ``Form = ASCII``): one real assembled matrix,
+``.hb``                 unsymmetric or symmetric (one triangle)
+``.pch``, ``.bdf``,     Nastran ``DMIG`` entries (pyNastran): matrices by name (``KAAX``, ``MAAX``, ...), rows
+``.dat``, ``.nas``      labelled by grid and component
+``.mtx`` (no ``%``      Abaqus ``*MATRIX OUTPUT`` (``FORMAT=MATRIX INPUT``: rows labelled by node and DOF;
+banner)                 ``FORMAT=COORDINATE``: equation numbers): one matrix per file
 ======================  ===============================================================================
 
+``format=`` names the format whatever the suffix (ANSYS writes ``HBMAT`` files as ``.MATRIX``):
+``matrix-market``, ``matlab``, ``npz``, ``op4``, ``ansys-full``, ``harwell-boeing``, ``nastran-dmig``,
+``abaqus``.
+
+Where the file labels its rows by node and DOF (ANSYS ``.full``, Nastran ``DMIG``, Abaqus), the
+matrices are put on the union of their DOFs, sorted by node then component, and that is the DOF
+map (:class:`DofMap`); a ``dof_map`` given as well must name the same DOFs and sets their order.
+
 A Matrix Market file, or a ``save_npz`` file, holds one matrix: it is read as the matrix its
-role names (``M=``, ``K=``, ``C=``), never as the whole model. h5py is optional (``pip install
-microslip[fe]``, for MATLAB v7.3); the other formats need only NumPy and SciPy. Matrices come
+role names (``M=``, ``K=``, ``C=``), never as the whole model. h5py (MATLAB v7.3), ansys-mapdl-reader
+(ANSYS) and pyNastran (DMIG) are optional (``pip install microslip[fe]``); the other formats need only
+NumPy and SciPy. Matrices come
 back as ``scipy.sparse`` CSR when the file stores them sparse and as dense arrays otherwise, in
 the file's units (the rest of microslip expects kg, N s/m, N/m).
 
@@ -37,8 +54,9 @@ from ..common import _checks
 from . import _formats
 from ._errors import FileFormatError
 from ._formats import NpzArrays, OneMatrixFile
+from ._labelled import Labelled, key
 from ._limits import MAX_ROWS
-from .dof_map import DofMap
+from .dof_map import COMPONENTS, DofMap
 
 __all__ = ["FEMatrices", "FileFormatError", "NpzArrays", "OneMatrixFile", "check_matrix", "read_matrices",
            "read_matrix"]
@@ -151,16 +169,20 @@ def _path(name: str, value) -> Path:
     return Path(value)
 
 
-def read_matrix(path, name: str | None = None, *, symmetry_tolerance: float = SYMMETRY_TOLERANCE):
+def read_matrix(path, name: str | None = None, *, format: str | None = None,
+                symmetry_tolerance: float = SYMMETRY_TOLERANCE):
     """One checked matrix from a file.
 
     Parameters
     ----------
     path : str or Path
-        A ``.mtx``, ``.mm``, ``.mat``, ``.npz`` or ``.op4`` file (see the module).
+        A matrix file of a format in the module's table.
     name : str, optional
         The variable to read from a file holding several; ignored for a
         single-matrix file. Default: the file's only variable.
+    format : str, optional
+        The file's format (``"harwell-boeing"``, ``"abaqus"``, ...; see the
+        module) when its suffix does not say it.
     symmetry_tolerance : float
         See :func:`check_matrix`.
 
@@ -179,24 +201,28 @@ def read_matrix(path, name: str | None = None, *, symmetry_tolerance: float = SY
     TypeError
         ``path`` is not a file path or ``name`` not a string.
     ImportError
-        A v7.3 ``.mat`` without h5py.
+        A v7.3 ``.mat`` without h5py, an ANSYS file without ansys-mapdl-reader
+        or a DMIG file without pyNastran.
     """
     path = _path("path", path)
     if name is not None:
         name = _checks.text("name", name)
     tol = _checks.positive_scalar("symmetry_tolerance", symmetry_tolerance)
+    format = _formats.format_of(path, format)
     if name is None:
-        name, A = _formats.only(path)
+        name, A = _formats.only(path, format)
     else:
         try:
-            A = _formats.read(path, [name])[name]
+            A = _formats.read(path, [name], format)[name]
         except _formats.MissingVariable as err:
             raise _formats.MissingVariable(path, err.missing, err.held, advice="choose one with name=...") from None
+    if isinstance(A, Labelled):
+        A = A.matrix
     return check_matrix(A, _where(path, name) if name else str(path), symmetry_tolerance=tol)
 
 
 def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Mapping | None = None,
-                  symmetry_tolerance: float = SYMMETRY_TOLERANCE) -> FEMatrices:
+                  format: str | None = None, symmetry_tolerance: float = SYMMETRY_TOLERANCE) -> FEMatrices:
     """Mass, stiffness and (optionally) damping matrices of a finite-element model.
 
     Either one file holding the variables ``M``, ``K`` and optionally ``C``
@@ -213,7 +239,10 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
         One file per matrix (instead of ``path``); ``C`` may be omitted.
     dof_map : str, Path or DofMap, optional
         Node and component of each row: a :class:`DofMap` or a CSV file
-        with ``node,component`` columns (:meth:`DofMap.from_csv`).
+        with ``node,component`` columns (:meth:`DofMap.from_csv`). A file
+        that labels its rows (ANSYS ``.full``, Nastran DMIG, Abaqus) gives
+        the map itself; a map given as well must name the same DOFs, and
+        the matrices then follow its order.
     names : mapping, optional
         Variable names in the file(s) when they are not ``M``, ``K``,
         ``C``, e.g. ``{"M": "MGG", "K": "KGG"}``. With one file, ``C`` is
@@ -223,6 +252,11 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
     symmetry_tolerance : float
         Largest accepted ``max|A - A^T| / max|A|`` of each matrix (default
         1e-6); the matrices are returned symmetrised, ``(A + A^T) / 2``.
+    format : str, optional
+        The format of every file when the suffixes do not say it (see the
+        module): ``"matrix-market"``, ``"matlab"``, ``"npz"``, ``"op4"``,
+        ``"ansys-full"``, ``"harwell-boeing"``, ``"nastran-dmig"``,
+        ``"abaqus"``.
 
     Returns
     -------
@@ -251,6 +285,8 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
     >>> from microslip.fe import read_matrices
     >>> M, K, C, dofs = read_matrices("blade.mat", dof_map="blade_dofs.csv")  # doctest: +SKIP
     >>> M, K, C, dofs = read_matrices(M="m.mtx", K="k.mtx")  # doctest: +SKIP
+    >>> M, K, C, dofs = read_matrices("rotor.full")  # doctest: +SKIP
+    >>> M, K, C, dofs = read_matrices("sector.pch", names={"M": "MAAX", "K": "KAAX"})  # doctest: +SKIP
     """
     chosen = _names(names)
     tol = _checks.positive_scalar("symmetry_tolerance", symmetry_tolerance)
@@ -260,7 +296,7 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
     if path is not None:
         path = _path("path", path)
         wanted = {r: chosen.get(r, r) for r in ROLES}
-        found = _read_with_optional_c(path, wanted, "C" in chosen)
+        found = _read_with_optional_c(path, wanted, "C" in chosen, _formats.format_of(path, format))
         where = {r: _where(path, wanted[r]) for r in found}
     else:
         if "M" not in per_matrix or "K" not in per_matrix:
@@ -270,38 +306,74 @@ def read_matrices(path=None, *, M=None, K=None, C=None, dof_map=None, names: Map
         for role, value in per_matrix.items():
             p = _path(role, value)
             var = chosen.get(role, role)
-            found[role] = _one(p, var, role in chosen)
+            found[role] = _one(p, var, role in chosen, _formats.format_of(p, format))
             where[role] = _where(p, var)
+    labelled = [r for r, A in found.items() if isinstance(A, Labelled)]
+    for role, A in found.items():  # the labels' checks need square, finite matrices
+        if isinstance(A, Labelled):
+            found[role] = A._replace(matrix=check_matrix(A.matrix, where[role], symmetry_tolerance=tol))
+    labels = None
+    if labelled:
+        found, labels = _on_common_dofs(found, where, dof_map)
     matrices = {r: check_matrix(A, where[r], symmetry_tolerance=tol) for r, A in found.items()}
     n = matrices["M"].shape[0]
     for role, A in matrices.items():
         if A.shape[0] != n:
             raise ValueError(f"{where[role]} is {A.shape[0]} x {A.shape[0]} but {where['M']} is {n} x {n}: "
                              f"M, K and C must have the same size")
-    dofs = _dof_map(dof_map, n)
+    dofs = labels if labels is not None else _dof_map(dof_map, n)
     return FEMatrices(matrices["M"], matrices["K"], matrices.get("C"), dofs)
 
 
-def _read_with_optional_c(path: Path, wanted: dict, c_required: bool) -> dict:
+def _on_common_dofs(found: dict, where: dict, dof_map) -> tuple[dict, DofMap]:
+    """Matrices whose files label their rows, put on the union of their DOFs (or ``dof_map``'s order)."""
+    plain = [r for r, A in found.items() if not isinstance(A, Labelled)]
+    if plain:
+        named = next(r for r, A in found.items() if isinstance(A, Labelled))
+        raise ValueError(f"{where[named]} labels its rows by node and DOF but {where[plain[0]]} does not: the "
+                         f"matrices cannot be matched row by row (give files of the same kind)")
+    keys = {r: key(A.nodes, A.components) for r, A in found.items()}
+    union = np.unique(np.concatenate(list(keys.values())))
+    if dof_map is not None:
+        given = _dof_map(dof_map, union.size)
+        order = key(given.nodes, [COMPONENTS.index(c) for c in given.components])
+        extra = np.setdiff1d(union, order)
+        if extra.size:
+            raise ValueError(f"dof_map lacks DOF {extra[0] // 8}:{COMPONENTS[extra[0] % 8]}, which the matrix files "
+                             f"label: the map given must name the files' DOFs")
+        labels = given
+    else:
+        order = union
+        labels = DofMap(union // 8, [COMPONENTS[c] for c in (union % 8).tolist()])
+    sort = np.argsort(order, kind="stable")
+    out = {}
+    for role, A in found.items():
+        at = sort[np.searchsorted(order[sort], keys[role])]  # each labelled row's place in `order`
+        coo = sp.coo_matrix(A.matrix)
+        out[role] = sp.csr_matrix((coo.data, (at[coo.row], at[coo.col])), shape=(order.size, order.size))
+    return out, labels
+
+
+def _read_with_optional_c(path: Path, wanted: dict, c_required: bool, format: str) -> dict:
     """``{role: matrix}`` from one file: M and K must be there, C when it is (or when required)."""
     try:
-        raw = _formats.read(path, list(wanted.values()))
+        raw = _formats.read(path, list(wanted.values()), format)
         return {r: raw[v] for r, v in wanted.items()}
     except _formats.MissingVariable as err:
         if c_required or wanted["C"] not in err.missing:
             raise
-    raw = _formats.read(path, [wanted["M"], wanted["K"]])
+    raw = _formats.read(path, [wanted["M"], wanted["K"]], format)
     return {"M": raw[wanted["M"]], "K": raw[wanted["K"]]}
 
 
-def _one(path: Path, var: str, named: bool):
+def _one(path: Path, var: str, named: bool, format: str):
     """The matrix ``var`` of a per-matrix file, or its only variable when ``var`` was not chosen."""
     try:
-        return _formats.read(path, [var])[var]
+        return _formats.read(path, [var], format)[var]
     except _formats.MissingVariable as err:
         if named or len(err.held) != 1:
             raise
-    return _formats.only(path)[1]
+    return _formats.only(path, format)[1]
 
 
 def _dof_map(value, n: int) -> DofMap | None:

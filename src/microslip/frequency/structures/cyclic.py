@@ -230,9 +230,9 @@ class CyclicStructure(Structure):
     @classmethod
     def from_files(cls, path=None, *, sectors: int, left, right, M=None, K=None, C=None, dof_map=None,
                    names=None, frame: str = "cylindrical", axis=(0.0, 0.0, 1.0), point=None, coordinates=None,
-                   nodes=None) -> CyclicStructure:
+                   nodes=None, format=None) -> CyclicStructure:
         """One sector from finite-element matrix files, as :meth:`Structure.from_files
-        <microslip.frequency.Structure.from_files>`; ``sectors``, ``left``, ``right``, ``frame``, ``axis``,
+        <microslip.frequency.Structure.from_files>` (``format`` too); ``sectors``, ``left``, ``right``, ``frame``, ``axis``,
         ``point``, ``coordinates`` and ``nodes`` as in the class (the boundaries may be named ``"node:component"``
         with a ``dof_map``).
 
@@ -241,7 +241,7 @@ class CyclicStructure(Structure):
         >>> disk = CyclicStructure.from_files("sector.mat", sectors=24, dof_map="sector_dofs.csv",
         ...                                   left=["1014:x", "1014:y"], right=["2014:x", "2014:y"])  # doctest: +SKIP
         """
-        m = read_matrices(path, M=M, K=K, C=C, dof_map=dof_map, names=names)
+        m = read_matrices(path, M=M, K=K, C=C, dof_map=dof_map, names=names, format=format)
         return cls(m.M, m.C, m.K, sectors=sectors, left=left, right=right, dof_map=m.dof_map, frame=frame, axis=axis,
                    point=point, coordinates=coordinates, nodes=nodes)
 

@@ -300,6 +300,8 @@ def boundary_coordinates(coordinates, boundary: Boundary, dof_map) -> np.ndarray
             rows.append(row)
         coordinates = rows
     x = _checks.real_array("coordinates", coordinates)
+    if k == 0 and x.shape == (2, 0):  # no boundary (blades in a rigid disk), as a list [[], []] writes it
+        x = np.zeros((2, 0, 3))
     if x.ndim != 3 or x.shape[:2] != (2, k) or x.shape[2] not in (2, 3):
         raise ValueError(f"coordinates must have shape (2, {k}, 2 or 3): the positions (m) of the {k} left boundary "
                          f"nodes and of the {k} right ones, got shape {x.shape}")

@@ -374,14 +374,15 @@ class Structure:
         self.static_force = np.zeros(ndof)
 
     @classmethod
-    def from_files(cls, path=None, *, M=None, K=None, C=None, dof_map=None, names=None) -> Structure:
+    def from_files(cls, path=None, *, M=None, K=None, C=None, dof_map=None, names=None, format=None) -> Structure:
         """A structure from finite-element matrix files (see :func:`microslip.fe.read_matrices`).
 
         Parameters
         ----------
         path : str or Path, optional
-            One ``.mat``, ``.npz`` or ``.op4`` file holding ``M``, ``K`` and
-            optionally ``C``.
+            One file holding ``M``, ``K`` and optionally ``C``: ``.mat``,
+            ``.npz``, ``.op4``, an ANSYS ``.full`` file, or Nastran DMIG
+            entries (``.pch``, ``.bdf``; name the matrices with ``names``).
         M, K, C : str or Path, optional
             One file per matrix instead (``.mtx``, ``.mat``, ``.npz``,
             ``.op4``); ``C`` may be omitted (no viscous damping).
@@ -391,6 +392,11 @@ class Structure:
         names : mapping, optional
             Variable names when they are not ``M``, ``K``, ``C``, e.g.
             ``{"M": "MGG", "K": "KGG"}``.
+        format : str, optional
+            The files' format when their suffix does not say it
+            (``"harwell-boeing"``, ``"abaqus"``, ``"nastran-dmig"``, ...; see
+            :mod:`microslip.fe.files`). ANSYS, DMIG and Abaqus files label
+            their rows: the DOF map then comes from the files.
 
         Returns
         -------
@@ -401,7 +407,7 @@ class Structure:
         >>> s = Structure.from_files("blade.mat", dof_map="blade_dofs.csv")  # doctest: +SKIP
         >>> s.add_contact(model, tangential={"1204:x": 1.0}, normal={"1204:y": -1.0}, preload=40.0)  # doctest: +SKIP
         """
-        m = read_matrices(path, M=M, K=K, C=C, dof_map=dof_map, names=names)
+        m = read_matrices(path, M=M, K=K, C=C, dof_map=dof_map, names=names, format=format)
         return cls(m.M, m.C, m.K, dof_map=m.dof_map)
 
     def dof_index(self, dof) -> int:
