@@ -57,6 +57,9 @@ PRESETS = {30: {"along": 13, "across": 3, "tied": (1, 3)},
 #: against the plates (the through-thickness stiffness of a half plate per unit area is ``2 E / thickness``)
 TIE_FACTOR = 10.0
 
+#: the most tied-interface modes :func:`lap_joint` keeps
+MAX_MODES = 500
+
 #: points closer than this fraction of the plate's length are one point
 _SAME_POINT = 1e-9
 
@@ -80,6 +83,9 @@ class LapJoint:
         ``{patch.nodes_a[p]: (x, y, z)}``: the reduced DOFs of each pair's relative displacement.
     bolt_force : ndarray, shape (n,)
         The reduced static load of the three bolts' clamping (N; ``T^T f``).
+    full_bolt_force : ndarray, shape (N,)
+        ``f``: that load on the free DOFs of the mesh (N), ``+z`` on the lower plate's bottom face, ``-z``
+        on the upper plate's top face, ``bolt_load`` per bolt and face.
     bolt_pairs : list of 3 ndarray of int
         Indices into ``patch`` of each bolt's tied pairs (the first bolt nearest ``x = 0``).
     bolt_positions : ndarray, shape (3, 2)
@@ -109,6 +115,7 @@ class LapJoint:
     tied_pairs: np.ndarray
     dofs: dict
     bolt_force: np.ndarray
+    full_bolt_force: np.ndarray
     bolt_pairs: list
     bolt_positions: np.ndarray
     recovery: np.ndarray
@@ -238,7 +245,7 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
         Contact elements: selects the mesh (:data:`PRESETS`); the interface has 39, 147 or 555 node pairs,
         of which 9, 27 or 75 are tied around the bolts. The full mesh has about 2.6e3, 7.6e3 or 3.6e4 DOFs.
     modes : int, default 40
-        Tied-interface normal modes kept (``modes >= 1``).
+        Tied-interface normal modes kept, 1 to :data:`MAX_MODES` (and fewer than the tied structure's DOFs).
     length, width, thickness : float
         Each plate's size (m); ``length`` along the beam, ``thickness`` across the interface.
     overlap : float
@@ -279,6 +286,9 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
         raise TypeError(f"contacts must be an integer, one of {sorted(PRESETS)}, got {_checks._show(contacts)}")
     preset = _layout(int(contacts))
     modes = _checks.positive_int("modes", modes, minimum=1)
+    if modes > MAX_MODES:
+        raise ValueError(f"modes must be at most {MAX_MODES} (tied-interface modes of a beam; the first few matter), "
+                         f"got {modes}")
     g = {name: _checks.positive_scalar(name, value) for name, value in (
         ("length", length), ("width", width), ("thickness", thickness), ("overlap", overlap),
         ("bolt_load", bolt_load), ("E", E), ("rho", rho))}
@@ -416,7 +426,7 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
     dofs = {int(patch.nodes_a[p]): (3 * p, 3 * p + 1, 3 * p + 2) for p in range(P)}
     geometry = {**{k: g[k] for k in ("length", "width", "thickness", "overlap", "E", "rho", "bolt_load")},
                 "nu": nu, "tie_stiffness": tie}
-    return LapJoint(Mred, Kred, patch, contact_pairs, tied, dofs, fred, bolt_pairs, bolts, T,
+    return LapJoint(Mred, Kred, patch, contact_pairs, tied, dofs, fred, f, bolt_pairs, bolts, T,
                     np.sqrt(np.maximum(lam, 0.0)), M, K, dof_map, points, (mesh_a, mesh_b), geometry)
 
 

@@ -34,8 +34,9 @@ def jointed_structure(joint: LapJoint, law=None, *, damping_ratio: float = 1e-3)
         The contact law per unit area (see :func:`microslip.fe.add_patch`); default
         :data:`DEFAULT_LAW`. Each contact moves on the interface's plane (two tangential directions).
     damping_ratio : float, default 1e-3
-        Viscous damping proportional to the stiffness (``C = beta K``) giving this damping ratio to the
-        first mode of the structure with its contacts stuck and closed, ``0 <= damping_ratio < 1``.
+        Viscous damping proportional to the stiffness without the contacts (``C = beta K``) giving this
+        damping ratio to the first mode of the structure with its contacts stuck and closed,
+        ``0 <= damping_ratio < 1``.
 
     Returns
     -------
@@ -62,6 +63,7 @@ def jointed_structure(joint: LapJoint, law=None, *, damping_ratio: float = 1e-3)
     structure.add_static_force(joint.bolt_force)
     if zeta > 0.0:
         stuck = structure.stuck_stiffness()
-        lam = sla.eigh(stuck, joint.M, eigvals_only=True, subset_by_index=[0, 0])[0]
-        structure.C = (2 * zeta / np.sqrt(lam)) * np.asarray(joint.K)
+        lam, phi = sla.eigh(stuck, joint.M, subset_by_index=[0, 0])
+        # phi^T C phi = 2 zeta omega for the mass-normalised mode phi
+        structure.C = (2 * zeta * np.sqrt(lam[0]) / float(phi[:, 0] @ joint.K @ phi[:, 0])) * np.asarray(joint.K)
     return structure
