@@ -14,8 +14,9 @@ tangents ``x``, ``y``). The size is chosen by the number of contact elements (:d
 
 Bolts: each bolt's clamping force pushes the outer faces towards the interface, spread over the nodes
 of the outer faces above and below its washer (by tributary area); around each bolt a block of pairs is
-tied (a stiff linear spring per pair in every direction, :data:`TIE_FACTOR`); every other pair is a
-contact element on its plane.
+tied (``tied_pairs``: the structure built by :func:`microslip.frequency.jointed_structure` holds them with
+the interface's stiffness, stuck and closed: they never slip nor open); every other pair is a contact
+element on its plane.
 
 Reduction ("relative coordinates plus tied-interface modes"): the displacements of side ``b``'s
 interface nodes are replaced by the relative displacements ``r = u_b - u_a`` of every pair, which are
@@ -39,23 +40,23 @@ from ._optional import require
 from .dof_map import DofMap
 from .patches import ContactPatch, contact_patch
 
-__all__ = ["LapJoint", "PRESETS", "TIE_FACTOR", "lap_joint"]
+__all__ = ["LapJoint", "PRESETS", "lap_joint"]
 
 #: structural steel, rounded: Young's modulus (Pa), Poisson's ratio, density (kg/m^3)
 STEEL = {"E": 2.0e11, "nu": 0.3, "rho": 7850.0}
 
-#: the meshes by number of contact elements: interface nodes along and across the overlap, and the block of
-#: tied pairs around each bolt (nodes along, across). Nodes along - 1 is a multiple of 4 so that every bolt
-#: (a quarter, a half, three quarters of the overlap) sits on a node; the tied block covers about the same
-#: washer footprint at 120 and 480 contacts (12 x 10 mm and 13 x 9 mm with the default shape), the coarsest
-#: mesh ties the bolt's line of nodes across the plate.
-PRESETS = {30: {"along": 13, "across": 3, "tied": (1, 3)},
-           120: {"along": 21, "across": 7, "tied": (3, 3)},
-           480: {"along": 37, "across": 15, "tied": (5, 5)}}
+def _block(along: int, across: int) -> tuple:
+    return tuple((i, j) for i in range(-(along // 2), along // 2 + 1) for j in range(-(across // 2), across // 2 + 1))
 
-#: the tie springs' stiffness per unit area (Pa/m), as a multiple of ``E / thickness``: stiff enough to be rigid
-#: against the plates (the through-thickness stiffness of a half plate per unit area is ``2 E / thickness``)
-TIE_FACTOR = 10.0
+
+#: the meshes by number of contact elements: interface nodes along and across the overlap, and the pairs tied
+#: around each bolt as offsets (along, across) in nodes from the bolt's node. Nodes along - 1 is a multiple of 4
+#: so that every bolt (a quarter, a half, three quarters of the overlap) sits on a node; the tied pairs cover
+#: about the same washer footprint at 120 and 480 contacts (12 x 10 mm and 13 x 9 mm with the default shape);
+#: the coarsest mesh, whose bolts are two nodes apart, ties each bolt's line of nodes across the plate.
+PRESETS = {30: {"along": 9, "across": 5, "tied": _block(1, 5)},
+           120: {"along": 21, "across": 7, "tied": _block(3, 3)},
+           480: {"along": 37, "across": 15, "tied": _block(5, 5)}}
 
 #: the most tied-interface modes :func:`lap_joint` keeps
 MAX_MODES = 500
@@ -73,7 +74,7 @@ class LapJoint:
     M, K : ndarray, shape (n, n)
         Reduced mass (kg) and stiffness (N/m), ``n = 3 P + modes``: first the relative displacements
         ``r = u_b - u_a`` of the ``P`` interface pairs (x, y, z of pair 0, then of pair 1, ...; m), then
-        the tied-interface modal coordinates (kg^1/2 m). ``K`` includes the tie springs.
+        the tied-interface modal coordinates (kg^1/2 m). The pairs are free (no tie, no contact).
     patch : ContactPatch
         The ``P`` interface pairs (node ids of the full mesh, tributary areas, normal ``+z``); its
         ``nodes_a`` are the pairs' ids for :func:`~microslip.fe.add_patch` with ``relative=True``.
@@ -105,7 +106,7 @@ class LapJoint:
         the upper plate's after them, each plate's nodes in scikit-fem's order of DOFs).
     geometry : dict
         ``length``, ``width``, ``thickness``, ``overlap`` (m), ``E`` (Pa), ``nu``, ``rho`` (kg/m^3),
-        ``bolt_load`` (N per bolt), ``tie_stiffness`` (Pa/m).
+        ``bolt_load`` (N per bolt).
     """
 
     M: np.ndarray
@@ -235,15 +236,15 @@ def _layout(contacts: int):
 
 def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, width: float = 0.03,
               thickness: float = 0.012, overlap: float = 0.12, bolt_load: float = 10e3,
-              washer: float = 2.0, E: float = STEEL["E"], nu: float = STEEL["nu"], rho: float = STEEL["rho"],
-              tie_stiffness: float | None = None) -> LapJoint:
+              washer: float = 2.0, E: float = STEEL["E"], nu: float = STEEL["nu"],
+              rho: float = STEEL["rho"]) -> LapJoint:
     """A bolted lap joint of two clamped plates, reduced to relative interface coordinates (see the module).
 
     Parameters
     ----------
     contacts : {30, 120, 480}, default 120
-        Contact elements: selects the mesh (:data:`PRESETS`); the interface has 39, 147 or 555 node pairs,
-        of which 9, 27 or 75 are tied around the bolts. The full mesh has about 2.6e3, 7.6e3 or 3.6e4 DOFs.
+        Contact elements: selects the mesh (:data:`PRESETS`); the interface has 45, 147 or 555 node pairs,
+        of which 15, 27 or 75 are tied around the bolts.
     modes : int, default 40
         Tied-interface normal modes kept, 1 to :data:`MAX_MODES` (and fewer than the tied structure's DOFs).
     length, width, thickness : float
@@ -257,9 +258,6 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
         block's (its nodes' tributary areas), at least 1.
     E, nu, rho : float
         Young's modulus (Pa), Poisson's ratio and density (kg/m^3); default structural steel.
-    tie_stiffness : float, optional
-        Stiffness per unit area (Pa/m) of the tie of the pairs around the bolts, in every direction;
-        default :data:`TIE_FACTOR` ``* E / thickness``.
 
     Returns
     -------
@@ -304,10 +302,6 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
     for name in ("width", "thickness"):
         if not g[name] <= g["length"]:
             raise ValueError(f"{name} must be at most length ({g['length']!r} m) for a plate, got {g[name]!r} m")
-    if tie_stiffness is None:
-        tie = TIE_FACTOR * g["E"] / g["thickness"]
-    else:
-        tie = _checks.positive_scalar("tie_stiffness", tie_stiffness)
     skfem = require("skfem", "The lap joint (lap_joint)")
 
     Lp, W, t, Lo = g["length"], g["width"], g["thickness"], g["overlap"]
@@ -352,11 +346,13 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
     hy = W / (preset["across"] - 1)
     h = np.array([hx / 2, hy])  # the interface's node spacing along and across (quadratic elements)
     xy = points[patch.nodes_a, :2]
-    half = (np.array(preset["tied"]) - 1) / 2 * h
-    bolt_pairs = [np.flatnonzero(np.all(np.abs(xy - b) <= half + close, axis=1)) for b in bolts]
+    offsets = set(preset["tied"])
+    steps = [np.round((xy - b) / h).astype(np.int64) for b in bolts]  # node offsets from each bolt's node
+    bolt_pairs = [np.array([p for p in range(P) if tuple(d[p]) in offsets], dtype=np.int64) for d in steps]
     tied = np.concatenate(bolt_pairs)
-    if tied.size != 3 * preset["tied"][0] * preset["tied"][1]:  # the presets put a node on every bolt
+    if tied.size != 3 * len(offsets):  # the presets put a node on every bolt
         raise AssertionError(f"tied pairs: {tied.size}")
+    half = np.abs(np.array(preset["tied"])).max(axis=0) * h  # the tied pairs' half-extent along and across (m)
     contact_pairs = np.setdiff1d(np.arange(P), tied)
 
     f = np.zeros(M.shape[0])
@@ -421,11 +417,10 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
     Kred = T.T @ (K @ T)
     Mred, Kred = 0.5 * (Mred + Mred.T), 0.5 * (Kred + Kred.T)
     # the relative coordinates of a pair are rows 3p..3p+2 of the reduced model (b is ib.ravel(), pair-major)
-    Kred[np.arange(3 * P), np.arange(3 * P)] += np.repeat(np.isin(np.arange(P), tied) * tie * patch.area, 3)
     fred = T.T @ f
     dofs = {int(patch.nodes_a[p]): (3 * p, 3 * p + 1, 3 * p + 2) for p in range(P)}
     geometry = {**{k: g[k] for k in ("length", "width", "thickness", "overlap", "E", "rho", "bolt_load")},
-                "nu": nu, "tie_stiffness": tie}
+                "nu": nu}
     return LapJoint(Mred, Kred, patch, contact_pairs, tied, dofs, fred, f, bolt_pairs, bolts, T,
                     np.sqrt(np.maximum(lam, 0.0)), M, K, dof_map, points, (mesh_a, mesh_b), geometry)
 
