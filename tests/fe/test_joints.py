@@ -85,7 +85,7 @@ def test_the_tied_joint_is_the_monolithic_beam_of_euler_bernoulli():
 
     Tolerance 4 %: Euler-Bernoulli leaves out shear deformation and rotary inertia (for L / t = 30 they
     lower the first clamped-clamped frequency by about 1-2 %) and the 3D clamped faces that hold the Poisson
-    contraction (which stiffens); measured -2.1 % at 30 contacts and -3.1 % at 120.
+    contraction (which stiffens); measured -1.1 % at 30 contacts and -3.1 % at 120.
     """
     j = small()
     assert j.tied_frequencies[0] == pytest.approx(j.monolithic_frequency(), rel=0.04)
@@ -101,9 +101,10 @@ def test_the_stuck_joint_is_a_little_softer_than_the_monolithic_beam():
     assert s.ndof == j.ndof and len(s.contacts) == 30 and all(c.planar for c in s.contacts)
     lam, phi = sla.eigh(s.stuck_stiffness(), s.M, subset_by_index=[0, 0])
     w = np.sqrt(lam[0])
-    # the interface's compliance lowers the frequency; the coarsest mesh ties one line of nodes per bolt
-    # (measured -12 % there, -1.5 % at 120 contacts)
-    assert 0.8 * j.tied_frequencies[0] < w < j.tied_frequencies[0]
+    # the interface's compliance lowers the frequency a little: its stiffness per area is of the order of the
+    # half plates' through-thickness stiffness per area, and the interface is short (measured -1.0 % here,
+    # -1.5 % at 120 contacts)
+    assert 0.95 * j.tied_frequencies[0] < w < j.tied_frequencies[0]
     u = j.recovery @ phi[:, 0]
     comp = np.array(j.dof_map.components)
     assert np.abs(u[comp == "z"]).max() > 5 * np.abs(u[comp != "z"]).max()  # bending across the thickness
@@ -121,7 +122,7 @@ def test_the_prestressed_interface_carries_the_bolt_load():
     gap = q0[3 * np.arange(P) + 2]  # relative normal displacement u_b - u_a: negative when pressed
     contact = law.kn_per_area * j.patch.area[j.contact_pairs] * np.maximum(-gap[j.contact_pairs], 0.0)
     tie = -law.kn_per_area * j.patch.area[j.tied_pairs] * gap[j.tied_pairs]
-    # 1e-3: the clamps at the far ends carry a small share through the plates' bending (measured 4e-5 here,
+    # 1e-3: the clamps at the far ends carry a small share through the plates' bending (measured 6e-5 here,
     # 3e-5 at 120 contacts)
     assert contact.sum() + tie.sum() == pytest.approx(3 * j.geometry["bolt_load"], rel=1e-3)
     assert np.count_nonzero(contact) >= 10  # the pairs around the bolts are pressed
