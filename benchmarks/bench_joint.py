@@ -1,7 +1,7 @@
 """Speed of the nonlinear mode of a bolted lap joint, the interface-dominated model of issue 26.
 
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_joint.py                 # 120 contacts, the whole backbone
-      python benchmarks/bench_joint.py --quick                                # 30 contacts, 6 points, ~ minutes
+      python benchmarks/bench_joint.py --quick                                # 30 contacts, 8 points, ~ minutes
       python benchmarks/bench_joint.py --contacts 480 --points 41 --no-baseline
       python benchmarks/bench_joint.py --points 5 --profile                   # where one run's time goes
 
@@ -12,8 +12,9 @@ tied-interface modes (481 DOFs for 120 contacts: 147 pairs, 27 of them tied arou
 (two tangential directions and the normal). Prestressed by the bolts (:func:`prestressed`), then the
 nonlinear mode of its first bending mode by the extended periodic motion concept
 (``microslip.nonlinear_modes``), harmonics 0-3, 128 samples, modal amplitudes from the stuck joint
-(1e-6 kg^1/2 m) to gross slip (1e-3), ``--points`` points at equal steps of log amplitude (the default
-step control's 20 points per decade without ``--points``).
+(3e-6 kg^1/2 m) to gross slip of the contacts (3e-4; ``--quick``: 8e-6 to 6e-5), ``--points`` points at
+equal steps of log amplitude (at most 4 times as many where the curve bends; without ``--points``, the
+default step control's 20 points per decade at least).
 
 Reported: the backbone's time, its points and the time per point; the time of one dense LU
 factorisation of the full nonlinear system's size (``dofs x (2H + 1)`` unknowns) measured in the same run,
@@ -49,7 +50,8 @@ REPO = Path(__file__).resolve().parent.parent
 BASELINE = "f0499a5"
 HARMONICS = 3
 SAMPLES = 128
-AMPLITUDE = (1e-6, 1e-3)
+AMPLITUDE = (3e-6, 3e-4)
+QUICK_AMPLITUDE = (8e-6, 6e-5)
 TARGET_SPEEDUP = 10.0
 TARGET_AGREEMENT = 1e-6
 
@@ -84,13 +86,13 @@ def control(points: int | None):
     return StepControl(ds_initial=step, ds_max=step, max_points=4 * points)
 
 
-def backbone(structure, points):
+def backbone(structure, points, amplitude=AMPLITUDE):
     from microslip import nonlinear_modes
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # an under-resolved contact energy is not what is measured here
         t0 = time.perf_counter()
-        mode = nonlinear_modes(structure, 1, AMPLITUDE, harmonics=HARMONICS, samples=SAMPLES,
+        mode = nonlinear_modes(structure, 1, amplitude, harmonics=HARMONICS, samples=SAMPLES,
                                control=control(points))
         return time.perf_counter() - t0, mode
 
@@ -162,14 +164,14 @@ def baseline_source() -> Path:
     return root / "src"
 
 
-def run_baseline(structure, points: int | None) -> dict:
+def run_baseline(structure, points: int | None, amplitude) -> dict:
     src = baseline_source()
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "structure.npz"
         export_structure(structure, path)
         env = {**os.environ, "PYTHONPATH": str(src)}
-        done = subprocess.run([sys.executable, "-c", BASELINE_SCRIPT, str(path), str(points or 0), str(AMPLITUDE[0]),
-                               str(AMPLITUDE[1]), str(HARMONICS), str(SAMPLES)], capture_output=True, text=True,
+        done = subprocess.run([sys.executable, "-c", BASELINE_SCRIPT, str(path), str(points or 0), str(amplitude[0]),
+                               str(amplitude[1]), str(HARMONICS), str(SAMPLES)], capture_output=True, text=True,
                               env=env, cwd=tmp)
     if done.returncode != 0:
         raise RuntimeError(f"the baseline failed:\n{done.stderr[-3000:]}")
@@ -191,11 +193,11 @@ def agreement(mode, base: dict) -> tuple[float, float]:
 
 # -- where the time goes --------------------------------------------------------------------------------
 
-def profile(structure, points) -> dict:
+def profile(structure, points, amplitude) -> dict:
     prof = cProfile.Profile()
     t0 = time.perf_counter()
     prof.enable()
-    backbone(structure, points)
+    backbone(structure, points, amplitude)
     prof.disable()
     total = time.perf_counter() - t0
     out = io.StringIO()
@@ -212,22 +214,23 @@ def main(argv=None) -> int:
                         help="contact elements (default 120: 481 DOFs)")
     parser.add_argument("--points", type=int, default=None,
                         help="points at equal steps of log amplitude (default: the default step control)")
-    parser.add_argument("--quick", action="store_true", help="30 contacts, 6 points")
+    parser.add_argument("--quick", action="store_true", help="30 contacts, 8 points over a shorter range")
     parser.add_argument("--no-baseline", action="store_true", help="skip the pinned commit's run")
     parser.add_argument("--profile", action="store_true", help="print cProfile's top functions of one run")
     args = parser.parse_args(argv)
     if args.quick:
-        args.contacts, args.points = 30, args.points or 6
+        args.contacts, args.points = 30, args.points or 8
+    amplitude = QUICK_AMPLITUDE if args.quick else AMPLITUDE
     if args.points is not None and args.points < 2:
         parser.error(f"--points must be at least 2, got {args.points}")
 
     from microslip import nonlinear_modes  # noqa: F401  (imported before anything is timed)
 
     joint, structure = build(args.contacts)
-    backbone(structure, 2)  # the compiled kernels loaded before anything is timed
+    backbone(structure, 2, (amplitude[0], 1.01 * amplitude[0]))  # the compiled kernels loaded before timing
     if args.profile:
-        profile(structure, args.points)
-    seconds, mode = backbone(structure, args.points)
+        profile(structure, args.points, amplitude)
+    seconds, mode = backbone(structure, args.points, amplitude)
     n_unknowns = structure.ndof * (2 * HARMONICS + 1)
     lu = dense_lu_seconds(n_unknowns)
     per_point = seconds / mode.points
@@ -247,7 +250,7 @@ def main(argv=None) -> int:
                "frequency_hz": [float(mode.omega[0] * hz), float(mode.omega[-1] * hz)],
                "damping_ratio_max": float(mode.damping_ratio.max())}
     if not args.no_baseline:
-        base = run_baseline(structure, args.points)
+        base = run_baseline(structure, args.points, amplitude)
         df, dz = agreement(mode, base)
         ratio = base["seconds"] / seconds
         print(f"baseline (commit {BASELINE}, same run): {base['seconds']:.1f} s, {base['points']} points, "
