@@ -36,6 +36,21 @@ def test_the_coarsest_joint_has_its_pairs_contacts_and_dofs():
     assert "contacts=30" in repr(j)
 
 
+@pytest.mark.parametrize("contacts", sorted(PRESETS))
+def test_every_preset_has_its_contacts_and_a_node_on_every_bolt(contacts):
+    preset = PRESETS[contacts]
+    assert preset["along"] * preset["across"] - 3 * len(set(preset["tied"])) == contacts
+    assert (preset["along"] - 1) % 4 == 0 and preset["across"] % 2 == 1  # bolts at 1/4, 1/2, 3/4, centre line
+
+
+def test_the_bolt_dofs_are_the_relative_displacements_of_the_tied_pairs():
+    j = small()
+    dofs = j.bolt_dofs
+    assert [d.size for d in dofs] == [15, 15, 15]
+    assert np.array_equal(np.sort(np.concatenate(dofs)), np.sort(np.concatenate([3 * j.tied_pairs + k
+                                                                                 for k in range(3)])))
+
+
 def test_the_tributary_areas_sum_to_the_overlap():
     j = small()
     g = j.geometry

@@ -138,6 +138,12 @@ class LapJoint:
         """Number of contact elements (pairs that are not tied)."""
         return int(self.contact_pairs.size)
 
+    @property
+    def bolt_dofs(self) -> list:
+        """Each bolt's reduced DOFs: the relative displacements (x, y, z) of its tied pairs, 3 arrays of int."""
+        return [np.array([d for p in pairs for d in self.dofs[int(self.patch.nodes_a[p])]], dtype=np.int64)
+                for pairs in self.bolt_pairs]
+
     def contact_patch(self) -> ContactPatch:
         """The sub-patch of the contact pairs (tied pairs left out), for :func:`~microslip.fe.add_patch`."""
         i = self.contact_pairs
