@@ -60,12 +60,9 @@ def prestressed(structure):
     """The structure prestressed by its bolts: the one place to swap in ``microslip.frequency.prestress``.
 
     Today's solvers take the bolts' static force as the harmonic-0 load of the mode (the static state is
-    solved first, with every slider starting at zero, and the static term stays an unknown of the mode).
+    solved first, with every slider starting at zero, and the static term stays an unknown of the mode), so
+    the structure is returned as it is; once ``microslip.frequency.prestress`` is on main, call it here.
     """
-    import microslip.frequency as f
-
-    if hasattr(f, "prestress"):  # the prestress step once it is on main
-        return f.prestress(structure)
     return structure
 
 
