@@ -34,7 +34,7 @@ from microslip.fe import lap_joint
 from microslip.frequency import StepControl, jointed_structure, static_solution
 
 #: (contacts, tied-interface modes, modal amplitudes (kg^1/2 m), continuation step (the range is 1))
-SETTINGS = {False: (120, 40, (3e-6, 3e-4), None), True: (30, 10, (8e-6, 6e-5), 1 / 12)}
+SETTINGS = {False: (120, 40, (3e-7, 1e-4), None), True: (30, 10, (1e-6, 1.2e-5), 1 / 12)}
 
 
 def main(out=Path("microslip-examples") / "bolted_lap_joint.png", quick: bool = False):

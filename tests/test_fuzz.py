@@ -882,7 +882,7 @@ CASES += [
          law=PRESSURE_LAW, dofs={3: (0, 1, 2), 8: (3, 4, 5)}, relative=True),
     # the lap joint: each build takes seconds, so only the values it must refuse before meshing
     case("fe.lap_joint", lambda: microslip.fe.lap_joint, refused_only=True, contacts=30, modes=4, length=0.24,
-         width=0.03, thickness=0.012, overlap=0.12, bolt_load=1e4, washer=2.0, E=2e11, nu=0.3, rho=7850.0),
+         width=0.03, thickness=0.012, overlap=0.12, bolt_load=1e4, washer=3.0, E=2e11, nu=0.3, rho=7850.0),
     case("frequency.jointed_structure", lambda: microslip.frequency.jointed_structure, joint=L(lap_joint),
          law=PRESSURE_LAW, damping_ratio=1e-3),
     # interface tables: node ids of zero and negative areas are refused, a zero normal has no unit length

@@ -241,7 +241,7 @@ def _layout(contacts: int):
 
 def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, width: float = 0.03,
               thickness: float = 0.012, overlap: float = 0.12, bolt_load: float = 10e3,
-              washer: float = 2.0, E: float = STEEL["E"], nu: float = STEEL["nu"],
+              washer: float = 3.0, E: float = STEEL["E"], nu: float = STEEL["nu"],
               rho: float = STEEL["rho"]) -> LapJoint:
     """A bolted lap joint of two clamped plates, reduced to relative interface coordinates (see the module).
 
@@ -258,7 +258,7 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
         Length of the overlap (m), below ``length`` and at least its 1/20.
     bolt_load : float
         Each bolt's clamping force (N), positive.
-    washer : float, default 2.0
+    washer : float, default 3.0
         The bolt's load is spread over the outer faces under a footprint ``washer`` times the tied
         block's (its nodes' tributary areas), at least 1.
     E, nu, rho : float
