@@ -461,6 +461,12 @@ def patch_structure() -> Structure:
     return Structure(np.eye(36), np.zeros((36, 36)), 1e6 * np.eye(36), dof_map=dof_map)
 
 
+@cache
+def lap_joint():
+    return microslip.fe.lap_joint(30, modes=4)
+
+
+@cache
 def table_patch():
     return microslip.fe.patch_from_tables([3, 8], [1e-4, 2e-4], [[0.0, 0.0, 1.0], [0.6, 0.0, 0.8]])
 
@@ -876,6 +882,11 @@ CASES += [
     case("fe.add_patch [relative]", lambda: microslip.fe.add_patch, kinds={"dofs": "mapping"},
          structure=L(lambda: Structure(np.eye(6), np.zeros((6, 6)), np.eye(6))), patch=L(table_patch),
          law=PRESSURE_LAW, dofs={3: (0, 1, 2), 8: (3, 4, 5)}, relative=True),
+    # the lap joint: each build takes seconds, so only the values it must refuse before meshing
+    case("fe.lap_joint", lambda: microslip.fe.lap_joint, refused_only=True, contacts=30, modes=4, length=0.24,
+         width=0.03, thickness=0.012, overlap=0.12, bolt_load=1e4, washer=3.0, E=2e11, nu=0.3, rho=7850.0),
+    case("frequency.jointed_structure", lambda: microslip.frequency.jointed_structure, joint=L(lap_joint),
+         law=PRESSURE_LAW, damping_ratio=1e-3),
     # interface tables: node ids of zero and negative areas are refused, a zero normal has no unit length
     case("fe.patch_from_tables", lambda: microslip.fe.patch_from_tables, nodes_a=[3, 8], area=[1e-4, 2e-4],
          normal=[[0.0, 0.0, 1.0], [0.6, 0.0, 0.8]], nodes_b=[13, 18], tangent1=[[1.0, 0.0, 0.0], [0.8, 0.0, -0.6]],
@@ -991,7 +1002,7 @@ RESULTS = {"AccuracyReport", "AFTResult", "PlaneAFTResult", "Contact", "ElementS
            "SteadyState", "Step", "TargetTuning", "TuningPoints", "Validation", "CraigBampton", "DamperContact",
            "DesignCurve", "CampbellDiagram", "SpeedCurve", "FEBlade", "FEMatrices", "ContactCycle", "NonlinearModes",
            "SynthesizedResponse", "SweepResult", "Study", "Case", "Mistuning", "ContactPatch", "Prestress",
-           "PrestressedModes"}
+           "PrestressedModes", "LapJoint"}
 
 PUBLIC_MODULES = ("microslip", "microslip.frequency", "microslip.loops", "microslip.paths", "microslip.reference",
                   "microslip.tuning", "microslip.measured", "microslip.accuracy", "microslip.fe", "microslip.study")

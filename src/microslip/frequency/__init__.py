@@ -35,6 +35,8 @@
   lift-off) at every sample;
 * :func:`craig_bampton` -- a smaller :class:`Structure` on kept DOFs plus
   fixed-interface modes, with its recovery matrix;
+* :func:`jointed_structure` -- the friction contacts and bolt load on a reduced
+  lap joint (:func:`microslip.fe.lap_joint`);
 * :func:`steady_state` -- direct time integration
   to the periodic steady state (an independent check);
 * :func:`prestress` -- bolt and contact prestress: the static state with the
@@ -63,6 +65,7 @@ from .analyses.blade_peaks import amplification_factor, blade_peaks
 from .analyses.nonlinear_modes import NonlinearModes, nonlinear_modes
 from .analyses.response import (FrequencyResponse, IncompleteCurveWarning, frequency_point, frequency_response,
                                 static_solution)
+from .structures.joints import jointed_structure
 from .structures.structure import Contact, Structure
 from .analyses.synthesis import SynthesizedResponse
 from .analyses.transient import SteadyState, steady_state
@@ -117,6 +120,7 @@ __all__ = [
     "aft",
     "aft_batch",
     "aft_plane",
+    "jointed_structure",
     "amplification_factor",
     "blade_peaks",
     "blade_scatter",
