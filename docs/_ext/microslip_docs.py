@@ -135,10 +135,16 @@ def _parse(directive, lines: list[str]) -> list:
 
 # ----------------------------------------------------------------------------------------- benchmark results
 
+def _text(value) -> str:
+    """``value`` as literal reStructuredText on one line: every markup character escaped."""
+    text = " ".join(str(value).split())
+    return "".join("\\" + c if c in "\\*`|_<>[]:" else c for c in text)
+
+
 def _number(value) -> str:
-    """A figure with three significant digits (integers and text as they are)."""
+    """A figure with three significant digits (integers and text as they are), escaped for a table cell."""
     if isinstance(value, bool) or not isinstance(value, float):
-        return str(value)
+        return _text(value)
     return f"{value:.3g}"
 
 
@@ -150,14 +156,14 @@ def _flatten(figures, prefix: str = "") -> list[tuple[str, str]]:
         if isinstance(value, dict):
             rows += _flatten(value, path)
         elif isinstance(value, list):
-            rows.append((path, ", ".join(_number(v) for v in value)))
+            rows.append((_text(path), ", ".join(_number(v) for v in value)))
         else:
-            rows.append((path, _number(value)))
+            rows.append((_text(path), _number(value)))
     return rows
 
 
 def _table(caption: str, header: list[str], rows: list[list[str]]) -> list[str]:
-    lines = [f".. list-table:: {caption}", "   :header-rows: 1", ""]
+    lines = [f".. list-table:: {_text(caption)}", "   :header-rows: 1", ""]
     for row in [header] + rows:
         lines.append(f"   * - {row[0] if str(row[0]) else ' '}")
         lines += [f"     - {cell if str(cell) else ' '}" for cell in row[1:]]
@@ -171,7 +177,7 @@ def benchmark_lines(path: Path) -> list[str]:
     title = f"``{name}``"
     lines = [title, "-" * len(title), ""]
     if isinstance(figures, dict) and figures.get("description"):
-        lines += [str(figures["description"]), ""]
+        lines += [_text(figures["description"]), ""]
     command = figures.get("command") if isinstance(figures, dict) else None
     lines += [f"Command: ``{command or 'python benchmarks/' + name + '.py'}``; "
               f"output ``benchmarks/results/{path.name}``.", ""]
@@ -181,11 +187,11 @@ def benchmark_lines(path: Path) -> list[str]:
               f"{machine.get('system')}; Python {machine.get('python')}, NumPy {machine.get('numpy')}, SciPy "
               f"{machine.get('scipy')}, numba {machine.get('numba')}, microslip {machine.get('microslip')}.", ""]
     if isinstance(figures, dict) and figures.get("sizes"):
-        lines += [f"Sizes: {figures['sizes']}.", ""]
+        lines += [f"Sizes: {_text(figures['sizes'])}.", ""]
     tables = figures.get("tables") if isinstance(figures, dict) else None
     if tables:
         for table in tables:
-            lines += _table(table.get("caption", ""), [str(c) for c in table["columns"]],
+            lines += _table(table.get("caption", ""), [_text(c) for c in table["columns"]],
                             [[_number(v) for v in row] for row in table["rows"]])
     else:
         rest = {k: v for k, v in figures.items() if k not in ("description", "command", "sizes")}
