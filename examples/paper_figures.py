@@ -16,6 +16,8 @@ from pathlib import Path
 
 from microslip.figures import reproduce
 
+# sphinx_gallery_thumbnail_number = 4
+
 
 def main(out=Path("microslip-results")) -> Path:
     """Write every section of the paper's reproduction into the folder ``out``; returns the HTML report."""
