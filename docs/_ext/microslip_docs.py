@@ -64,7 +64,12 @@ def write_api_pages(app, config) -> None:
     folder = Path(app.srcdir) / "api"
     folder.mkdir(exist_ok=True)
     pages = []
-    for package, rows in api_entries(documented).items():
+    entries = api_entries(documented)
+    current = {f"{package}.{name}" for package, rows in entries.items() for name, canonical in rows if not canonical}
+    for stale in (folder / "generated").glob("*.rst"):  # a name no longer public leaves no page behind
+        if stale.stem not in current:
+            stale.unlink()
+    for package, rows in entries.items():
         pages.append(package)
         own = [name for name, canonical in rows if canonical is None]
         aliases = [(name, canonical) for name, canonical in rows if canonical is not None]
