@@ -1,4 +1,5 @@
 """A blade with an under-platform friction damper: forced response for rising excitation levels.
+=============================================================================================
 
 A two-degree-of-freedom blade -- platform (DOF 0, 50 g, 4 N/µm to the disk)
 and airfoil tip (DOF 1, 100 g, 10 N/µm to the platform) -- is excited at the

@@ -1,4 +1,5 @@
 """A bladed disk with an under-platform damper between every pair of blades, engine order 3.
+=========================================================================================
 
 24 blades clamped in a rigid disk, each the plane-stress finite-element blade of
 ``microslip.fe.blade`` (nickel alloy, E = 200 GPa, nu = 0.3, 8190 kg/m^3, 3 mm thick; a 16 mm shank

@@ -1,4 +1,5 @@
 """A finite-element blade with friction contacts under its platform, checked against time integration.
+===================================================================================================
 
 The blade is ``microslip.fe.blade``: meshed and assembled with scikit-fem (plane stress, 9-node
 quadrilaterals, about ``--dofs`` DOFs, nickel alloy, clamped at the root of its shank), damped in

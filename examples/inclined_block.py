@@ -1,4 +1,5 @@
 """Harmonic balance against time integration: a block pressed on an inclined plane.
+================================================================================
 
 A 0.1 kg block on two springs (x and y, 10 N/µm each) is pushed by a static force of
 37.5 N (the contact's ``preload``) against a plane inclined at 30 degrees; the contact is

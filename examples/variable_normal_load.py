@@ -1,4 +1,5 @@
 """A damper contact whose normal load breathes with the motion: the paper's array against the exact contact.
+=========================================================================================================
 
 The sphere of the paper (d = 10 mm, steel, mu = 0.4) sees a tangential displacement
 ``t = t_a sin(tau)`` while its normal load varies as ``N = N_m + N_a sin(tau + phi)``, as in an

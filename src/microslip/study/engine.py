@@ -29,7 +29,7 @@ WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THRE
               "NUMBA_NUM_THREADS": "1", "MPLBACKEND": "Agg"}
 #: Dask settings of a local cluster: the workers' periodic chores (a statistical profiler sampling the solving
 #: thread every 10 ms, memory and system monitors, the event loop's tick) compete with the solve for the
-#: interpreter; at their defaults a case took about 10 % longer on a worker than in a plain loop
+#: interpreter and made a case measurably slower on a worker than in a plain loop
 LOCAL_CONFIG = {"distributed.worker.profile.enabled": False, "distributed.worker.memory.monitor-interval": "10s",
                 "distributed.admin.system-monitor.interval": "10s", "distributed.admin.tick.interval": "5s"}
 #: seconds to wait for an existing scheduler to answer

@@ -41,10 +41,13 @@ from ._record import record
 class ContactReference(Protocol):
     """What :func:`tune` needs of a reference contact (SI units).
 
-    Attributes / methods
-    --------------------
+    Attributes
+    ----------
     mu : float
         Friction coefficient.
+
+    Methods
+    -------
     backbone(t, N) -> T
         Virgin tangential force (N) at displacement ``t`` (m) and load ``N`` (N).
     backbone_displacement(T, N) -> t

@@ -123,7 +123,7 @@ class NonlinearModes(FrequencyResponse):
             Amplitude on the horizontal axis: None, the modal amplitude
             (kg^1/2 m); else a DOF as in :meth:`amplitude`, in ``unit``.
         harmonic : int, optional
-            The DOF's harmonic (None: max |q - q0| over a period).
+            The DOF's harmonic (None: max ``|q - q0|`` over a period).
         axes : pair of matplotlib Axes, optional
             Where to draw (a new figure if omitted).
         frequency_unit : {"Hz", "rad/s"}

@@ -41,107 +41,66 @@ _CURVE_SAMPLES = 256  # samples per period when reporting the maximum of a time 
 class FrequencyResponse:
     """A forced-response curve (from :func:`frequency_response`).
 
-    ``points`` solutions along the curve, ``nb = 2H + 1`` Fourier
-    coefficients ``[c0, a1, b1, ..., aH, bH]`` of ``c0 + sum a_h cos(h omega time)
-    + b_h sin(h omega time)``, ``nc`` contacts.
+    ``points`` solutions along the curve, ``nb = 2H + 1`` Fourier coefficients
+    ``[c0, a1, b1, ..., aH, bH]`` of ``c0 + sum a_h cos(h omega time) + b_h sin(h omega time)``,
+    ``nc`` contacts. How to read one (static state, energies, stability, reductions): the user
+    guide's page "Forced responses and stability".
 
     Attributes
     ----------
     structure : Structure
         The structure solved.
-    harmonics : int
-        ``H``.
-    samples : int
-        AFT time samples per period.
+    harmonics, samples : int
+        ``H`` and the AFT's time samples per period.
     omega : ndarray, shape (points,)
-        Excitation frequency of each point (rad/s), in the order of the
-        curve (not monotonic past a fold).
+        Excitation frequency of each point (rad/s), in the order of the curve (not monotonic past a fold).
     coefficients : ndarray, shape (points, nb, len(dofs))
-        Fourier coefficients (m) of the DOFs in :attr:`dofs`; any other DOF
-        is recovered on demand by :meth:`amplitude`, :meth:`time_history` and
-        :meth:`dof_coefficients`.
+        Fourier coefficients (m) of the DOFs in :attr:`dofs`; :meth:`amplitude`,
+        :meth:`time_history` and :meth:`dof_coefficients` recover any other DOF.
+    dofs : ndarray of int, shape (m,)
+        The DOFs stored: every DOF without reduction, the retained ones with one.
     contact_t, contact_n : ndarray, shape (points, nc, nb)
-        Coefficients of each contact's tangential displacement and normal approach (m).
+        Each contact's tangential displacement and normal approach (m).
     contact_T, contact_N : ndarray, shape (points, nc, nb)
-        Coefficients of each contact's tangential and normal force (N);
-        ``contact_N[:, c, 0]`` is the static normal load.
+        Each contact's tangential and normal force (N); ``contact_N[:, c, 0]`` is the static normal load.
+    contact_t2, contact_T2 : ndarray, shape (points, nc, nb)
+        The second tangential direction of a contact on its plane (m, N); zero along one direction.
     excitation_work, viscous_dissipation : ndarray, shape (points,)
         Work of the excitation and energy dissipated by ``C`` per cycle (J).
     contact_dissipation : ndarray, shape (points, nc)
-        Energy dissipated per cycle by each contact (J): the friction work of its
-        elements over the sampled period, never negative (a contact that opens
-        and closes during the cycle is checked for resolution:
-        :class:`~microslip.frequency.aft.UnderResolvedWarning`).
+        Friction work of each contact over the sampled period (J), never negative.
+    contact_harmonic_work : ndarray, shape (points, nc)
+        Each contact's energy per cycle from the force harmonics kept (J), which balances the
+        excitation's and the viscous work exactly but carries the AFT's sampling error.
     iterations : ndarray of int, shape (points,)
         Newton iterations of each point.
-    static_normal_force, static_tangential_force : ndarray, shape (nc,)
-        Each contact's normal load and tangential force (N) at the static
-        equilibrium under the preloads and the static force, before any
-        vibration. A ``preload`` is a force on the structure, shared between
-        the contact and the structure's own stiffness, so the static normal
-        force can be well below it; ``|T0| = mu N0`` means the contact is
-        already in gross slip statically.
+    static_normal_force, static_tangential_force, static_tangential_force2 : ndarray, shape (nc,)
+        Each contact's normal load and tangential force components (N) at the static equilibrium.
     static_closed_elements : ndarray of int, shape (nc,)
         Elements of each contact closed at the static equilibrium.
+    static_coefficients : ndarray, shape (len(dofs),)
+        The static equilibrium's displacement of :attr:`dofs` (m); None where not solved.
     complete : bool
-        True when the curve reaches the end of the range (or leaves the range
-        past a fold); False when the continuation stopped at
-        ``StepControl.max_points`` first (:func:`frequency_response` warns), or
-        was interrupted (the ``partial`` of :class:`CurveInterrupted`).
+        False when the continuation stopped at ``StepControl.max_points`` or was interrupted
+        (the ``partial`` of :class:`CurveInterrupted`).
     elapsed : float
         Wall time of the computation (s).
     labels : dict of str
-        Display names used by :meth:`plot`: key ``"dof"``, the quantity on
-        the vertical axis (default ``"response"``). Empty by default; set with
-        ``dataclasses.replace(result, labels={"dof": "blade tip"})``.
-    dofs : ndarray of int, shape (m,)
-        The DOFs whose coefficients are stored: every DOF without reduction,
-        the retained DOFs (contacts, excitation, preloads) with one.
-    reduction : str
-        How the linear structure was condensed: ``"none"``, ``"exact"`` or ``"modal"``.
-    modes : int or None
-        Normal modes kept by a modal reduction (per nodal diameter for a cyclic sector).
+        Display names for :meth:`plot` (key ``"dof"``); set with ``dataclasses.replace``.
+    reduction, modes : str, int or None
+        ``"none"``, ``"exact"`` or ``"modal"``, and the normal modes a modal one kept (per nodal diameter).
     reduction_error : float or None
-        With ``"modal"``: an estimate of its error, the relative difference
-        (Frobenius norm) between the modal and the exact condensed dynamic
-        stiffness of the first harmonic at the peak frequency (in its nodal
-        diameter for a cyclic sector).
+        With ``"modal"``: the relative difference between the modal and the exact condensed
+        first-harmonic dynamic stiffness at the peak.
     engine_order : int or None
-        For a cyclic structure: the engine order solved; the DOFs are this
-        sector's (:meth:`sector_coefficients` gives any other sector).
+        For a cyclic sector: the engine order solved (:meth:`sector_coefficients` gives any sector).
     stable : ndarray of bool, shape (points,), or None
-        Stability of each point by Hill's method (:mod:`~microslip.frequency.analyses.stability`):
-        True when every Floquet exponent the harmonics resolve has a negative
-        real part. None when it was not computed (``stability=False``, a cyclic
-        sector, or a Hill problem of more than ``stability.HILL_LIMIT`` unknowns).
+        Hill stability of each point (:mod:`~microslip.frequency.analyses.stability`); None when not computed.
     leading_exponent : ndarray of complex, shape (points,), or None
-        The Floquet exponent with the largest real part at each point (1/s):
-        a perturbation grows or decays like ``exp(Re * time)``; NaN where the
-        harmonics resolve no exponent (every mode above ``(H + 1/2) omega``).
+        The Floquet exponent with the largest real part (1/s); NaN where the harmonics resolve none.
     bifurcations : list of Bifurcation
-        Folds, branch points, Neimark--Sacker and period-doubling points found
-        between the points, in the order of the curve
-        (:class:`~microslip.frequency.analyses.stability.Bifurcation`: kind, frequency,
-        fractional point index; ``b.interpolate(r.amplitude(dof))`` gives an
-        amplitude there).
-    contact_t2, contact_T2 : ndarray, shape (points, nc, nb)
-        For a contact moving on its plane (two tangential directions): the
-        coefficients of its second tangential displacement (m) and force (N),
-        ``contact_t`` and ``contact_T`` holding the first; zero for a contact
-        along one direction.
-    static_tangential_force2 : ndarray, shape (nc,)
-        The second tangential component of each contact's static force (N),
-        zero for a contact along one direction (``|T0| = mu N0`` for the
-        vector ``(T0, T0_2)`` means gross slip statically).
-    contact_harmonic_work : ndarray, shape (points, nc)
-        The contacts' energy per cycle from the force harmonics kept (J): with
-        the excitation's and the viscous work it balances exactly at a
-        solution (harmonic balance conserves the energy of the harmonics
-        kept), but it carries the AFT's sampling error, of either sign where a
-        contact opens; :attr:`contact_dissipation` is the physical one.
-    static_coefficients : ndarray, shape (len(dofs),)
-        The static equilibrium's displacement of the DOFs in :attr:`dofs` (m),
-        at which the static forces above were taken (None where not solved).
+        Folds, branch points, Neimark--Sacker and period-doubling points between the points
+        (:class:`~microslip.frequency.analyses.stability.Bifurcation`).
     """
 
     structure: Structure

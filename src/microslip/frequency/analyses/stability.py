@@ -110,7 +110,7 @@ from ..reduction.choice import DEFAULT_MODES
 from ..reduction.condensation import CLASSICAL
 
 #: unknowns of the quadratic eigenproblem up to which it is solved densely (every eigenvalue); above, the
-#: iterative solver is faster (a 40-mode blade model, H = 3, 280 unknowns: 194 ms dense, 6 ms iterative)
+#: iterative solver is faster (already on a 40-mode blade model with H = 3, 280 unknowns, by far)
 DENSE_LIMIT = 64
 #: unknowns of the Hill problem up to which stability is computed
 HILL_LIMIT = 20000

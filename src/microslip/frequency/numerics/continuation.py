@@ -194,8 +194,8 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None):
 BRANCH_STEP = 1e-3
 
 #: smallest dense bordered system whose LU factors are kept for the point's orientation: below it, a solve
-#: and a determinant of their own cost less than the factors' calls (measured: 14 against 31 µs at 16
-#: unknowns, 61 against 53 µs at 64, 252 against 147 µs at 128)
+#: and a determinant of their own cost less than the factors' calls (the crossover was measured on small
+#: bordered systems; the figures belong to a benchmark, not here)
 FACTORED_MIN = 64
 
 

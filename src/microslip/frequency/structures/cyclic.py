@@ -102,23 +102,12 @@ class CyclicStructure(Structure):
 
     Notes
     -----
-    What is in which frame. A sector's DOFs, its excitation, its contacts'
-    directions on its own DOFs and the result's coefficients are in the frame
-    the DOFs are given in (``frame``). A direction's coefficients on the next
-    sector's DOFs (``disk.next(j)``) are in that sector's frame as it lies:
-    in the Cartesian frame the global components (turned back by ``R^T``
-    inside, :meth:`contact_directions_next`), in the cylindrical frame the
-    next sector's own nodal components (a direction ``d`` known in global
-    components at the next sector's node ``j`` is ``R^T d`` in this sector's
-    frame at node ``j``). :meth:`FrequencyResponse.sector_coefficients` gives
-    sector ``k``'s DOFs in its own frame (this sector's turned ``k`` times).
-
-    The sector's matrices must not couple its left and right boundary
-    directly to each other beyond what one sector's elements do (the
-    usual FE sector). Solve with :func:`~microslip.frequency.frequency_response`
-    and ``engine_order=EO``; the result reports this sector's DOFs, numbered
-    as in ``M``, ``C``, ``K`` (:meth:`FrequencyResponse.sector` expands to
-    any other sector).
+    The sector's matrices must not couple its left and right boundary directly
+    beyond what one sector's elements do (the usual FE sector). Solve with
+    :func:`~microslip.frequency.frequency_response` and ``engine_order=EO``; the
+    result reports this sector's DOFs, numbered as in ``M``, ``C``, ``K``. Which
+    quantity is in which frame: the user guide's page "Bladed disks, dampers and
+    design curves".
 
     Examples
     --------
