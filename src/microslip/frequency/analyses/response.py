@@ -732,6 +732,12 @@ class _Accepted:
             self._heartbeat()
         return self._problem._evaluate(x, param, jacobian=jacobian)
 
+    def _evaluate_operator(self, x, param):
+        self._last = (x, param)
+        if self._heartbeat is not None:
+            self._heartbeat()
+        return self._problem._evaluate_operator(x, param)
+
     def accepted(self, param, count) -> None:
         if self._last is not None and self._last[1] == param:
             self.xs.append(np.array(self._last[0], dtype=float))

@@ -37,6 +37,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..numerics.krylov import Bordered
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
@@ -256,7 +257,19 @@ class EpmcEquations:
         return complex(g @ (x[m:2 * m] - 1j * x[2 * m:3 * m]))
 
     # -- the problem interface of the continuation ---------------------------------------------------
+    @property
+    def operator_jacobian(self) -> bool:
+        """True when the harmonic balance equations give their Jacobian as an operator (:meth:`_evaluate_operator`)."""
+        return bool(getattr(self.hb, "operator_jacobian", False))
+
     def _evaluate(self, y, s: float, *, jacobian: bool = True):
+        return self._residual(y, s, jacobian, operator=False)
+
+    def _evaluate_operator(self, y, s: float):
+        """As :meth:`_evaluate`, ``dr/dy`` a :class:`~microslip.frequency.numerics.krylov.Bordered` operator."""
+        return self._residual(y, s, True, operator=True)
+
+    def _residual(self, y, s: float, jacobian: bool, operator: bool):
         hb = self.hb
         a = np.exp(s)
         x, omega, xi = self.unpack(y, s)
@@ -268,7 +281,7 @@ class EpmcEquations:
         normal = np.array([eta.real - 1.0, eta.imag]) / NORMALISATION
         if not jacobian:
             return np.concatenate([hb._evaluate(x, omega, jacobian=False) / scale, normal])
-        R, J, R_omega = hb._evaluate(x, omega)
+        R, J, R_omega = hb._evaluate_operator(x, omega) if operator else hb._evaluate(x, omega)
         R_xi = hb.xi_derivative(x, omega)
         r = np.concatenate([R / scale, normal])
         m, c = self.m, self.psi_scale
@@ -281,6 +294,11 @@ class EpmcEquations:
         rows[:, -1] = e_xi.real, e_xi.imag
         rows /= NORMALISATION
         columns = np.stack([R_omega, R_xi], axis=1) * (self.omega_scale / scale)
+        r_s = np.zeros(self.n)
+        if operator:
+            Jy = Bordered(J.scaled(a * c / scale), columns, rows[:, :-2], rows[:, -2:])
+            r_s[:-2] = J.matvec(x - self.x_static) / scale - r[:-2]  # dx/ds = x - x_static
+            return r, Jy, r_s
         if sp.issparse(J):
             Jy = sp.vstack([sp.hstack([J * (a * c / scale), sp.csr_matrix(columns)]), sp.csr_matrix(rows)],
                            format="csc")
@@ -289,6 +307,5 @@ class EpmcEquations:
             np.multiply(J, a * c / scale, out=Jy[:-2, :-2])  # dx/dy = a c
             Jy[:-2, -2:] = columns
             Jy[-2:] = rows
-        r_s = np.zeros(self.n)
         r_s[:-2] = J @ (x - self.x_static) / scale - r[:-2]  # dx/ds = x - x_static
         return r, Jy, r_s

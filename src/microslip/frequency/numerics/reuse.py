@@ -1,0 +1,123 @@
+"""One LU factorisation reused over many Newton iterations and continuation steps (private; no physics).
+
+A dense factorisation of the whole Jacobian costs ``n^3``; applying the Jacobian as an operator
+(:mod:`~.krylov`) and solving with factors already held cost ``n^2``. :class:`ReusedFactorisation`
+solves each system by GMRES preconditioned with the factors of a Jacobian met earlier -- along a
+curve, a nearby one, so GMRES needs a few iterations -- and factorises the current system again when
+that stops working: GMRES did not converge in :data:`MAX_KRYLOV` iterations, or needed more than
+:data:`SLOW_KRYLOV` (the factors have drifted from the curve: they are renewed at the next system).
+Each solve is to :data:`RTOL` of the right-hand side, so a Newton iteration is a Newton iteration and
+the corrector converges as with exact solves, to the same tolerance.
+
+The sign of a determinant (the orientation of the continuation's bordered systems) comes from the
+factors held when the preconditioned operator ``A P^-1`` has all its Ritz values on a GMRES solve with a
+generic right-hand side within :data:`RITZ_DISC` of 1 (no real eigenvalue of ``A P^-1`` crossed zero
+between ``P`` and ``A``, so their determinants have one sign); otherwise ``A`` itself is factorised.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import scipy.linalg as sla
+
+from .blas import factor_threads
+from .krylov import dense, gmres
+
+#: GMRES iterations before the system is factorised instead
+MAX_KRYLOV = 24
+#: GMRES iterations above which the factors are renewed at the next system
+SLOW_KRYLOV = 8
+#: relative residual of each solve
+RTOL = 1e-12
+#: Ritz values of the preconditioned operator within this distance of 1: the determinants have one sign
+RITZ_DISC = 0.9
+#: factorisations and GMRES iterations of every ReusedFactorisation of the process (read by the benchmarks)
+COUNTS = {"factorisations": 0, "krylov_iterations": 0}
+
+
+class _Factors:
+    """LU factors of a dense matrix in ``dtype``, the sign of its determinant, and solves in float64."""
+
+    def __init__(self, A: np.ndarray, dtype):
+        self.singular = not np.all(np.isfinite(A))
+        self.sign = 0.0
+        if self.singular:
+            return
+        with warnings.catch_warnings(), factor_threads(A.shape[0]):
+            warnings.simplefilter("ignore", sla.LinAlgWarning)
+            self.lu, self.piv = sla.lu_factor(np.asarray(A, dtype=dtype), overwrite_a=True, check_finite=False)
+        diagonal = np.diagonal(self.lu)
+        swaps = int(np.count_nonzero(self.piv != np.arange(self.piv.size)))
+        self.sign = float(np.prod(np.sign(diagonal))) * (-1.0 if swaps % 2 else 1.0)
+        self.singular = self.sign == 0 or not np.all(np.isfinite(diagonal))
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        if self.singular:
+            return np.full(np.shape(b), np.nan)
+        out = sla.lu_solve((self.lu, self.piv), b.astype(self.lu.dtype), check_finite=False)
+        return out.astype(float)
+
+
+class ReusedFactorisation:
+    """Solves ``A z = b`` for a sequence of nearby operators ``A`` with as few factorisations as possible.
+
+    Parameters
+    ----------
+    single : bool, default False
+        Factorise in single precision (half the memory, faster on most machines); GMRES in double
+        precision refines every solve to :data:`RTOL` all the same.
+
+    Attributes
+    ----------
+    factorisations, krylov_iterations : int
+        Counts, for reports and benchmarks.
+    """
+
+    def __init__(self, single: bool = False):
+        self.dtype = np.float32 if single else np.float64
+        self.factors: _Factors | None = None
+        self.renew = False
+        self.factorisations = 0
+        self.krylov_iterations = 0
+        self.probe = None
+
+    def factorise(self, A) -> _Factors:
+        """Factorise ``A`` (an operator of :mod:`~.krylov` or an array) and keep its factors."""
+        self.factors = _Factors(dense(A), self.dtype)
+        self.factorisations += 1
+        COUNTS["factorisations"] += 1
+        self.renew = False
+        return self.factors
+
+    def solve(self, A, b: np.ndarray) -> np.ndarray:
+        """``A^-1 b`` to :data:`RTOL` relative residual; all NaN when ``A`` is singular."""
+        fresh = self.factors is None or self.renew or self.factors.singular or self.factors.lu.shape != A.shape
+        if fresh:
+            self.factorise(A)
+            if self.factors.singular:
+                return np.full(np.shape(b), np.nan)
+        z, k, converged, _ = gmres(A, b, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
+        self.krylov_iterations += k
+        COUNTS["krylov_iterations"] += k
+        if converged and np.all(np.isfinite(z)):
+            self.renew = k > SLOW_KRYLOV
+            return z
+        if fresh:  # the new factors alone do not reach the tolerance: A is (nearly) singular
+            return z if np.all(np.isfinite(z)) and converged else np.full(np.shape(b), np.nan)
+        self.factorise(A)
+        return self.solve(A, b)
+
+    def sign(self, A) -> float:
+        """Sign of ``det A``: from the factors held when GMRES finds ``A P^-1`` near the identity, else from new
+        factors of ``A``."""
+        if self.factors is not None and not self.factors.singular and self.factors.lu.shape == A.shape:
+            if self.probe is None or self.probe.size != A.shape[0]:
+                self.probe = np.random.default_rng(0).standard_normal(A.shape[0])  # generic, fixed
+            _, k, converged, ritz = gmres(A, self.probe, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
+            self.krylov_iterations += k
+            COUNTS["krylov_iterations"] += k
+            if converged and np.all(np.abs(ritz - 1.0) < RITZ_DISC):
+                return self.factors.sign
+        return self.factorise(A).sign
