@@ -69,6 +69,22 @@ def test_equations_equal_the_harmonic_balance_on_every_dof(xi):
     assert np.max(np.abs(op.matvec(v) - J1 @ v)) <= 1e-12 * np.max(np.abs(J1 @ v))
 
 
+def test_response_scale_harmonic_by_harmonic_equals_the_whole_solve():
+    import importlib
+
+    response = importlib.import_module("microslip.frequency.analyses.response")
+    s = joint()
+    force = {1: np.r_[np.zeros(18), 1.0 * np.ones(4)]}
+    x = np.zeros(7 * s.ndof)
+    x[:s.ndof] = 3e-6
+    new = InterfaceBalance(s, force, 3, samples=32)
+    ref = HarmonicBalance(s, force, 3, samples=32)
+    assert not hasattr(ref, "response_scale")
+    a = response._response_scale(new, x, 4e4, 6e4, grid=5)
+    b = response._response_scale(ref, x, 4e4, 6e4, grid=5)
+    assert abs(a / b - 1) < 1e-10
+
+
 def test_operators_apply_their_dense_matrices():
     rng = np.random.default_rng(3)
     m, H = 5, 2

@@ -169,6 +169,38 @@ class InterfaceBalance(HarmonicBalance):
         R, J, Rw = self._evaluate_operator(x, omega)
         return R, J.toarray(), Rw
 
+    def response_scale(self, x_static, omegas) -> float:
+        """Largest harmonic amplitude (m) of the response with the contacts linearised at the static state ``x_static``
+        (``(n,)``, no harmonics) over the frequencies ``omegas`` (rad/s): ``max |dx|`` of ``J(omega) dx = -R``.
+
+        At a state without harmonics the contacts' Jacobian couples no two harmonics, so each harmonic the
+        residual (the excitation) has is solved alone (``2 ndof`` unknowns); a Jacobian that does couple them is
+        solved whole.
+        """
+        R, J, _ = self._evaluate_operator(np.asarray(x_static, dtype=float), float(omegas[0]))
+        m, n = self.ndof, self.n
+        contacts = J.contacts.tocsr() if J.contacts is not None else sp.csr_matrix((n, n))
+        best = 0.0
+        for h in range(1, self.H + 1):
+            rows = slice((2 * h - 1) * m, (2 * h + 1) * m)
+            if not np.any(R[rows]):
+                continue
+            block = contacts[rows].toarray()
+            coupled = np.any(block[:, :rows.start]) or np.any(block[:, rows.stop:])
+            for w in omegas:
+                if coupled:
+                    dx = np.linalg.solve(self.operator(w, contacts=False).toarray() + contacts.toarray(), -R)[m:]
+                else:
+                    _, A, B = self._blocks(float(w))
+                    Z = np.block([[A[h - 1], B[h - 1]], [-B[h - 1], A[h - 1]]]) + block[:, rows]
+                    try:
+                        dx = np.linalg.solve(Z, -R[rows])
+                    except np.linalg.LinAlgError:
+                        continue
+                if np.all(np.isfinite(dx)):
+                    best = max(best, float(np.max(np.abs(dx))))
+        return best if best > 0 else max(float(np.max(np.abs(x_static))), 1e-12)
+
     def _harmonic_products(self, x):
         """``(M v, (C - xi M) v, h)`` for the harmonics' coefficients ``v`` of ``x``, each ``(2H, ndof)``, and the
         harmonic of each row ``(2H, 1)``."""
