@@ -130,6 +130,17 @@ def test_reused_factors_give_the_sign_of_the_determinant_also_when_it_flips():
     assert np.allclose(solver.solve(near, b), np.linalg.solve(near, b), rtol=1e-10, atol=0)
 
 
+def test_a_matrix_too_ill_conditioned_for_single_precision_is_factorised_in_double():
+    rng = np.random.default_rng(6)
+    Q = np.linalg.qr(rng.standard_normal((30, 30)))[0]
+    A = Q @ np.diag(np.logspace(0, -11, 30)) @ Q.T  # condition 1e11: float32 factors carry no digit of it
+    b = A @ rng.standard_normal(30)
+    solver = ReusedFactorisation(single=True)
+    z = solver.solve(A, b)
+    assert solver.factors.lu.dtype == np.float64
+    assert np.linalg.norm(A @ z - b) <= 1e-11 * np.linalg.norm(b)  # GMRES's tolerance (1e-12), with margin
+
+
 @pytest.fixture
 def interface_path(monkeypatch):
     """The interface path for a small model: the small dense size lowered below it."""

@@ -83,9 +83,10 @@ class ReusedFactorisation:
         self.krylov_iterations = 0
         self.probe = None
 
-    def factorise(self, A) -> _Factors:
-        """Factorise ``A`` (an operator of :mod:`~.krylov` or an array) and keep its factors."""
-        self.factors = _Factors(dense(A), self.dtype)
+    def factorise(self, A, dtype=None) -> _Factors:
+        """Factorise ``A`` (an operator of :mod:`~.krylov` or an array) in ``dtype`` (default: this solver's) and
+        keep its factors."""
+        self.factors = _Factors(dense(A), dtype or self.dtype)
         self.factorisations += 1
         COUNTS["factorisations"] += 1
         self.renew = False
@@ -93,21 +94,29 @@ class ReusedFactorisation:
 
     def solve(self, A, b: np.ndarray) -> np.ndarray:
         """``A^-1 b`` to :data:`RTOL` relative residual; all NaN when ``A`` is singular."""
-        fresh = self.factors is None or self.renew or self.factors.singular or self.factors.lu.shape != A.shape
-        if fresh:
-            self.factorise(A)
-            if self.factors.singular:
-                return np.full(np.shape(b), np.nan)
+        held = not (self.factors is None or self.renew or self.factors.singular or self.factors.lu.shape != A.shape)
+        if held:
+            z = self._krylov(A, b)
+            if z is not None:
+                return z
+        # new factors of A; in double precision too when single precision cannot precondition a matrix this
+        # ill-conditioned
+        for dtype in dict.fromkeys([self.dtype, np.float64]):
+            if not self.factorise(A, dtype).singular:
+                z = self._krylov(A, b)
+                if z is not None:
+                    return z
+        return np.full(np.shape(b), np.nan)
+
+    def _krylov(self, A, b):
+        """GMRES with the factors held: the solution, or None when it did not converge in :data:`MAX_KRYLOV`."""
         z, k, converged, _ = gmres(A, b, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
         self.krylov_iterations += k
         COUNTS["krylov_iterations"] += k
-        if converged and np.all(np.isfinite(z)):
-            self.renew = k > SLOW_KRYLOV
-            return z
-        if fresh:  # the new factors alone do not reach the tolerance: A is (nearly) singular
-            return z if np.all(np.isfinite(z)) and converged else np.full(np.shape(b), np.nan)
-        self.factorise(A)
-        return self.solve(A, b)
+        if not (converged and np.all(np.isfinite(z))):
+            return None
+        self.renew = k > SLOW_KRYLOV
+        return z
 
     def sign(self, A) -> float:
         """Sign of ``det A``: from the factors held when GMRES finds ``A P^-1`` near the identity, else from new
