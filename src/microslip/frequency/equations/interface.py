@@ -151,21 +151,22 @@ class InterfaceBalance(HarmonicBalance):
         """``Z(omega)``, dense ``(n, n)`` (N/m)."""
         return self.operator(self._omega(omega)).toarray()
 
-    def _evaluate_operator(self, x, omega: float):
-        """``(R, Jx, R_omega)`` with ``Jx`` a :class:`HarmonicOperator` (for the solvers)."""
+    def _residual(self, x, omega: float) -> np.ndarray:
+        """``R`` (N), shape ``(n,)``; the AFT's forces and Jacobians are left for :meth:`_contact_jacobian`."""
         R = linear_apply(*self._blocks(omega), x) - self.f
         if self.nc:
             self._aft(x)
             R += self._contact_residual()
+        return R
+
+    def _evaluate_operator(self, x, omega: float):
+        """``(R, Jx, R_omega)`` with ``Jx`` a :class:`HarmonicOperator` (for the solvers)."""
+        R = self._residual(x, omega)
         return R, self.operator(omega, contacts=True), self._omega_derivative(x, omega)
 
     def _evaluate(self, x, omega: float, *, jacobian: bool = True):
         if not jacobian:
-            R = linear_apply(*self._blocks(omega), x) - self.f
-            if self.nc:
-                self._aft(x)
-                R += self._contact_residual()
-            return R
+            return self._residual(x, omega)
         R, J, Rw = self._evaluate_operator(x, omega)
         return R, J.toarray(), Rw
 
@@ -208,6 +209,8 @@ class InterfaceBalance(HarmonicBalance):
         Mv = V @ self.M.T
         Cv = V @ self.C.T - self.xi * Mv if self.xi else V @ self.C.T
         return Mv, Cv, np.repeat(np.arange(1, self.H + 1, dtype=float), 2)[:, None]
+
+    _evaluate_reference = _evaluate  # the same NumPy operations (no compiled kernel here)
 
     def _omega_derivative(self, x, omega: float) -> np.ndarray:
         """``dR/domega`` (N s), shape ``(n,)``: ``dA/domega = -2 h^2 omega M``, ``dB/domega = h (C - xi M)``."""
