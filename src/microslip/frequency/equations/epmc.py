@@ -156,6 +156,7 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
         shift = np.exp(-1j * phase) if phase else 1.0
         Bt_next, Bn_next = structure.contact_directions_next()
     Bt2 = structure.second_tangential_directions()  # zero for a contact along one direction
+    columns, weights = [], []  # the stuck contacts' rank-one terms of a dense K
     for c, contact in enumerate(structure.contacts):
         closed = (Bn[:, c] + Bn_next[:, c]) @ q0 + n0[c] > contact.model.gaps
         pairs = [(Bt[:, c] + shift * Bt_next[:, c], contact.model.kt[closed].sum()),
@@ -168,7 +169,11 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
                 col = sp.csr_matrix(h[:, None])
                 K = K + k * (col.conj() @ col.T)
             elif k:
-                K = K + k * np.outer(h.conj(), h)
+                columns.append(h)
+                weights.append(k)
+    if columns:  # dense: every contact's rank-one terms in one product
+        Hc = np.stack(columns, axis=1)
+        K = K + (Hc.conj() * np.asarray(weights)) @ Hc.T
     n = K.shape[0]
     if n <= (SPARSE_EIGEN if sp.issparse(K) else DENSE_EIGEN):
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)

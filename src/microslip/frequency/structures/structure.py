@@ -530,6 +530,7 @@ class Structure:
         CSR): the largest stiffness the contacts can add.
         """
         K = self.K.copy()
+        columns, weights = [], []
         for c in self.contacts:
             pairs = ((c.tangential, c.model.kt.sum()), (c.normal, c.model.kn.sum()))
             if c.planar:
@@ -539,7 +540,11 @@ class Structure:
                     col = sp.csr_matrix(b[:, None])
                     K = K + k * (col @ col.T)
                 else:
-                    K += k * np.outer(b, b)
+                    columns.append(b)
+                    weights.append(k)
+        if columns:  # dense: every contact's rank-one terms in one product B diag(k) B^T
+            B = np.stack(columns, axis=1)
+            K += (B * np.asarray(weights)) @ B.T
         return K
 
     def force_vector(self, force, name: str = "force") -> np.ndarray:
