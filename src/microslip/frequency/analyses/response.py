@@ -610,8 +610,10 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         unknown. ``"auto"`` chooses by size (``"none"`` for small dense
         problems, unless they have 20 DOFs or more of which the equations
         keep at most a quarter; ``"exact"`` up to 5000 DOFs, ``"modal"``
-        above) and the
-        result says which (:attr:`FrequencyResponse.reduction`). A cyclic
+        above; ``"none"`` too when the equations would keep more than half
+        of the DOFs, an interface-dominated structure, solved with its
+        Jacobian in parts, see :mod:`~microslip.frequency.equations.interface`)
+        and the result says which (:attr:`FrequencyResponse.reduction`). A cyclic
         sector is condensed in each harmonic's nodal diameter, exactly or from
         that diameter's modes (``"auto"``: exact up to 5000 independent DOFs).
     modes : int, optional
