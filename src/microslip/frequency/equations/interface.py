@@ -18,6 +18,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..aft import MAX_PERIODS
+from ..numerics.blas import solver_threads
 from ..structures.structure import Structure
 from .hbm import HarmonicBalance
 
@@ -178,13 +179,17 @@ class InterfaceBalance(HarmonicBalance):
         residual (the excitation) has is solved alone (``2 ndof`` unknowns); a Jacobian that does couple them is
         solved whole.
         """
-        R, J, _ = self._evaluate_operator(np.asarray(x_static, dtype=float), float(omegas[0]))
+        with solver_threads():  # small dense solves: one BLAS thread
+            return self._response_scale(np.asarray(x_static, dtype=float), omegas)
+
+    def _response_scale(self, x_static, omegas) -> float:
+        R, J, _ = self._evaluate_operator(x_static, float(omegas[0]))
         m, n = self.ndof, self.n
         contacts = J.contacts.tocsr() if J.contacts is not None else sp.csr_matrix((n, n))
         best = 0.0
         for h in range(1, self.H + 1):
             rows = slice((2 * h - 1) * m, (2 * h + 1) * m)
-            if not np.any(R[rows]):
+            if np.max(np.abs(R[rows])) <= 1e-13 * np.max(np.abs(R)):  # not excited: the AFT's rounding at most
                 continue
             block = contacts[rows].toarray()
             coupled = np.any(block[:, :rows.start]) or np.any(block[:, rows.stop:])
