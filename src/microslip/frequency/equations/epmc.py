@@ -41,7 +41,7 @@ from ..numerics.krylov import Bordered
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
-from ..structures.structure import Structure, refuse_indefinite
+from ..structures.structure import MANY_CONTACTS, Structure, refuse_indefinite
 
 #: DOFs up to which the linear mode is found by a dense eigensolution (sparse matrices: a sparse one above
 #: :data:`SPARSE_EIGEN`)
@@ -168,10 +168,12 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
             if k and sp.issparse(K):
                 col = sp.csr_matrix(h[:, None])
                 K = K + k * (col.conj() @ col.T)
+            elif k and len(structure.contacts) < MANY_CONTACTS:
+                K = K + k * np.outer(h.conj(), h)
             elif k:
                 columns.append(h)
                 weights.append(k)
-    if columns:  # dense: every contact's rank-one terms in one product
+    if columns:  # dense with many contacts: their rank-one terms in one product
         Hc = np.stack(columns, axis=1)
         K = K + (Hc.conj() * np.asarray(weights)) @ Hc.T
     n = K.shape[0]
