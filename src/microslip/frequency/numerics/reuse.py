@@ -5,7 +5,9 @@ A dense factorisation of the whole Jacobian costs ``n^3``; applying the Jacobian
 solves each system by GMRES preconditioned with the factors of a Jacobian met earlier -- along a
 curve, a nearby one, so GMRES needs a few iterations -- and factorises the current system again when
 that stops working: GMRES did not converge in :data:`MAX_KRYLOV` iterations, or needed more than
-:data:`SLOW_KRYLOV` (the factors have drifted from the curve: they are renewed at the next system).
+:data:`SLOW_KRYLOV` once the iterations since the last factorisation have cost about one
+(``n /`` :data:`FACTOR_EQUIVALENT` of them): the factors have drifted from the curve and are renewed at
+the next system.
 Each solve is to :data:`RTOL` of the right-hand side, so a Newton iteration is a Newton iteration and
 the corrector converges as with exact solves, to the same tolerance.
 
@@ -26,9 +28,14 @@ from .blas import factor_threads
 from .krylov import dense, gmres
 
 #: GMRES iterations before the system is factorised instead
-MAX_KRYLOV = 24
-#: GMRES iterations above which the factors are renewed at the next system
+MAX_KRYLOV = 40
+#: GMRES iterations of one solve above which the factors are renewed at the next system, once the iterations
+#: since they were computed have cost about one factorisation
 SLOW_KRYLOV = 8
+#: unknowns per GMRES iteration that cost about as much as one factorisation: a dense LU costs ``n^3`` against
+#: ``n^2`` for an iteration (a product with the operator and a solve with the factors), and the solves are bound by
+#: memory while the factorisation is not
+FACTOR_EQUIVALENT = 40
 #: relative residual of each solve
 RTOL = 1e-12
 #: Ritz values of the preconditioned operator within this distance of 1: the determinants have one sign
@@ -79,6 +86,7 @@ class ReusedFactorisation:
         self.dtype = np.float32 if single else np.float64
         self.factors: _Factors | None = None
         self.renew = False
+        self.since = 0
         self.factorisations = 0
         self.krylov_iterations = 0
         self.probe = None
@@ -87,6 +95,7 @@ class ReusedFactorisation:
         """Factorise ``A`` (an operator of :mod:`~.krylov` or an array) in ``dtype`` (default: this solver's) and
         keep its factors."""
         self.factors = _Factors(dense(A), dtype or self.dtype)
+        self.since = 0  # GMRES iterations with these factors
         self.factorisations += 1
         COUNTS["factorisations"] += 1
         self.renew = False
@@ -113,9 +122,10 @@ class ReusedFactorisation:
         z, k, converged, _ = gmres(A, b, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
         self.krylov_iterations += k
         COUNTS["krylov_iterations"] += k
+        self.since += k
         if not (converged and np.all(np.isfinite(z))):
             return None
-        self.renew = k > SLOW_KRYLOV
+        self.renew = k > SLOW_KRYLOV and self.since > A.shape[0] / FACTOR_EQUIVALENT
         return z
 
     def sign(self, A) -> float:
