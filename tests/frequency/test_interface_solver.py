@@ -195,3 +195,15 @@ def test_forced_response_solves_the_exact_condensations_equations(interface_path
         x = new.coefficients[k][:, old.retained].ravel()
         R = old._evaluate(x, new.omega[k], jacobian=False)
         assert np.linalg.norm(R) <= 1e-8 * np.linalg.norm(old.dynamic_stiffness(new.omega[k]) @ x)
+
+
+def test_one_harmonic_is_solved_in_complex_form_when_the_contacts_allow_it():
+    from microslip.frequency.equations.interface import _harmonic_solve
+
+    rng = np.random.default_rng(7)
+    m = 6
+    A, B, P, Q = (rng.standard_normal((m, m)) + (3 * m * np.eye(m) if k == 0 else 0) for k in range(4))
+    r = rng.standard_normal(2 * m)
+    for contacts in (np.block([[P, Q], [-Q, P]]), rng.standard_normal((2 * m, 2 * m))):  # the form, and any
+        whole = np.block([[A, B], [-B, A]]) + contacts
+        assert np.allclose(_harmonic_solve(A, B, contacts, r), np.linalg.solve(whole, r), rtol=1e-12, atol=1e-14)

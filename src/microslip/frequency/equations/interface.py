@@ -198,9 +198,8 @@ class InterfaceBalance(HarmonicBalance):
                     dx = np.linalg.solve(self.operator(w, contacts=False).toarray() + contacts.toarray(), -R)[m:]
                 else:
                     _, A, B = self._blocks(float(w))
-                    Z = np.block([[A[h - 1], B[h - 1]], [-B[h - 1], A[h - 1]]]) + block[:, rows]
                     try:
-                        dx = np.linalg.solve(Z, -R[rows])
+                        dx = _harmonic_solve(A[h - 1], B[h - 1], block[:, rows], -R[rows])
                     except np.linalg.LinAlgError:
                         continue
                 if np.all(np.isfinite(dx)):
@@ -238,4 +237,18 @@ class InterfaceBalance(HarmonicBalance):
         """``(w, 0, 0)``: a functional of every DOF is one of the unknowns (nothing condensed)."""
         zero = np.zeros(self.ndof, dtype=complex)
         return np.asarray(w).astype(complex), zero, zero.copy()
+
+
+def _harmonic_solve(A, B, contacts, r) -> np.ndarray:
+    """``([[A, B], [-B, A]] + contacts)^-1 r`` for one harmonic's ``(a_h, b_h)`` (``r`` and the result ``(2 m,)``).
+
+    When ``contacts`` has the same form ``[[P, Q], [-Q, P]]`` (time-invariant, as at a state without harmonics)
+    the system is ``(A + P + i (B + Q)) (a - i b) = r_a - i r_b``: ``m`` complex unknowns, half the work.
+    """
+    m = A.shape[0]
+    P, Q = contacts[:m, :m], contacts[:m, m:]
+    if np.array_equal(contacts[m:, m:], P) and np.array_equal(contacts[m:, :m], -Q):
+        z = np.linalg.solve(A + P + 1j * (B + Q), r[:m] - 1j * r[m:])
+        return np.concatenate([z.real, -z.imag])
+    return np.linalg.solve(np.block([[A, B], [-B, A]]) + contacts, r)
 
