@@ -1,4 +1,5 @@
 """A 3D blade sector with an under-platform damper: exported as Nastran DMIG, read back, reduced, spun up.
+=======================================================================================================
 
 What an engineer does with a commercial code's matrices, end to end, with the model meshed here:
 

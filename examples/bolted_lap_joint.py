@@ -1,4 +1,5 @@
 """A bolted lap joint: the first bending nonlinear mode, its frequency and damping against amplitude.
+==================================================================================================
 
 Two steel plates (240 x 30 x 12 mm, each half as thick over their 120 mm overlap, as in the Brake--Reuss
 beam) are clamped at their far ends and bolted by three bolts of 10 kN. ``microslip.fe.lap_joint`` meshes

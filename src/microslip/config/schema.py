@@ -522,7 +522,7 @@ def reference_markdown() -> str:
     Returns
     -------
     str
-        A Markdown (MyST) page whose first line is its ``# `` title.
+        A Markdown (MyST) page whose first line is its title (a level-1 heading).
     """
     lines = ["# Configuration files", "", _INTRO, "",
              "## The `frf` configuration", "",

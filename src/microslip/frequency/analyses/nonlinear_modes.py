@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import time
 import warnings
+from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -21,14 +22,14 @@ import numpy as np
 from ...common import _checks
 from ...common._progress import Progress
 from ..aft import MAX_PERIODS, check_harmonics
-from ..numerics.blas import small_dense
+from ..numerics.blas import small_dense, solver_threads
 from ..numerics.continuation import BranchPointWarning, StepControl, newton
 from ..structures.cyclic import CyclicStructure
 from ..equations.build import build_equations
 from ..equations.epmc import DENSE_EIGEN, SPARSE_EIGEN, EpmcEquations, stuck_mode
 from ..equations.hbm import HarmonicBalance
 from ..equations.reduced import ReducedHarmonicBalance
-from ..reduction.choice import modal_error
+from ..reduction.choice import interface_dominated, modal_error, retained_dofs
 from .response import (CurveInterrupted, FrequencyResponse, IncompleteCurveWarning, _check_determined,
                        _check_resolution, _static_state, follow)
 from ..structures.structure import Structure
@@ -353,8 +354,12 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
     ctl = control or default_control(lo, hi)
     progress = _checks.flag("progress", progress)
-    _check_determined(structure)
-    with small_dense(structure, H):  # small dense systems solved many times: one BLAS thread
+    preload = structure.preload_force()[None]
+    every_dof = (not isinstance(structure, CyclicStructure) and reduction in ("auto", "none") and modes is None
+                 and interface_dominated(structure, H, retained_dofs(structure, preload).size))
+    # small dense systems solved many times, or an interface-dominated structure's small products: one BLAS thread
+    with small_dense(structure, H), (solver_threads() if every_dof else nullcontext()):
+        _check_determined(structure)
         static_hb, hb, reduction, modes = build_equations(structure, {}, {}, H, engine_order=diameter,
                                                           samples=samples, max_periods=max_periods,
                                                           reduction=reduction, modes=modes, damped=True)

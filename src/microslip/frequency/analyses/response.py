@@ -573,8 +573,10 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
         unknown. ``"auto"`` chooses by size (``"none"`` for small dense
         problems, unless they have 20 DOFs or more of which the equations
         keep at most a quarter; ``"exact"`` up to 5000 DOFs, ``"modal"``
-        above) and the
-        result says which (:attr:`FrequencyResponse.reduction`). A cyclic
+        above; ``"none"`` too when the equations would keep more than half
+        of the DOFs, an interface-dominated structure, solved with its
+        Jacobian in parts, see :mod:`~microslip.frequency.equations.interface`)
+        and the result says which (:attr:`FrequencyResponse.reduction`). A cyclic
         sector is condensed in each harmonic's nodal diameter, exactly or from
         that diameter's modes (``"auto"``: exact up to 5000 independent DOFs).
     modes : int, optional
@@ -687,6 +689,12 @@ class _Accepted:
         if self._heartbeat is not None:
             self._heartbeat()
         return self._problem._evaluate(x, param, jacobian=jacobian)
+
+    def _evaluate_operator(self, x, param):
+        self._last = (x, param)
+        if self._heartbeat is not None:
+            self._heartbeat()
+        return self._problem._evaluate_operator(x, param)
 
     def accepted(self, param, count) -> None:
         if self._last is not None and self._last[1] == param:
@@ -815,6 +823,8 @@ def _with_stability(result: FrequencyResponse, hb, xs, omegas) -> FrequencyRespo
 
 def _response_scale(hb: HarmonicBalance, x_static, lo, hi, grid: int = 24) -> float:
     """Largest dynamic response of the structure with its contacts stuck, over the range (m)."""
+    if hasattr(hb, "response_scale"):  # equations that hold their Jacobian in parts compute it harmonic by harmonic
+        return hb.response_scale(x_static, np.linspace(lo, hi, grid))
     # x_static has no harmonics, so the residual R does not depend on omega: evaluated once
     R, Jx, _ = hb._evaluate(x_static, lo)
     Jc = Jx - hb.dynamic_stiffness(lo)

@@ -15,13 +15,14 @@ from typing import NamedTuple
 import numpy as np
 
 from ..aft import MAX_PERIODS
-from ..reduction.choice import (choose_reduction, cyclic_linear_part, cyclic_reduction, linear_part,
-                                retained_dofs)
+from ..reduction.choice import (choose_reduction, cyclic_linear_part, cyclic_reduction, interface_dominated,
+                                linear_part, retained_dofs)
 from ..structures.cyclic import CyclicStructure
 from ..structures.structure import Structure
 from .cyclic_balance import CyclicHarmonicBalance
 from .epmc import DampedBalance, DampedCyclicBalance, DampedReducedBalance
 from .hbm import HarmonicBalance, excitation
+from .interface import InterfaceBalance
 from .reduced import ReducedHarmonicBalance
 
 
@@ -95,6 +96,10 @@ def build_equations(structure: Structure, force, static_force, harmonics: int, *
                          dynamic(structure, force, harmonics, engine_order, linear, **kw), reduction, modes)
     retained = retained_dofs(structure, loads)
     reduction, modes = choose_reduction(structure, harmonics, reduction, modes, retained.size)
+    if reduction == "none" and interface_dominated(structure, harmonics, retained.size):
+        # every DOF an unknown, the Jacobian in its parts (harmonic blocks, contacts) for the solvers
+        dynamic = InterfaceBalance(structure, {} if damped else force, harmonics, **kw)
+        return Equations(HarmonicBalance(structure, static_force, 0), dynamic, reduction, modes)
     if reduction == "none":
         dynamic = DampedBalance(structure, harmonics, **kw) if damped else HarmonicBalance(structure, force, harmonics,
                                                                                             **kw)

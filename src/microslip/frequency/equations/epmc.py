@@ -37,10 +37,11 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..numerics.krylov import Bordered
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
-from ..structures.structure import Structure, refuse_indefinite
+from ..structures.structure import MANY_CONTACTS, Structure, refuse_indefinite
 
 #: DOFs up to which the linear mode is found by a dense eigensolution (sparse matrices: a sparse one above
 #: :data:`SPARSE_EIGEN`)
@@ -150,6 +151,7 @@ def stuck_matrices(structure: Structure, q0, nodal_diameter: int | None = None):
         shift = np.exp(-1j * phase) if phase else 1.0
         Bt_next, Bn_next = structure.contact_directions_next()
     Bt2 = structure.second_tangential_directions()  # zero for a contact along one direction
+    columns, weights = [], []  # the stuck contacts' rank-one terms of a dense K
     for c, contact in enumerate(structure.contacts):
         closed = (Bn[:, c] + Bn_next[:, c]) @ q0 + n0[c] > contact.model.gaps
         pairs = [(Bt[:, c] + shift * Bt_next[:, c], contact.model.kt[closed].sum()),
@@ -161,8 +163,14 @@ def stuck_matrices(structure: Structure, q0, nodal_diameter: int | None = None):
             if k and sp.issparse(K):
                 col = sp.csr_matrix(h[:, None])
                 K = K + k * (col.conj() @ col.T)
-            elif k:
+            elif k and len(structure.contacts) < MANY_CONTACTS:
                 K = K + k * np.outer(h.conj(), h)
+            elif k:
+                columns.append(h)
+                weights.append(k)
+    if columns:  # dense with many contacts: their rank-one terms in one product
+        Hc = np.stack(columns, axis=1)
+        K = K + (Hc.conj() * np.asarray(weights)) @ Hc.T
     return M, C, K
 
 
@@ -271,7 +279,19 @@ class EpmcEquations:
         return complex(g @ (x[m:2 * m] - 1j * x[2 * m:3 * m]))
 
     # -- the problem interface of the continuation ---------------------------------------------------
+    @property
+    def operator_jacobian(self) -> bool:
+        """True when the harmonic balance equations give their Jacobian as an operator (:meth:`_evaluate_operator`)."""
+        return bool(getattr(self.hb, "operator_jacobian", False))
+
     def _evaluate(self, y, s: float, *, jacobian: bool = True):
+        return self._residual(y, s, jacobian, operator=False)
+
+    def _evaluate_operator(self, y, s: float):
+        """As :meth:`_evaluate`, ``dr/dy`` a :class:`~microslip.frequency.numerics.krylov.Bordered` operator."""
+        return self._residual(y, s, True, operator=True)
+
+    def _residual(self, y, s: float, jacobian: bool, operator: bool):
         hb = self.hb
         a = np.exp(s)
         x, omega, xi = self.unpack(y, s)
@@ -283,7 +303,7 @@ class EpmcEquations:
         normal = np.array([eta.real - 1.0, eta.imag]) / NORMALISATION
         if not jacobian:
             return np.concatenate([hb._evaluate(x, omega, jacobian=False) / scale, normal])
-        R, J, R_omega = hb._evaluate(x, omega)
+        R, J, R_omega = hb._evaluate_operator(x, omega) if operator else hb._evaluate(x, omega)
         R_xi = hb.xi_derivative(x, omega)
         r = np.concatenate([R / scale, normal])
         m, c = self.m, self.psi_scale
@@ -296,6 +316,11 @@ class EpmcEquations:
         rows[:, -1] = e_xi.real, e_xi.imag
         rows /= NORMALISATION
         columns = np.stack([R_omega, R_xi], axis=1) * (self.omega_scale / scale)
+        r_s = np.zeros(self.n)
+        if operator:
+            Jy = Bordered(J.scaled(a * c / scale), columns, rows[:, :-2], rows[:, -2:])
+            r_s[:-2] = J.matvec(x - self.x_static) / scale - r[:-2]  # dx/ds = x - x_static
+            return r, Jy, r_s
         if sp.issparse(J):
             Jy = sp.vstack([sp.hstack([J * (a * c / scale), sp.csr_matrix(columns)]), sp.csr_matrix(rows)],
                            format="csc")
@@ -304,6 +329,5 @@ class EpmcEquations:
             np.multiply(J, a * c / scale, out=Jy[:-2, :-2])  # dx/dy = a c
             Jy[:-2, -2:] = columns
             Jy[-2:] = rows
-        r_s = np.zeros(self.n)
         r_s[:-2] = J @ (x - self.x_static) / scale - r[:-2]  # dx/ds = x - x_static
         return r, Jy, r_s

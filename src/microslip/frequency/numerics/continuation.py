@@ -52,6 +52,9 @@ import scipy.sparse.linalg as spla
 
 from ...common import _checks
 from ...common.errors import BranchPointWarning, ConvergenceError
+from .blas import solver_threads
+from .krylov import Bordered, ScaledColumns
+from .reuse import ReusedFactorisation
 
 
 @dataclass
@@ -105,22 +108,49 @@ class StepControl:
             raise ValueError(f"tolerance must be below 1 (a relative residual), got {self.tolerance!r}")
 
 
+def _solver_for(problem):
+    """A :class:`~.reuse.ReusedFactorisation` for a problem whose Jacobian is an operator, else None."""
+    return ReusedFactorisation() if getattr(problem, "operator_jacobian", False) else None
+
+
+def _evaluate(problem, x, omega: float, solver):
+    """``(R, dR/dx, dR/domega)``; ``dR/dx`` an operator (:mod:`~.krylov`) when the problem is solved by ``solver``."""
+    if solver is not None:
+        return problem._evaluate_operator(x, omega)
+    return problem._evaluate(x, omega)
+
+
+def _solve(problem, A, b, solver):
+    """``A^-1 b`` by ``solver`` (an operator) or the problem's own solve."""
+    return solver.solve(A, b) if solver is not None else problem.solve(A, b)
+
+
 def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, tolerance: float = 1e-9,
-           max_iterations: int = 50) -> tuple[np.ndarray, int]:
+           max_iterations: int = 50, solver=None) -> tuple[np.ndarray, int]:
     """Solve ``R(x, omega) = 0`` at fixed ``omega`` with a backtracking Newton method.
 
-    Returns ``(x, iterations)``; raises :class:`ConvergenceError` on failure.
+    Returns ``(x, iterations)``; raises :class:`ConvergenceError` on failure. A problem whose Jacobian is an
+    operator (``operator_jacobian``) is solved by ``solver`` (a new :class:`~.reuse.ReusedFactorisation` if
+    None).
     """
+    solver = solver if solver is not None else _solver_for(problem)
+    if solver is None:
+        return _newton(problem, x, omega, r_scale, x_scale, tolerance, max_iterations, solver)
+    with solver_threads():  # small products; the rare factorisations take the threads they need
+        return _newton(problem, x, omega, r_scale, x_scale, tolerance, max_iterations, solver)
+
+
+def _newton(problem, x, omega, r_scale, x_scale, tolerance, max_iterations, solver):
     x = np.array(x, dtype=float)
-    R, Jx, _ = problem._evaluate(x, omega)
+    R, Jx, _ = _evaluate(problem, x, omega, solver)
     norm = np.linalg.norm(R) / r_scale
     for it in range(1, max_iterations + 1):
-        dx = problem.solve(Jx, -R)
+        dx = _solve(problem, Jx, -R, solver)
         if not np.all(np.isfinite(dx)):
             raise ConvergenceError(f"Newton's method met a singular Jacobian at omega = {omega:g} rad/s")
         lam = 1.0
         x_new = x + dx  # the full step with its Jacobian, kept when accepted
-        R_new, J_new, _ = problem._evaluate(x_new, omega)
+        R_new, J_new, _ = _evaluate(problem, x_new, omega, solver)
         norm_new = np.linalg.norm(R_new) / r_scale
         while not (norm_new < norm or lam < 1e-4):  # backtrack on the residual alone
             lam *= 0.5
@@ -130,7 +160,7 @@ def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, toleranc
         x = x_new
         step = lam * np.max(np.abs(dx)) / x_scale
         if J_new is None:
-            R_new, J_new, _ = problem._evaluate(x, omega)
+            R_new, J_new, _ = _evaluate(problem, x, omega, solver)
             norm_new = np.linalg.norm(R_new) / r_scale
         R, Jx, norm = R_new, J_new, norm_new
         if norm < tolerance and step < max(tolerance, 1e-3) or norm < 1e-3 * tolerance:
@@ -140,33 +170,36 @@ def newton(problem, x, omega: float, *, r_scale: float, x_scale: float, toleranc
 
 
 def _scaled_system(problem, Jx, R_omega, row, scale):
-    """``[[Jx, R_omega], [row]]`` with the columns multiplied by ``scale``."""
+    """``[[Jx, R_omega], [row]]`` with the columns multiplied by ``scale`` (an operator when ``Jx`` is one)."""
+    if hasattr(Jx, "matvec"):
+        return Bordered(ScaledColumns(Jx, scale[:-1]), (R_omega * scale[-1])[:, None], row[None, :-1], row[None, -1:])
     Js = Jx.multiply(scale[None, :-1]).tocsc() if hasattr(Jx, "multiply") else Jx * scale[:-1]
     return problem.augmented(Js, R_omega * scale[-1], row)
 
 
-def _tangent(problem, Jx, R_omega, row, scale) -> np.ndarray:
+def _tangent(problem, Jx, R_omega, row, scale, solver=None) -> np.ndarray:
     """Unit tangent (scaled) of ``R = 0``: ``[Jx, R_omega] z = 0`` with ``row . z = 1``."""
     A = _scaled_system(problem, Jx, R_omega, row, scale)
     rhs = np.zeros(scale.size)
     rhs[-1] = 1.0
-    z = problem.solve(A, rhs)
+    z = _solve(problem, A, rhs, solver)
     return z / np.linalg.norm(z)
 
 
-def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None):
+def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None, solver=None):
     """Newton on ``R = 0`` and ``tau . (y - y_pred) = 0`` (scaled); ``(y, iterations)`` or ``(None, k)``.
 
     ``last``, a list, receives ``[Jx, R_omega, factors]`` at the converged point:
     its Jacobian and, for a dense problem of at least :data:`FACTORED_MIN`
     unknowns, the :class:`_Factored` system of the last iteration (see
-    :func:`_sign`), else None.
+    :func:`_sign`), for a problem solved by ``solver`` (its Jacobian an
+    operator) the solver, else None.
     """
     yc = y_pred.copy()
     step = np.inf
-    factors = None
+    factors = solver
     for it in range(ctl.max_iterations + 1):
-        R, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
+        R, Jx, Rw = _evaluate(problem, yc[:-1], yc[-1], solver)
         res = np.linalg.norm(R) / r_scale
         if it and res < ctl.tolerance and step < np.sqrt(ctl.tolerance):
             if last is not None:
@@ -176,7 +209,9 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None):
             break
         g = np.append(R, tau @ ((yc - y_pred) / scale))
         A = _scaled_system(problem, Jx, Rw, tau, scale)
-        if sp.issparse(A) or A.shape[0] < FACTORED_MIN:
+        if solver is not None:
+            dz = solver.solve(A, -g)
+        elif sp.issparse(A) or A.shape[0] < FACTORED_MIN:
             dz = problem.solve(A, -g)
         else:
             factors = _Factored(A, tau)
@@ -244,14 +279,18 @@ def _sign(problem, last, row, scale) -> float:
     system at the point.
     """
     Jx, Rw, factors = last
+    if isinstance(factors, ReusedFactorisation):  # the Jacobian an operator: see ReusedFactorisation.sign
+        return factors.sign(_scaled_system(problem, Jx, Rw, row, scale))
     if factors is not None:
         return factors.sign_with_row(row)
     return _orientation(problem, Jx, Rw, row, scale)
 
 
-def _orientation(problem, Jx, R_omega, row, scale) -> float:
+def _orientation(problem, Jx, R_omega, row, scale, solver=None) -> float:
     """Sign of ``det [[Jx, R_omega], [row]]`` (scaled columns): the side of the curve ``row`` points to."""
     A = _scaled_system(problem, Jx, R_omega, row, scale)
+    if solver is not None:
+        return solver.sign(A)
     if not sp.issparse(A):
         return float(np.linalg.slogdet(A)[0])
     try:
@@ -272,7 +311,7 @@ def _orientation(problem, Jx, R_omega, row, scale) -> float:
     return float(sign)
 
 
-def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
+def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
     """A point about ``ds`` past a corner just ahead of ``y``: ``(y, iterations, direction)`` or ``(None, k, None)``.
 
     Where an element starts to slip or to open, the Jacobian jumps. When the jump
@@ -285,8 +324,8 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
     side, oriented so that the determinant keeps its sign ``here`` (as on a
     piecewise-linear curve).
     """
-    _, Jx, Rw = problem._evaluate(y[:-1], y[-1])
-    along = _tangent(problem, Jx, Rw, tau, scale)  # the curve's direction at y
+    _, Jx, Rw = _evaluate(problem, y[:-1], y[-1], solver)
+    along = _tangent(problem, Jx, Rw, tau, scale, solver)  # the curve's direction at y
 
     def off(s):  # y + s along has left the curve
         p = y + s * along * scale
@@ -299,14 +338,14 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
         m = 0.5 * (a + b)
         a, b = (a, m) if off(m) else (m, b)
     corner, probe = y + a * along * scale, y + b * along * scale
-    _, Jx, Rw = problem._evaluate(probe[:-1], probe[-1])
-    far = _tangent(problem, Jx, Rw, along, scale)  # far . along > 0
-    there = _orientation(problem, Jx, Rw, along, scale)
+    _, Jx, Rw = _evaluate(problem, probe[:-1], probe[-1], solver)
+    far = _tangent(problem, Jx, Rw, along, scale, solver)  # far . along > 0
+    there = _orientation(problem, Jx, Rw, along, scale, solver)
     if not np.all(np.isfinite(far)) or here * there == 0 or (here == there and far @ along > np.cos(ctl.max_angle)):
         return None, 0, None  # nothing turns there: not a corner
     if here != there:
         far = -far
-    yc, it = _correct(problem, corner + ds * far * scale, far, scale, r_scale, ctl)
+    yc, it = _correct(problem, corner + ds * far * scale, far, scale, r_scale, ctl, solver=solver)
     if yc is None:
         return None, it, None
     secant = (yc - y) / scale
@@ -314,9 +353,9 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here):
     if length > 2 * ds + a:
         return None, it, None  # converged elsewhere than near the corner
     # the curve's direction there, oriented as the whole curve (the determinant's sign)
-    _, Jx, Rw = problem._evaluate(yc[:-1], yc[-1])
-    ahead = _tangent(problem, Jx, Rw, far, scale)
-    if _orientation(problem, Jx, Rw, ahead, scale) != here:
+    _, Jx, Rw = _evaluate(problem, yc[:-1], yc[-1], solver)
+    ahead = _tangent(problem, Jx, Rw, far, scale, solver)
+    if _orientation(problem, Jx, Rw, ahead, scale, solver) != here:
         ahead = -ahead
     behind = np.cos(0.1 * ctl.max_angle)
     if not np.all(np.isfinite(ahead)) or (ahead @ tau > behind and secant @ tau < -behind * length):
@@ -361,6 +400,16 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         is where it stopped).
     """
     ctl = control or StepControl()
+    solver = _solver_for(problem)  # one factorisation reused over many steps when the Jacobian is an operator
+    if solver is None:
+        return _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points,
+                             solver)
+    with solver_threads():  # small products; the rare factorisations take the threads they need
+        return _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points,
+                             solver)
+
+
+def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points, solver):
     n = x0.size
     scale = np.empty(n + 1)
     scale[:-1] = x_scale
@@ -370,13 +419,13 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     lo, hi = sorted((omega_start, omega_end))
 
     y = np.append(x0, omega_start)
-    R, Jx, Rw = problem._evaluate(x0, omega_start)
+    R, Jx, Rw = _evaluate(problem, x0, omega_start, solver)
     e_w = np.zeros(n + 1)
     e_w[-1] = 1.0
-    tau = _tangent(problem, Jx, Rw, e_w, scale)
+    tau = _tangent(problem, Jx, Rw, e_w, scale, solver)
     if tau[-1] * direction < 0:
         tau = -tau
-    orientation = _orientation(problem, Jx, Rw, tau, scale)  # the same all along the curve
+    orientation = _orientation(problem, Jx, Rw, tau, scale, solver)  # the same all along the curve
     last = []  # the Jacobian at the corrector's last point
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
@@ -389,9 +438,9 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 raise ConvergenceError(
                     f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
                     f"ds_min = {ctl.ds_min:g}")
-            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last)
+            yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last, solver)
             if yc is None and failed:  # failing again, nearer: look for a corner within the step
-                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation)
+                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation, solver)
                 if yc is not None:  # its turn is the corner's: no reason to shrink the next step
                     secant, angle, kink = ahead, 0.0, True
                     break
@@ -429,7 +478,7 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
                 x_prev, w_prev = xs[-1], omegas[-1]
                 frac = (edge - w_prev) / (y[-1] - w_prev)
                 x_edge, k = newton(problem, x_prev + frac * (y[:-1] - x_prev), edge,
-                                   r_scale=r_scale, x_scale=x_scale, tolerance=ctl.tolerance)
+                                   r_scale=r_scale, x_scale=x_scale, tolerance=ctl.tolerance, solver=solver)
                 xs.append(x_edge)
                 omegas.append(edge)
                 iters.append(k)

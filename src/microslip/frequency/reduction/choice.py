@@ -29,6 +29,21 @@ EXACT_LIMIT = 5000
 FEW_RETAINED_MIN_DOFS = 20
 #: normal modes ``"auto"`` keeps for a modal reduction
 DEFAULT_MODES = 60
+#: share of the DOFs the equations would keep above which a structure is interface-dominated: ``"auto"`` then
+#: condenses nothing (a condensation that keeps most DOFs costs more than it removes)
+INTERFACE_SHARE = 0.5
+#: unknowns ``(2H+1) ndof`` up to which an interface-dominated structure is solved on every DOF with its
+#: Jacobian in parts (:mod:`~microslip.frequency.equations.interface`; a dense Jacobian of this size is
+#: factorised now and then: 512 MB)
+INTERFACE_LIMIT = 8000
+
+
+def interface_dominated(structure: Structure, harmonics: int, retained: int | None) -> bool:
+    """True when the contacts, excitation and preloads use more than :data:`INTERFACE_SHARE` of the DOFs and the
+    equations on every DOF are above the small dense size (:data:`~microslip.frequency.numerics.blas.DENSE_LIMIT`)
+    and at most :data:`INTERFACE_LIMIT` unknowns."""
+    n = (2 * harmonics + 1) * structure.ndof
+    return retained is not None and retained > INTERFACE_SHARE * structure.ndof and DENSE_LIMIT < n <= INTERFACE_LIMIT
 
 
 def retained_dofs(structure: Structure, f_ext: np.ndarray) -> np.ndarray:
@@ -48,7 +63,9 @@ def choose_reduction(structure: Structure, harmonics: int, reduction: str, modes
     at least :data:`FEW_RETAINED_MIN_DOFS` DOFs of which the equations would
     keep (``retained``, the DOFs the contacts, excitation and preloads use) at
     most a quarter: then ``"exact"``, as up to :data:`EXACT_LIMIT` DOFs;
-    ``"modal"`` with :data:`DEFAULT_MODES` modes above.
+    ``"modal"`` with :data:`DEFAULT_MODES` modes above. An interface-dominated
+    structure (:func:`interface_dominated`: the equations would keep most
+    DOFs) is not condensed: ``"none"``.
     """
     if not isinstance(reduction, str) or reduction not in REDUCTIONS:
         raise ValueError(f"reduction must be one of {', '.join(map(repr, REDUCTIONS))}, got {reduction!r}")
@@ -63,7 +80,7 @@ def choose_reduction(structure: Structure, harmonics: int, reduction: str, modes
             reduction = "modal"
     if reduction == "auto":
         few = retained is not None and ndof >= FEW_RETAINED_MIN_DOFS and 4 * retained <= ndof
-        if (2 * harmonics + 1) * ndof <= DENSE_LIMIT and not few:
+        if (2 * harmonics + 1) * ndof <= DENSE_LIMIT and not few or interface_dominated(structure, harmonics, retained):
             reduction = "none"
         elif ndof <= EXACT_LIMIT:
             reduction = "exact"

@@ -35,6 +35,10 @@ from ...model import MicroslipModel
 from ..aft import pack_models
 
 
+#: contacts from which a dense structure's stuck stiffness adds their rank-one terms in one matrix product (one
+#: update of the whole matrix per term costs ndof^2 each)
+MANY_CONTACTS = 32
+
 def _matrix(name: str, value, ndof: int | None):
     if sp.issparse(value):
         A = sp.csr_matrix(value, dtype=np.float64)
@@ -554,6 +558,7 @@ class Structure:
         CSR): the largest stiffness the contacts can add.
         """
         K = self.K.copy()
+        columns, weights = [], []
         for c in self.contacts:
             pairs = ((c.tangential, c.model.kt.sum()), (c.normal, c.model.kn.sum()))
             if c.planar:
@@ -562,8 +567,14 @@ class Structure:
                 if sp.issparse(K):
                     col = sp.csr_matrix(b[:, None])
                     K = K + k * (col @ col.T)
-                else:
+                elif len(self.contacts) < MANY_CONTACTS:
                     K += k * np.outer(b, b)
+                else:
+                    columns.append(b)
+                    weights.append(k)
+        if columns:  # dense with many contacts: their rank-one terms in one product B diag(k) B^T
+            B = np.stack(columns, axis=1)
+            K += (B * np.asarray(weights)) @ B.T
         return K
 
     def force_vector(self, force, name: str = "force") -> np.ndarray:

@@ -1,0 +1,254 @@
+"""Harmonic balance of interface-dominated structures: every DOF an unknown, the Jacobian kept in its parts.
+
+When the contacts use most of a structure's DOFs (a jointed structure reduced to relative interface
+coordinates) a condensation keeps almost every DOF and costs more than it saves. These equations keep
+every DOF, as :class:`~.hbm.HarmonicBalance` does, and hold the linear structure as its dense ``M``,
+``C``, ``K``: harmonic ``h`` at ``omega`` acts on ``(a_h, b_h)`` through ``[[A, B], [-B, A]]`` with
+``A = K - (h omega)^2 M`` and ``B = h omega C`` (``C - xi M`` for a nonlinear mode), built in
+``O(ndof^2)`` per harmonic and point. The Jacobian is returned to the solvers as a
+:class:`HarmonicOperator` -- those blocks plus each contact's small block (its DOFs x harmonics),
+applied in ``O(ndof^2 H + contacts H^2)`` -- and assembled into a dense matrix only when the solver
+factorises it (:mod:`~microslip.frequency.numerics.reuse`). Other callers of ``_evaluate`` receive the
+dense Jacobian, as from :class:`~.hbm.HarmonicBalance`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..aft import MAX_PERIODS
+from ..numerics.blas import solver_threads
+from ..structures.structure import Structure
+from .hbm import HarmonicBalance
+
+
+def _dense(A) -> np.ndarray:
+    return A.toarray() if sp.issparse(A) else np.asarray(A, dtype=float)
+
+
+class HarmonicOperator:
+    """The harmonic balance Jacobian ``c (Z(omega) + J_contacts)`` as an operator, shape ``(n, n)`` (N/m).
+
+    Parameters
+    ----------
+    static : ndarray, shape (ndof, ndof)
+        The static block (N/m).
+    A, B : ndarray, shape (H, ndof, ndof)
+        Harmonic ``h``'s blocks: rows ``a_h`` get ``A a_h + B b_h``, rows ``b_h`` get ``A b_h - B a_h``.
+    contacts : scipy.sparse matrix or None, shape (n, n)
+        The contacts' Jacobian.
+    factor : float, default 1
+        ``c``.
+    """
+
+    def __init__(self, static, A, B, contacts, factor: float = 1.0):
+        self.static, self.A, self.B, self.contacts, self.factor = static, A, B, contacts, factor
+        self.ndof = static.shape[0]
+        self.H = A.shape[0]
+        self.n = (2 * self.H + 1) * self.ndof
+        self.shape = (self.n, self.n)
+
+    def scaled(self, factor: float) -> "HarmonicOperator":
+        """This operator times ``factor`` (the arrays shared)."""
+        return HarmonicOperator(self.static, self.A, self.B, self.contacts, self.factor * factor)
+
+    def linear(self, v: np.ndarray) -> np.ndarray:
+        """The linear structure's part applied to ``v`` (without ``factor``), shape ``(n,)``."""
+        return linear_apply(self.static, self.A, self.B, v)
+
+    def matvec(self, v: np.ndarray) -> np.ndarray:
+        out = self.linear(v)
+        if self.contacts is not None:
+            out += self.contacts @ v
+        if self.factor != 1.0:
+            out *= self.factor
+        return out
+
+    __matmul__ = matvec
+
+    def toarray(self) -> np.ndarray:
+        m, n = self.ndof, self.n
+        out = np.zeros((n, n))
+        out[:m, :m] = self.static
+        for h in range(1, self.H + 1):
+            a, b = slice((2 * h - 1) * m, 2 * h * m), slice(2 * h * m, (2 * h + 1) * m)
+            out[a, a] = out[b, b] = self.A[h - 1]
+            out[a, b] = self.B[h - 1]
+            out[b, a] = -self.B[h - 1]
+        if self.contacts is not None:
+            C = self.contacts.tocoo()
+            np.add.at(out, (C.row, C.col), C.data)  # summed where contacts share DOFs
+        if self.factor != 1.0:
+            out *= self.factor
+        return out
+
+
+def linear_apply(static, A, B, v) -> np.ndarray:
+    """``[[static], [[A, B], [-B, A]] per harmonic] v``, ``v`` of shape ``(n,)`` harmonic-major."""
+    m = static.shape[0]
+    V = np.reshape(v, (-1, m))
+    out = np.empty_like(V)
+    out[0] = static @ V[0]
+    a, b = V[1::2], V[2::2]
+    out[1::2] = np.matmul(A, a[:, :, None])[:, :, 0] + np.matmul(B, b[:, :, None])[:, :, 0]
+    out[2::2] = np.matmul(A, b[:, :, None])[:, :, 0] - np.matmul(B, a[:, :, None])[:, :, 0]
+    return out.ravel()
+
+
+class InterfaceBalance(HarmonicBalance):
+    """Harmonic balance on every DOF of a dense structure, its Jacobian as a :class:`HarmonicOperator`.
+
+    Parameters
+    ----------
+    structure : Structure
+        The structure with its contacts (its matrices are held dense).
+    force : array_like or mapping
+        Excitation (N), see :func:`~.hbm.excitation`.
+    harmonics : int
+        ``H``.
+    samples, max_periods
+        As for :class:`~.hbm.HarmonicBalance`.
+
+    Notes
+    -----
+    The unknowns and the residual are those of :class:`~.hbm.HarmonicBalance` on every DOF: the same
+    equations, stored and solved differently.
+    """
+
+    xi = 0.0  # the damping is C - xi M (nonzero only for a nonlinear mode)
+    #: the solvers ask :meth:`_evaluate_operator` for the Jacobian as an operator
+    operator_jacobian = True
+
+    def __init__(self, structure: Structure, force, harmonics: int, *, samples: int | None = None,
+                 max_periods: int = MAX_PERIODS):
+        self._setup(structure, force, harmonics, samples, max_periods, getattr(structure, "ndof", 0))
+        self.dense = False  # the contacts' Jacobian sparse (HarmonicBalance._contact_jacobian)
+        self.K, self.C, self.M = (_dense(A) for A in (structure.K, structure.C, structure.M))
+        self.Bt, self.Bn, self.n0 = structure.contact_directions()
+        self.Bt2 = structure.second_tangential_directions()
+        self._linear_key = None
+
+    @property
+    def compiled(self) -> bool:
+        return False
+
+    def _blocks(self, omega: float):
+        """``(static, A, B)`` at ``omega`` with the damping ``C - xi M`` (kept for the last ``(omega, xi)``)."""
+        key = (omega, self.xi)
+        if self._linear_key != key:
+            h = np.arange(1, self.H + 1, dtype=float)[:, None, None]
+            W = h * omega
+            damping = self.C - self.xi * self.M if self.xi else self.C
+            self._linear = (self.K, self.K[None] - (W * W) * self.M[None], W * damping[None])
+            self._linear_key = key
+        return self._linear
+
+    def operator(self, omega: float, contacts: bool = False) -> HarmonicOperator:
+        """``Z(omega)`` (with the contacts' Jacobian of the last AFT when ``contacts``) as an operator."""
+        return HarmonicOperator(*self._blocks(omega), self._contact_jacobian() if contacts and self.nc else None)
+
+    def dynamic_stiffness(self, omega: float):
+        """``Z(omega)``, dense ``(n, n)`` (N/m)."""
+        return self.operator(self._omega(omega)).toarray()
+
+    def _residual(self, x, omega: float) -> np.ndarray:
+        """``R`` (N), shape ``(n,)``; the AFT's forces and Jacobians are left for :meth:`_contact_jacobian`."""
+        R = linear_apply(*self._blocks(omega), x) - self.f
+        if self.nc:
+            self._aft(x)
+            R += self._contact_residual()
+        return R
+
+    def _evaluate_operator(self, x, omega: float):
+        """``(R, Jx, R_omega)`` with ``Jx`` a :class:`HarmonicOperator` (for the solvers)."""
+        R = self._residual(x, omega)
+        return R, self.operator(omega, contacts=True), self._omega_derivative(x, omega)
+
+    def _evaluate(self, x, omega: float, *, jacobian: bool = True):
+        if not jacobian:
+            return self._residual(x, omega)
+        R, J, Rw = self._evaluate_operator(x, omega)
+        return R, J.toarray(), Rw
+
+    def response_scale(self, x_static, omegas) -> float:
+        """Largest harmonic amplitude (m) of the response with the contacts linearised at the static state ``x_static``
+        (``(n,)``, no harmonics) over the frequencies ``omegas`` (rad/s): ``max |dx|`` of ``J(omega) dx = -R``.
+
+        At a state without harmonics the contacts' Jacobian couples no two harmonics, so each harmonic the
+        residual (the excitation) has is solved alone (``2 ndof`` unknowns); a Jacobian that does couple them is
+        solved whole.
+        """
+        with solver_threads():  # small dense solves: one BLAS thread
+            return self._response_scale(np.asarray(x_static, dtype=float), omegas)
+
+    def _response_scale(self, x_static, omegas) -> float:
+        R, J, _ = self._evaluate_operator(x_static, float(omegas[0]))
+        m, n = self.ndof, self.n
+        contacts = J.contacts.tocsr() if J.contacts is not None else sp.csr_matrix((n, n))
+        best = 0.0
+        for h in range(1, self.H + 1):
+            rows = slice((2 * h - 1) * m, (2 * h + 1) * m)
+            if np.max(np.abs(R[rows])) <= 1e-13 * np.max(np.abs(R)):  # not excited: the AFT's rounding at most
+                continue
+            block = contacts[rows].toarray()
+            coupled = np.any(block[:, :rows.start]) or np.any(block[:, rows.stop:])
+            for w in omegas:
+                if coupled:
+                    dx = np.linalg.solve(self.operator(w, contacts=False).toarray() + contacts.toarray(), -R)[m:]
+                else:
+                    _, A, B = self._blocks(float(w))
+                    try:
+                        dx = _harmonic_solve(A[h - 1], B[h - 1], block[:, rows], -R[rows])
+                    except np.linalg.LinAlgError:
+                        continue
+                if np.all(np.isfinite(dx)):
+                    best = max(best, float(np.max(np.abs(dx))))
+        return best if best > 0 else max(float(np.max(np.abs(x_static))), 1e-12)
+
+    def _harmonic_products(self, x):
+        """``(M v, (C - xi M) v, h)`` for the harmonics' coefficients ``v`` of ``x``, each ``(2H, ndof)``, and the
+        harmonic of each row ``(2H, 1)``."""
+        V = np.reshape(x, (self.nb, self.ndof))[1:]
+        Mv = V @ self.M.T
+        Cv = V @ self.C.T - self.xi * Mv if self.xi else V @ self.C.T
+        return Mv, Cv, np.repeat(np.arange(1, self.H + 1, dtype=float), 2)[:, None]
+
+    _evaluate_reference = _evaluate  # the same NumPy operations (no compiled kernel here)
+
+    def _omega_derivative(self, x, omega: float) -> np.ndarray:
+        """``dR/domega`` (N s), shape ``(n,)``: ``dA/domega = -2 h^2 omega M``, ``dB/domega = h (C - xi M)``."""
+        Mv, Cv, h = self._harmonic_products(x)
+        out = np.zeros((self.nb, self.ndof))
+        out[1:] = -2.0 * omega * h * h * Mv
+        out[1::2] += h[0::2] * Cv[1::2]  # rows a_h: + B' b_h
+        out[2::2] -= h[1::2] * Cv[0::2]  # rows b_h: - B' a_h
+        return out.ravel()
+
+    def xi_derivative(self, x, omega: float) -> np.ndarray:
+        """``dR/dxi`` (N s), shape ``(n,)``: ``dB/dxi = -h omega M``."""
+        Mv, _, h = self._harmonic_products(x)
+        out = np.zeros((self.nb, self.ndof))
+        out[1::2] = -omega * h[0::2] * Mv[1::2]
+        out[2::2] = omega * h[1::2] * Mv[0::2]
+        return out.ravel()
+
+    def functional(self, w, omega: float):
+        """``(w, 0, 0)``: a functional of every DOF is one of the unknowns (nothing condensed)."""
+        zero = np.zeros(self.ndof, dtype=complex)
+        return np.asarray(w).astype(complex), zero, zero.copy()
+
+
+def _harmonic_solve(A, B, contacts, r) -> np.ndarray:
+    """``([[A, B], [-B, A]] + contacts)^-1 r`` for one harmonic's ``(a_h, b_h)`` (``r`` and the result ``(2 m,)``).
+
+    When ``contacts`` has the same form ``[[P, Q], [-Q, P]]`` (time-invariant, as at a state without harmonics)
+    the system is ``(A + P + i (B + Q)) (a - i b) = r_a - i r_b``: ``m`` complex unknowns, half the work.
+    """
+    m = A.shape[0]
+    P, Q = contacts[:m, :m], contacts[:m, m:]
+    if np.array_equal(contacts[m:, m:], P) and np.array_equal(contacts[m:, :m], -Q):
+        z = np.linalg.solve(A + P + 1j * (B + Q), r[:m] - 1j * r[m:])
+        return np.concatenate([z.real, -z.imag])
+    return np.linalg.solve(np.block([[A, B], [-B, A]]) + contacts, r)
+

@@ -1,0 +1,142 @@
+"""One LU factorisation reused over many Newton iterations and continuation steps (private; no physics).
+
+A dense factorisation of the whole Jacobian costs ``n^3``; applying the Jacobian as an operator
+(:mod:`~.krylov`) and solving with factors already held cost ``n^2``. :class:`ReusedFactorisation`
+solves each system by GMRES preconditioned with the factors of a Jacobian met earlier -- along a
+curve, a nearby one, so GMRES needs a few iterations -- and factorises the current system again when
+that stops working: GMRES did not converge in :data:`MAX_KRYLOV` iterations, or needed more than
+:data:`SLOW_KRYLOV` once the iterations since the last factorisation have cost about one
+(``n /`` :data:`FACTOR_EQUIVALENT` of them): the factors have drifted from the curve and are renewed at
+the next system.
+Each solve is to :data:`RTOL` of the right-hand side, so a Newton iteration is a Newton iteration and
+the corrector converges as with exact solves, to the same tolerance.
+
+The sign of a determinant (the orientation of the continuation's bordered systems) comes from the
+factors held when the preconditioned operator ``A P^-1`` has all its Ritz values on a GMRES solve with a
+generic right-hand side within :data:`RITZ_DISC` of 1 (no real eigenvalue of ``A P^-1`` crossed zero
+between ``P`` and ``A``, so their determinants have one sign); otherwise ``A`` itself is factorised.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import scipy.linalg as sla
+
+from .blas import factor_threads
+from .krylov import dense, gmres
+
+#: GMRES iterations before the system is factorised instead
+MAX_KRYLOV = 40
+#: GMRES iterations of one solve above which the factors are renewed at the next system, once the iterations
+#: since they were computed have cost about one factorisation
+SLOW_KRYLOV = 8
+#: unknowns per GMRES iteration that cost about as much as one factorisation: a dense LU costs ``n^3`` against
+#: ``n^2`` for an iteration (a product with the operator and a solve with the factors), and the solves are bound by
+#: memory while the factorisation is not
+FACTOR_EQUIVALENT = 40
+#: relative residual of each solve
+RTOL = 1e-12
+#: Ritz values of the preconditioned operator within this distance of 1: the determinants have one sign
+RITZ_DISC = 0.9
+#: factorisations and GMRES iterations of every ReusedFactorisation of the process (read by the benchmarks)
+COUNTS = {"factorisations": 0, "krylov_iterations": 0}
+
+
+class _Factors:
+    """LU factors of a dense matrix in ``dtype``, the sign of its determinant, and solves in float64."""
+
+    def __init__(self, A: np.ndarray, dtype):
+        self.singular = not np.all(np.isfinite(A))
+        self.sign = 0.0
+        if self.singular:
+            return
+        with warnings.catch_warnings(), factor_threads(A.shape[0]):
+            warnings.simplefilter("ignore", sla.LinAlgWarning)
+            self.lu, self.piv = sla.lu_factor(np.asarray(A, dtype=dtype), overwrite_a=True, check_finite=False)
+        diagonal = np.diagonal(self.lu)
+        swaps = int(np.count_nonzero(self.piv != np.arange(self.piv.size)))
+        self.sign = float(np.prod(np.sign(diagonal))) * (-1.0 if swaps % 2 else 1.0)
+        self.singular = self.sign == 0 or not np.all(np.isfinite(diagonal))
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        if self.singular:
+            return np.full(np.shape(b), np.nan)
+        out = sla.lu_solve((self.lu, self.piv), b.astype(self.lu.dtype), check_finite=False)
+        return out.astype(float)
+
+
+class ReusedFactorisation:
+    """Solves ``A z = b`` for a sequence of nearby operators ``A`` with as few factorisations as possible.
+
+    Parameters
+    ----------
+    single : bool, default True
+        Factorise in single precision (half the memory, about 1.5 times faster); GMRES in double
+        precision refines every solve to :data:`RTOL` all the same (a few more iterations).
+
+    Attributes
+    ----------
+    factorisations, krylov_iterations : int
+        Counts, for reports and benchmarks.
+    """
+
+    def __init__(self, single: bool = True):
+        self.dtype = np.float32 if single else np.float64
+        self.factors: _Factors | None = None
+        self.renew = False
+        self.since = 0
+        self.factorisations = 0
+        self.krylov_iterations = 0
+        self.probe = None
+
+    def factorise(self, A, dtype=None) -> _Factors:
+        """Factorise ``A`` (an operator of :mod:`~.krylov` or an array) in ``dtype`` (default: this solver's) and
+        keep its factors."""
+        self.factors = _Factors(dense(A), dtype or self.dtype)
+        self.since = 0  # GMRES iterations with these factors
+        self.factorisations += 1
+        COUNTS["factorisations"] += 1
+        self.renew = False
+        return self.factors
+
+    def solve(self, A, b: np.ndarray) -> np.ndarray:
+        """``A^-1 b`` to :data:`RTOL` relative residual; all NaN when ``A`` is singular."""
+        held = not (self.factors is None or self.renew or self.factors.singular or self.factors.lu.shape != A.shape)
+        if held:
+            z = self._krylov(A, b)
+            if z is not None:
+                return z
+        # new factors of A; in double precision too when single precision cannot precondition a matrix this
+        # ill-conditioned
+        for dtype in dict.fromkeys([self.dtype, np.float64]):
+            if not self.factorise(A, dtype).singular:
+                z = self._krylov(A, b)
+                if z is not None:
+                    return z
+        return np.full(np.shape(b), np.nan)
+
+    def _krylov(self, A, b):
+        """GMRES with the factors held: the solution, or None when it did not converge in :data:`MAX_KRYLOV`."""
+        z, k, converged, _ = gmres(A, b, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
+        self.krylov_iterations += k
+        COUNTS["krylov_iterations"] += k
+        self.since += k
+        if not (converged and np.all(np.isfinite(z))):
+            return None
+        self.renew = k > SLOW_KRYLOV and self.since > A.shape[0] / FACTOR_EQUIVALENT
+        return z
+
+    def sign(self, A) -> float:
+        """Sign of ``det A``: from the factors held when GMRES finds ``A P^-1`` near the identity, else from new
+        factors of ``A``."""
+        if self.factors is not None and not self.factors.singular and self.factors.lu.shape == A.shape:
+            if self.probe is None or self.probe.size != A.shape[0]:
+                self.probe = np.random.default_rng(0).standard_normal(A.shape[0])  # generic, fixed
+            _, k, converged, ritz = gmres(A, self.probe, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
+            self.krylov_iterations += k
+            COUNTS["krylov_iterations"] += k
+            if converged and np.all(np.abs(ritz - 1.0) < RITZ_DISC):
+                return self.factors.sign
+        return self.factorise(A).sign
