@@ -958,7 +958,7 @@ def two_dof_prestress():
 
 
 CASES += [
-    case("frequency.prestress", lambda: microslip.frequency.prestress, structure=L(jenkins_structure), load=[1.0],
+    case("microslip.prestress", lambda: microslip.prestress, structure=L(jenkins_structure), load=[1.0],
          friction="released", reduction="none", modes=None, tolerance=1e-10),
     case("Prestress.modes", lambda: a_prestress().modes, n=1),
     case("Prestress.modal_damping", lambda: a_prestress().modal_damping, ratios=[0.01], modes=1),
