@@ -41,7 +41,7 @@ from ..numerics.krylov import Bordered
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
 from .reduced import ReducedHarmonicBalance
-from ..structures.structure import MANY_CONTACTS, Structure, refuse_indefinite
+from ..structures.structure import MANY_CONTACTS, Structure, add_rank_one_terms, refuse_indefinite
 
 #: DOFs up to which the linear mode is found by a dense eigensolution (sparse matrices: a sparse one above
 #: :data:`SPARSE_EIGEN`)
@@ -151,26 +151,16 @@ def stuck_matrices(structure: Structure, q0, nodal_diameter: int | None = None):
         shift = np.exp(-1j * phase) if phase else 1.0
         Bt_next, Bn_next = structure.contact_directions_next()
     Bt2 = structure.second_tangential_directions()  # zero for a contact along one direction
-    columns, weights = [], []  # the stuck contacts' rank-one terms of a dense K
+    terms = []
     for c, contact in enumerate(structure.contacts):
         closed = (Bn[:, c] + Bn_next[:, c]) @ q0 + n0[c] > contact.model.gaps
         pairs = [(Bt[:, c] + shift * Bt_next[:, c], contact.model.kt[closed].sum()),
                  (Bn[:, c] + shift * Bn_next[:, c], contact.model.kn[closed].sum())]
         if contact.tangential2 is not None:  # a contact on its plane sticks along both directions
             pairs.append((Bt2[:, c], contact.model.kt[closed].sum()))
-        for b, k in pairs:
-            h = b if T is None else np.asarray(T.T @ b)  # t = h . z on the DOFs the matrices act on
-            if k and sp.issparse(K):
-                col = sp.csr_matrix(h[:, None])
-                K = K + k * (col.conj() @ col.T)
-            elif k and len(structure.contacts) < MANY_CONTACTS:
-                K = K + k * np.outer(h.conj(), h)
-            elif k:
-                columns.append(h)
-                weights.append(k)
-    if columns:  # dense with many contacts: their rank-one terms in one product
-        Hc = np.stack(columns, axis=1)
-        K = K + (Hc.conj() * np.asarray(weights)) @ Hc.T
+        # t = h . z on the DOFs the matrices act on
+        terms += [(b if T is None else np.asarray(T.T @ b), k) for b, k in pairs]
+    K = add_rank_one_terms(K, terms, many=len(structure.contacts) >= MANY_CONTACTS)
     return M, C, K
 
 

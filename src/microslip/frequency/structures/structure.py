@@ -39,6 +39,31 @@ from ..aft import pack_models
 #: update of the whole matrix per term costs ndof^2 each)
 MANY_CONTACTS = 32
 
+def add_rank_one_terms(K, terms, *, many: bool):
+    """``K + sum_j k_j conj(h_j) h_j^T``: the stiffness (N/m) of contact elements stuck along directions ``h_j``.
+
+    ``K`` is dense (``(n, n)``) or sparse; ``terms`` holds ``(h_j, k_j)`` with ``h_j`` of shape ``(n,)`` and
+    ``k_j`` the stuck stiffness along it (N/m; zero terms are skipped). With ``many`` contacts a dense ``K``
+    takes the terms in one product ``H diag(k) H^H`` instead of one outer product each.
+    """
+    columns, weights = [], []
+    for h, k in terms:
+        if not k:
+            continue
+        if sp.issparse(K):
+            col = sp.csr_matrix(h[:, None])
+            K = K + k * (col.conj() @ col.T)
+        elif not many:
+            K = K + k * np.outer(h.conj(), h)
+        else:
+            columns.append(h)
+            weights.append(k)
+    if columns:
+        H = np.stack(columns, axis=1)
+        K = K + (H.conj() * np.asarray(weights)) @ H.T
+    return K
+
+
 def _matrix(name: str, value, ndof: int | None):
     if sp.issparse(value):
         A = sp.csr_matrix(value, dtype=np.float64)
@@ -557,25 +582,12 @@ class Structure:
         for a contact on its plane), stored like ``K`` (dense array or sparse
         CSR): the largest stiffness the contacts can add.
         """
-        K = self.K.copy()
-        columns, weights = [], []
+        terms = []
         for c in self.contacts:
-            pairs = ((c.tangential, c.model.kt.sum()), (c.normal, c.model.kn.sum()))
+            terms += [(c.tangential, c.model.kt.sum()), (c.normal, c.model.kn.sum())]
             if c.planar:
-                pairs += ((c.tangential2, c.model.kt.sum()),)
-            for b, k in pairs:
-                if sp.issparse(K):
-                    col = sp.csr_matrix(b[:, None])
-                    K = K + k * (col @ col.T)
-                elif len(self.contacts) < MANY_CONTACTS:
-                    K += k * np.outer(b, b)
-                else:
-                    columns.append(b)
-                    weights.append(k)
-        if columns:  # dense with many contacts: their rank-one terms in one product B diag(k) B^T
-            B = np.stack(columns, axis=1)
-            K += (B * np.asarray(weights)) @ B.T
-        return K
+                terms.append((c.tangential2, c.model.kt.sum()))
+        return add_rank_one_terms(self.K.copy(), terms, many=len(self.contacts) >= MANY_CONTACTS)
 
     def force_vector(self, force, name: str = "force") -> np.ndarray:
         """A real or complex force vector of length ``ndof`` (N), checked; ``name`` names it in messages.
