@@ -19,6 +19,7 @@ import scipy.sparse as sp
 
 from ..aft import MAX_PERIODS
 from ..numerics.blas import solver_threads
+from ..numerics.krylov import block_index
 from ..structures.structure import Structure
 from .hbm import HarmonicBalance
 
@@ -40,18 +41,74 @@ class HarmonicOperator:
         The contacts' Jacobian.
     factor : float, default 1
         ``c``.
+    interior : ndarray of int, optional
+        DOFs no contact touches (the contacts' Jacobian has no entry in their rows or columns): their
+        unknowns are coupled by the linear structure alone, harmonic by harmonic (:meth:`groups`).
     """
 
-    def __init__(self, static, A, B, contacts, factor: float = 1.0):
+    def __init__(self, static, A, B, contacts, factor: float = 1.0, interior=None):
         self.static, self.A, self.B, self.contacts, self.factor = static, A, B, contacts, factor
         self.ndof = static.shape[0]
         self.H = A.shape[0]
         self.n = (2 * self.H + 1) * self.ndof
         self.shape = (self.n, self.n)
+        self.interior = np.zeros(0, dtype=int) if interior is None else np.asarray(interior, dtype=int)
 
     def scaled(self, factor: float) -> "HarmonicOperator":
         """This operator times ``factor`` (the arrays shared)."""
-        return HarmonicOperator(self.static, self.A, self.B, self.contacts, self.factor * factor)
+        return HarmonicOperator(self.static, self.A, self.B, self.contacts, self.factor * factor, self.interior)
+
+    def groups(self) -> list | None:
+        """The interior DOFs' unknowns, harmonic by harmonic, and the unknowns each group is coupled to.
+
+        Returns ``[(interior, coupled), ...]`` (index arrays; the static part first, then each harmonic's
+        ``(a_h, b_h)``): the operator's entries in an interior group's rows and columns lie in the group or in
+        its coupled unknowns, the contact DOFs of the same harmonic. None without interior DOFs. The factors
+        of :mod:`~microslip.frequency.numerics.reuse` eliminate these groups before factorising the rest.
+        """
+        if self.interior.size == 0:
+            return None
+        m = self.ndof
+        touched = np.setdiff1d(np.arange(m), self.interior)
+        out = [(self.interior.copy(), touched.copy())]
+        for h in range(1, self.H + 1):
+            a, b = (2 * h - 1) * m, 2 * h * m
+            out.append((np.concatenate([a + self.interior, b + self.interior]),
+                        np.concatenate([a + touched, b + touched])))
+        return out
+
+    def _slot_block(self, row: int, col: int):
+        """The linear part's block of harmonic slots ``(row, col)`` (slot 0 static, ``2h - 1`` and ``2h`` harmonic
+        ``h``'s ``a_h`` and ``b_h``), None where it is zero."""
+        if row == col == 0:
+            return self.static
+        if row == 0 or col == 0 or (row + 1) // 2 != (col + 1) // 2:
+            return None
+        h = (row + 1) // 2 - 1
+        if row == col:
+            return self.A[h]
+        return self.B[h] if row % 2 else -self.B[h]
+
+    def submatrix(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """The dense block ``J[rows][:, cols]`` (index arrays), built from the parts without the whole matrix."""
+        m = self.ndof
+        r_slot, r_dof = np.divmod(rows, m)
+        c_slot, c_dof = np.divmod(cols, m)
+        out = np.zeros((rows.size, cols.size))
+        c_sets = {int(c): np.flatnonzero(c_slot == c) for c in np.unique(c_slot)}
+        for r in np.unique(r_slot):
+            ri = np.flatnonzero(r_slot == r)
+            for c, ci in c_sets.items():
+                block = self._slot_block(int(r), c)
+                if block is not None:
+                    out[block_index(ri, ci)] = block[np.ix_(r_dof[ri], c_dof[ci])]
+        if self.contacts is not None:
+            if not sp.isspmatrix_csr(self.contacts):
+                self.contacts = self.contacts.tocsr()  # rows picked once per block
+            out += self.contacts[rows][:, cols].toarray()
+        if self.factor != 1.0:
+            out *= self.factor
+        return out
 
     def linear(self, v: np.ndarray) -> np.ndarray:
         """The linear structure's part applied to ``v`` (without ``factor``), shape ``(n,)``."""
@@ -127,6 +184,8 @@ class InterfaceBalance(HarmonicBalance):
         self.K, self.C, self.M = (_dense(A) for A in (structure.K, structure.C, structure.M))
         self.Bt, self.Bn, self.n0 = structure.contact_directions()
         self.Bt2 = structure.second_tangential_directions()
+        touched = np.any(self.Bt != 0, axis=1) | np.any(self.Bn != 0, axis=1) | np.any(self.Bt2 != 0, axis=1)
+        self.interior = np.flatnonzero(~touched)  # DOFs of no contact: coupled by the linear structure alone
         self._linear_key = None
 
     @property
@@ -146,7 +205,8 @@ class InterfaceBalance(HarmonicBalance):
 
     def operator(self, omega: float, contacts: bool = False) -> HarmonicOperator:
         """``Z(omega)`` (with the contacts' Jacobian of the last AFT when ``contacts``) as an operator."""
-        return HarmonicOperator(*self._blocks(omega), self._contact_jacobian() if contacts and self.nc else None)
+        return HarmonicOperator(*self._blocks(omega), self._contact_jacobian() if contacts and self.nc else None,
+                                interior=self.interior)
 
     def dynamic_stiffness(self, omega: float):
         """``Z(omega)``, dense ``(n, n)`` (N/m)."""

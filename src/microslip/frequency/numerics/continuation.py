@@ -54,7 +54,7 @@ from ...common import _checks
 from ...common.errors import BranchPointWarning, ConvergenceError
 from .blas import solver_threads
 from .krylov import Bordered, ScaledColumns
-from .reuse import ReusedFactorisation
+from .reuse import ReusedFactorisation, newton_rtol
 
 
 @dataclass
@@ -209,8 +209,8 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None, solver=None):
             break
         g = np.append(R, tau @ ((yc - y_pred) / scale))
         A = _scaled_system(problem, Jx, Rw, tau, scale)
-        if solver is not None:
-            dz = solver.solve(A, -g)
+        if solver is not None:  # an inexact Newton step: the solve as accurate as the tolerance needs
+            dz = solver.solve(A, -g, newton_rtol(res, ctl.tolerance))
         elif sp.issparse(A) or A.shape[0] < FACTORED_MIN:
             dz = problem.solve(A, -g)
         else:

@@ -27,6 +27,35 @@ def dense(A) -> np.ndarray:
     return A.toarray() if hasattr(A, "toarray") else np.asarray(A)
 
 
+def submatrix(A, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """The dense block ``A[rows][:, cols]`` of an operator or an array (index arrays)."""
+    return A.submatrix(rows, cols) if hasattr(A, "submatrix") else np.asarray(A)[np.ix_(rows, cols)]
+
+
+def block_index(rows: np.ndarray, cols: np.ndarray) -> tuple:
+    """An index of the block ``rows x cols`` of a 2-D array: slices where the indices are runs of consecutive
+    integers (a view, not a gather), else :func:`numpy.ix_`."""
+    def run(index):
+        if index.size and index[-1] - index[0] == index.size - 1 and np.all(np.diff(index) == 1):
+            return slice(int(index[0]), int(index[-1]) + 1)
+        return None
+
+    r, c = run(rows), run(cols)
+    if r is not None and c is not None:
+        return r, c
+    return np.ix_(rows, cols)
+
+
+def groups(A) -> list | None:
+    """Groups of unknowns an operator lets eliminate first: ``[(interior, coupled), ...]`` or None.
+
+    An operator that has them (a method ``groups()``) promises that its entries in the rows and columns of
+    each group's ``interior`` unknowns lie in the group's ``interior`` or ``coupled`` unknowns only, and that
+    no two groups share an interior unknown; it then also has ``submatrix(rows, cols)``.
+    """
+    return A.groups() if hasattr(A, "groups") else None
+
+
 class ScaledColumns:
     """``A diag(s)``: the operator ``A`` with its columns multiplied by ``s`` (shape ``(n,)``)."""
 
@@ -36,6 +65,14 @@ class ScaledColumns:
 
     def matvec(self, v: np.ndarray) -> np.ndarray:
         return apply(self.A, self.s * v)
+
+    def groups(self) -> list | None:
+        return groups(self.A)  # scaling columns moves no entry
+
+    def submatrix(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        out = submatrix(self.A, rows, cols)
+        out *= self.s[cols]
+        return out
 
     def toarray(self) -> np.ndarray:
         if not hasattr(self.A, "toarray"):
@@ -60,6 +97,28 @@ class Bordered:
         n = self.n
         head, tail = v[:n], v[n:]
         return np.concatenate([apply(self.A, head) + self.U @ tail, self.V @ head + self.D @ tail])
+
+    def groups(self) -> list | None:
+        """The groups of ``A``, each coupled to the border's unknowns as well (its columns and rows are full)."""
+        inner = groups(self.A)
+        if inner is None:
+            return None
+        border = np.arange(self.n, self.shape[0])
+        return [(interior, np.concatenate([coupled, border])) for interior, coupled in inner]
+
+    def submatrix(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        n = self.n
+        r_in, c_in = np.flatnonzero(rows < n), np.flatnonzero(cols < n)
+        r_out, c_out = np.flatnonzero(rows >= n), np.flatnonzero(cols >= n)
+        head = submatrix(self.A, rows[r_in], cols[c_in])
+        if r_out.size == 0 and c_out.size == 0:
+            return head
+        out = np.empty((rows.size, cols.size))
+        out[block_index(r_in, c_in)] = head
+        out[block_index(r_in, c_out)] = self.U[np.ix_(rows[r_in], cols[c_out] - n)]
+        out[block_index(r_out, c_in)] = self.V[np.ix_(rows[r_out] - n, cols[c_in])]
+        out[block_index(r_out, c_out)] = self.D[np.ix_(rows[r_out] - n, cols[c_out] - n)]
+        return out
 
     def toarray(self) -> np.ndarray:
         n = self.n

@@ -25,7 +25,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from .blas import factor_threads
-from .krylov import dense, gmres
+from .krylov import dense, gmres, groups, submatrix
 
 #: GMRES iterations before the system is factorised instead
 MAX_KRYLOV = 40
@@ -36,18 +36,39 @@ SLOW_KRYLOV = 8
 #: ``n^2`` for an iteration (a product with the operator and a solve with the factors), and the solves are bound by
 #: memory while the factorisation is not
 FACTOR_EQUIVALENT = 40
-#: relative residual of each solve
+#: relative residual of each solve unless the caller asks less (:func:`newton_rtol`)
 RTOL = 1e-12
+#: relative residual of the probe whose Ritz values decide :meth:`ReusedFactorisation.sign`
+PROBE_RTOL = 1e-8
+#: the loosest relative residual of a Newton step's solve (:func:`newton_rtol`)
+LOOSEST_NEWTON = 1e-3
 #: Ritz values of the preconditioned operator within this distance of 1: the determinants have one sign
 RITZ_DISC = 0.9
 #: factorisations and GMRES iterations of every ReusedFactorisation of the process (read by the benchmarks)
 COUNTS = {"factorisations": 0, "krylov_iterations": 0}
 
 
+#: reciprocal condition number (1-norm estimate) below which a group of interior unknowns is not eliminated alone
+#: (the whole matrix is factorised with pivoting over every unknown instead)
+ELIMINATION_RCOND = 1e-8
+
+
+def factors(A, dtype):
+    """LU factors of the operator or array ``A`` (:class:`_Eliminated` when it has groups of interior unknowns that
+    can be eliminated first, else :class:`_Factors` of its dense matrix)."""
+    parts = groups(A)
+    if parts:
+        eliminated = _Eliminated(A, parts, dtype)
+        if eliminated.stable:
+            return eliminated
+    return _Factors(dense(A), dtype)
+
+
 class _Factors:
     """LU factors of a dense matrix in ``dtype``, the sign of its determinant, and solves in float64."""
 
     def __init__(self, A: np.ndarray, dtype):
+        self.shape = A.shape
         self.singular = not np.all(np.isfinite(A))
         self.sign = 0.0
         if self.singular:
@@ -65,6 +86,76 @@ class _Factors:
             return np.full(np.shape(b), np.nan)
         out = sla.lu_solve((self.lu, self.piv), b.astype(self.lu.dtype), check_finite=False)
         return out.astype(float)
+
+
+class _Eliminated:
+    """LU factors of a matrix whose groups of interior unknowns are eliminated first (block Gaussian elimination).
+
+    With ``A`` ordered as ``[[E, F], [G, K]]`` (``E`` the interior unknowns, block diagonal by group; each group
+    coupled to some of the other unknowns only), ``det A = det E det S`` and ``A^-1`` follows from ``E^-1`` and
+    the Schur complement ``S = K - G E^-1 F``: the dense factorisation is of ``S`` alone, the groups' blocks are
+    small. ``E``'s groups are factorised in double precision; ``S`` in ``dtype``. :attr:`stable` is False when
+    a group's block is too ill-conditioned to be eliminated alone (:data:`ELIMINATION_RCOND`).
+    """
+
+    def __init__(self, A, parts: list, dtype):
+        n = A.shape[0]
+        self.shape = A.shape
+        interior = np.concatenate([e for e, _ in parts])
+        self.keep = np.setdiff1d(np.arange(n), interior)
+        position = np.full(n, -1)
+        position[self.keep] = np.arange(self.keep.size)
+        S = submatrix(A, self.keep, self.keep)
+        sign, self.parts, self.stable = 1.0, [], True
+        for e, coupled in parts:
+            E = submatrix(A, e, e)
+            if not np.all(np.isfinite(E)):
+                self.stable = False
+                return
+            lu, piv = sla.lu_factor(E, check_finite=False)
+            rcond, _ = sla.lapack.dgecon(lu, np.linalg.norm(E, 1), norm="1")
+            if not rcond >= ELIMINATION_RCOND:
+                self.stable = False
+                return
+            X = sla.lu_solve((lu, piv), submatrix(A, e, coupled), check_finite=False)  # E^-1 F
+            G = submatrix(A, coupled, e)
+            at = position[coupled]
+            S[np.ix_(at, at)] -= G @ X
+            swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
+            sign *= float(np.prod(np.sign(np.diagonal(lu)))) * (-1.0 if swaps % 2 else 1.0)
+            self.parts.append((e, at, (lu, piv), X, G))
+        self.rest = _Factors(S, dtype)
+        self.singular = self.rest.singular
+        self.sign = sign * self.rest.sign  # a symmetric permutation of A's unknowns keeps its determinant
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        if self.singular:
+            return np.full(np.shape(b), np.nan)
+        rhs = b[self.keep].astype(float)
+        interior = []
+        for e, at, lu, _, G in self.parts:
+            y = sla.lu_solve(lu, b[e], check_finite=False)  # E^-1 b_e
+            rhs[at] -= G @ y
+            interior.append(y)
+        x = np.empty(b.shape)
+        kept = self.rest.solve(rhs)
+        x[self.keep] = kept
+        for (e, at, _, X, _), y in zip(self.parts, interior):
+            x[e] = y - X @ kept[at]
+        return x
+
+
+def newton_rtol(residual: float, tolerance: float) -> float:
+    """Relative residual enough for the linear solve of a Newton step (an inexact Newton method).
+
+    From a point whose residual is ``residual`` (relative to the residual's scale) towards ``tolerance``:
+    the step's linearised residual at a quarter of the tolerance, so the next iterate is within it as far
+    as the linearisation holds -- as an exact solve would leave it -- at :data:`RTOL` to
+    :data:`LOOSEST_NEWTON` of the right-hand side.
+    """
+    if not residual > 0:
+        return RTOL
+    return float(np.clip(0.25 * tolerance / residual, RTOL, LOOSEST_NEWTON))
 
 
 class ReusedFactorisation:
@@ -94,32 +185,33 @@ class ReusedFactorisation:
     def factorise(self, A, dtype=None) -> _Factors:
         """Factorise ``A`` (an operator of :mod:`~.krylov` or an array) in ``dtype`` (default: this solver's) and
         keep its factors."""
-        self.factors = _Factors(dense(A), dtype or self.dtype)
+        self.factors = factors(A, dtype or self.dtype)
         self.since = 0  # GMRES iterations with these factors
         self.factorisations += 1
         COUNTS["factorisations"] += 1
         self.renew = False
         return self.factors
 
-    def solve(self, A, b: np.ndarray) -> np.ndarray:
-        """``A^-1 b`` to :data:`RTOL` relative residual; all NaN when ``A`` is singular."""
-        held = not (self.factors is None or self.renew or self.factors.singular or self.factors.lu.shape != A.shape)
+    def solve(self, A, b: np.ndarray, rtol: float = RTOL) -> np.ndarray:
+        """``A^-1 b`` to ``rtol`` relative residual (at least :data:`RTOL`); all NaN when ``A`` is singular."""
+        rtol = max(rtol, RTOL)
+        held = not (self.factors is None or self.renew or self.factors.singular or self.factors.shape != A.shape)
         if held:
-            z = self._krylov(A, b)
+            z = self._krylov(A, b, rtol)
             if z is not None:
                 return z
         # new factors of A; in double precision too when single precision cannot precondition a matrix this
         # ill-conditioned
         for dtype in dict.fromkeys([self.dtype, np.float64]):
             if not self.factorise(A, dtype).singular:
-                z = self._krylov(A, b)
+                z = self._krylov(A, b, rtol)
                 if z is not None:
                     return z
         return np.full(np.shape(b), np.nan)
 
-    def _krylov(self, A, b):
+    def _krylov(self, A, b, rtol):
         """GMRES with the factors held: the solution, or None when it did not converge in :data:`MAX_KRYLOV`."""
-        z, k, converged, _ = gmres(A, b, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
+        z, k, converged, _ = gmres(A, b, self.factors.solve, rtol=rtol, max_iterations=MAX_KRYLOV)
         self.krylov_iterations += k
         COUNTS["krylov_iterations"] += k
         self.since += k
@@ -131,10 +223,11 @@ class ReusedFactorisation:
     def sign(self, A) -> float:
         """Sign of ``det A``: from the factors held when GMRES finds ``A P^-1`` near the identity, else from new
         factors of ``A``."""
-        if self.factors is not None and not self.factors.singular and self.factors.lu.shape == A.shape:
+        if self.factors is not None and not self.factors.singular and self.factors.shape == A.shape:
             if self.probe is None or self.probe.size != A.shape[0]:
                 self.probe = np.random.default_rng(0).standard_normal(A.shape[0])  # generic, fixed
-            _, k, converged, ritz = gmres(A, self.probe, self.factors.solve, rtol=RTOL, max_iterations=MAX_KRYLOV)
+            _, k, converged, ritz = gmres(A, self.probe, self.factors.solve, rtol=PROBE_RTOL,
+                                          max_iterations=MAX_KRYLOV)
             self.krylov_iterations += k
             COUNTS["krylov_iterations"] += k
             if converged and np.all(np.abs(ritz - 1.0) < RITZ_DISC):
