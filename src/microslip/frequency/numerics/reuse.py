@@ -25,7 +25,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from .blas import factor_threads
-from .krylov import dense, gmres, groups, submatrix
+from .krylov import block_index, dense, gmres, groups, submatrix
 
 #: GMRES iterations before the system is factorised instead
 MAX_KRYLOV = 40
@@ -94,13 +94,15 @@ class _Eliminated:
     With ``A`` ordered as ``[[E, F], [G, K]]`` (``E`` the interior unknowns, block diagonal by group; each group
     coupled to some of the other unknowns only), ``det A = det E det S`` and ``A^-1`` follows from ``E^-1`` and
     the Schur complement ``S = K - G E^-1 F``: the dense factorisation is of ``S`` alone, the groups' blocks are
-    small. ``E``'s groups are factorised in double precision; ``S`` in ``dtype``. :attr:`stable` is False when
-    a group's block is too ill-conditioned to be eliminated alone (:data:`ELIMINATION_RCOND`).
+    small. ``E``'s groups are inverted in double precision (and kept in ``dtype``); ``S`` is factorised in
+    ``dtype``; solves run in ``dtype``, as a preconditioner's may. :attr:`stable` is False when a group's block
+    is too ill-conditioned to be eliminated alone (:data:`ELIMINATION_RCOND`).
     """
 
     def __init__(self, A, parts: list, dtype):
         n = A.shape[0]
         self.shape = A.shape
+        self.dtype = dtype
         interior = np.concatenate([e for e, _ in parts])
         self.keep = np.setdiff1d(np.arange(n), interior)
         position = np.full(n, -1)
@@ -117,13 +119,14 @@ class _Eliminated:
             if not rcond >= ELIMINATION_RCOND:
                 self.stable = False
                 return
-            X = sla.lu_solve((lu, piv), submatrix(A, e, coupled), check_finite=False)  # E^-1 F
+            inverse = sla.lu_solve((lu, piv), np.eye(e.size), check_finite=False)
+            X = inverse @ submatrix(A, e, coupled)  # E^-1 F
             G = submatrix(A, coupled, e)
             at = position[coupled]
-            S[np.ix_(at, at)] -= G @ X
+            S[block_index(at, at)] -= G @ X
             swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
             sign *= float(np.prod(np.sign(np.diagonal(lu)))) * (-1.0 if swaps % 2 else 1.0)
-            self.parts.append((e, at, (lu, piv), X, G))
+            self.parts.append((e, at, inverse.astype(dtype), X.astype(dtype), G.astype(dtype)))
         self.rest = _Factors(S, dtype)
         self.singular = self.rest.singular
         self.sign = sign * self.rest.sign  # a symmetric permutation of A's unknowns keeps its determinant
@@ -131,18 +134,19 @@ class _Eliminated:
     def solve(self, b: np.ndarray) -> np.ndarray:
         if self.singular:
             return np.full(np.shape(b), np.nan)
-        rhs = b[self.keep].astype(float)
+        b = b.astype(self.dtype)
+        rhs = b[self.keep]
         interior = []
-        for e, at, lu, _, G in self.parts:
-            y = sla.lu_solve(lu, b[e], check_finite=False)  # E^-1 b_e
+        for e, at, inverse, _, G in self.parts:
+            y = inverse @ b[e]
             rhs[at] -= G @ y
             interior.append(y)
-        x = np.empty(b.shape)
-        kept = self.rest.solve(rhs)
+        kept = sla.lu_solve((self.rest.lu, self.rest.piv), rhs, overwrite_b=True, check_finite=False)
+        x = np.empty(b.shape, dtype=self.dtype)
         x[self.keep] = kept
         for (e, at, _, X, _), y in zip(self.parts, interior):
             x[e] = y - X @ kept[at]
-        return x
+        return x.astype(float)
 
 
 def newton_rtol(residual: float, tolerance: float) -> float:

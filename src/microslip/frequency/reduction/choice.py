@@ -33,9 +33,10 @@ DEFAULT_MODES = 60
 #: condenses nothing (a condensation that keeps most DOFs costs more than it removes)
 INTERFACE_SHARE = 0.5
 #: unknowns ``(2H+1) ndof`` up to which an interface-dominated structure is solved on every DOF with its
-#: Jacobian in parts (:mod:`~microslip.frequency.equations.interface`; a dense Jacobian of this size is
-#: factorised now and then: 512 MB)
-INTERFACE_LIMIT = 8000
+#: Jacobian in parts (:mod:`~microslip.frequency.equations.interface`): now and then it factorises the dense
+#: Schur complement of the contact unknowns, the size of the matrix the exact condensation would factorise
+#: at every Newton iteration (at this limit, about 5 GB in double precision while it is assembled)
+INTERFACE_LIMIT = 26000
 
 
 def interface_dominated(structure: Structure, harmonics: int, retained: int | None) -> bool:
