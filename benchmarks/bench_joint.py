@@ -21,7 +21,9 @@ factorisation of the full nonlinear system's size (``dofs x (2H + 1)`` unknowns)
 and the ratio of the two; the same backbone by the code of the pinned commit f0499a5 (exported with
 ``git archive`` into a temporary folder and run in a subprocess, its numba cache kept there between
 runs), the ratio of the times and the largest relative difference of frequency and damping ratio at the
-common amplitudes (interpolated in log amplitude onto the baseline's points). Targets (issue 26): the
+common amplitudes (interpolated in log amplitude onto the baseline's points). Saved to
+``benchmarks/results/bench_joint.json`` (``bench_joint_30.json``, ``bench_joint_480.json`` for the other sizes,
+``bench_joint_quick.json`` for ``--quick``). Targets (issue 26): the
 whole backbone at least 10x faster than the baseline with the same frequency and damping to 1e-6;
 time per point at most one dense LU of the full system's size.
 """
@@ -260,7 +262,8 @@ def main(argv=None) -> int:
         figures.update({"baseline_commit": BASELINE, "baseline_seconds": base["seconds"],
                         "baseline_points": base["points"], "speedup": ratio, "frequency_difference": df,
                         "damping_difference": dz})
-    print(f"results: {save_results('bench_joint' + ('_quick' if args.quick else ''), figures)}")
+    name = "bench_joint_quick" if args.quick else "bench_joint" if args.contacts == 120 else f"bench_joint_{args.contacts}"
+    print(f"results: {save_results(name, figures)}")
     return 0
 
 

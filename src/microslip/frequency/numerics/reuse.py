@@ -8,13 +8,19 @@ that stops working: GMRES did not converge in :data:`MAX_KRYLOV` iterations, or 
 :data:`SLOW_KRYLOV` once the iterations since the last factorisation have cost about one
 (``n /`` :data:`FACTOR_EQUIVALENT` of them): the factors have drifted from the curve and are renewed at
 the next system.
-Each solve is to :data:`RTOL` of the right-hand side, so a Newton iteration is a Newton iteration and
-the corrector converges as with exact solves, to the same tolerance.
+Each solve is to :data:`RTOL` of the right-hand side unless the caller asks less: a Newton step needs
+its linearised residual only below the corrector's tolerance (:func:`newton_rtol`, an inexact Newton
+method), and the corrector converges to the same tolerance.
+
+An operator whose unknowns include groups coupled to a few others only (the DOFs no contact touches, see
+:func:`~.krylov.groups`) is factorised by eliminating those groups first (:class:`_Eliminated`): the
+dense factorisation is of the Schur complement of the rest.
 
 The sign of a determinant (the orientation of the continuation's bordered systems) comes from the
 factors held when the preconditioned operator ``A P^-1`` has all its Ritz values on a GMRES solve with a
-generic right-hand side within :data:`RITZ_DISC` of 1 (no real eigenvalue of ``A P^-1`` crossed zero
-between ``P`` and ``A``, so their determinants have one sign); otherwise ``A`` itself is factorised.
+generic right-hand side (to :data:`PROBE_RTOL`) within :data:`RITZ_DISC` of 1 (no real eigenvalue of
+``A P^-1`` crossed zero between ``P`` and ``A``, so their determinants have one sign); otherwise ``A``
+itself is factorised.
 """
 
 from __future__ import annotations
@@ -38,7 +44,9 @@ SLOW_KRYLOV = 8
 FACTOR_EQUIVALENT = 40
 #: relative residual of each solve unless the caller asks less (:func:`newton_rtol`)
 RTOL = 1e-12
-#: relative residual of the probe whose Ritz values decide :meth:`ReusedFactorisation.sign`
+#: relative residual of the probe whose Ritz values decide :meth:`ReusedFactorisation.sign`: GMRES's polynomial is
+#: 1 at zero, so it damps the component of an eigenvalue at or beyond zero this far only with a Ritz value near
+#: that eigenvalue (unless the generic probe holds less than about 1e-4 of that component)
 PROBE_RTOL = 1e-8
 #: the loosest relative residual of a Newton step's solve (:func:`newton_rtol`)
 LOOSEST_NEWTON = 1e-3
