@@ -1,6 +1,7 @@
 """Speed of a bladed disk's forced response: one cyclic sector against the whole assembled disk, same run.
 
 Run:  python benchmarks/bench_cyclic.py [--disk-points K]
+      python benchmarks/bench_cyclic.py --quick     (blades of about 2000 DOFs, the disk's first 4 points)
 
 The model: a disk of 24 identical blades clamped in a rigid disk, each the plane-stress scikit-fem
 blade of ``microslip.fe.blade`` with about 10^4 DOFs (shank 16 mm wide, platform 6 mm thick), and
@@ -28,14 +29,19 @@ blade mode stiffened by the damper), reduction set-up included:
 The whole disk of 10^4-DOF blades (2.4e5 DOFs, 240 modes) is not run: its modal set-up alone
 needs about 10 GB and tens of minutes on this machine.
 Both solutions are checked against each other at the points the disk computed.
+
+The figures are saved to ``benchmarks/results/bench_cyclic.json`` (``--quick``: ``bench_cyclic_quick.json``)
+by ``_common.save_results``, for the docs.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import sys
 import time
 import warnings
+from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # small dense blocks: BLAS threads only fight
 
@@ -46,6 +52,9 @@ from microslip.fe import blade  # noqa: E402
 from microslip.frequency import (CyclicStructure, StepControl, UnderPlatformDamper, craig_bampton,  # noqa: E402
                                  frequency_point, frequency_response)
 from microslip.reference.profiles import RoundedPunch  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import save_results  # noqa: E402
 
 SECTORS, ENGINE_ORDER, HARMONICS = 24, 3, 5
 LOAD, TIP_FORCE = 150.0, 0.5  # N
@@ -61,8 +70,8 @@ def contact_law():
     return tune(reference, 1000.0, elements=8)
 
 
-def fe_blade():
-    return blade(10000, shank_width=0.016, platform_height=0.006)
+def fe_blade(dofs=10000):
+    return blade(dofs, shank_width=0.016, platform_height=0.006)
 
 
 def contact_dofs(b):
@@ -92,9 +101,9 @@ def damper(disk, platform):
     return d
 
 
-def sectors():
+def sectors(dofs=10000):
     """``(fe, cb, tip_fe, tip_cb)``: the finite-element sector and its Craig--Bampton twin with dampers, tips."""
-    b = fe_blade()
+    b = fe_blade(dofs)
     dofs = contact_dofs(b)
     fe = CyclicStructure(b.M, 2e-7 * b.K, b.K, sectors=SECTORS, left=[], right=[])
     cb = craig_bampton(fe, dofs, modes=20).structure  # kept DOFs first, in the order of dofs
@@ -122,9 +131,15 @@ def curve(structure, f, reduction, modes=None, points=None, omega=RANGE, **kw):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--disk-points", type=int, default=6, help="points of the whole disk's curve computed")
+    parser.add_argument("--disk-points", type=int, default=None,
+                        help="points of the whole disk's curve computed (default 6; --quick: 4)")
+    parser.add_argument("--quick", action="store_true", help="blades of about 2000 DOFs, the disk's first 4 points")
     args = parser.parse_args()
-    fe, cb, tip_fe, tip_cb, ndof = sectors()
+    dofs = 2000 if args.quick else 10000
+    if args.disk_points is None:
+        args.disk_points = 4 if args.quick else 6
+    print(f"load average {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
+    fe, cb, tip_fe, tip_cb, ndof = sectors(dofs)
     print(f"sector: {ndof} blade DOFs + 3 damper DOFs, {len(fe.contacts)} contacts of J = "
           f"{fe.contacts[0].model.elements}; H = {HARMONICS}, EO = {ENGINE_ORDER}, N = {SECTORS}")
     curve(cb, force(cb, tip_cb), "exact", engine_order=ENGINE_ORDER, points=3)  # compile the kernels first
@@ -155,6 +170,33 @@ def main():
           f"the tips at {reached:.0f} rad/s agree to {diff:.1e}")
     print(f"   speed-up, measured over the same stretch of the curve: {wall_disk / wall_k:.0f}x "
           f"(CPU {cpu_disk / cpu_k:.0f}x)")
+    rows = [["1. FE sector, modal (10 modes per diameter)", ndof + 3, r_fe.points, RANGE[1], wall, cpu],
+            ["2. Craig-Bampton sector, exact", cb.ndof, r_cb.points, RANGE[1], wall_cb, cpu_cb],
+            [f"3. whole disk of 2., exact, first {r_disk.points} points", whole.ndof, r_disk.points, reached,
+             wall_disk, cpu_disk],
+            ["2. over the same stretch as 3.", cb.ndof, r_k.points, reached, wall_k, cpu_k]]
+    name = "bench_cyclic" + ("_quick" if args.quick else "")
+    figures = {"description": f"A bladed disk of {SECTORS} blades with under-platform dampers, engine order "
+                              f"{ENGINE_ORDER}, H = {HARMONICS}: forced-response curves from {RANGE[0]:.0f} rad/s "
+                              "of one cyclic sector against the whole assembled disk (the baseline, same run, the "
+                              "same Craig-Bampton blades, the disk's first points only); speed-up = the disk's "
+                              "time / the sector's over the same stretch of frequencies.",
+               "command": "python benchmarks/bench_cyclic.py" + (" --quick" if args.quick else "")
+                          + (f" --disk-points {args.disk_points}" if args.disk_points != (4 if args.quick else 6)
+                             else ""),
+               "sizes": f"blade of {ndof} DOFs (asked for {dofs}), {len(fe.contacts)} contacts of J = "
+                        f"{fe.contacts[0].model.elements} per sector, Craig-Bampton sector of {cb.ndof} DOFs, "
+                        f"disk of {whole.ndof} DOFs",
+               "tables": [{"caption": "curves (wall and CPU time, s)",
+                           "columns": ["curve", "DOFs", "points", "to (rad/s)", "wall (s)", "CPU (s)"],
+                           "rows": rows},
+                          {"caption": "speed-up of the sector over the whole disk, same stretch, and agreement",
+                           "columns": ["wall ratio", "CPU ratio", "tips' difference at the last point",
+                                       "peak, FE sector (µm)", "peak, Craig-Bampton sector (µm)",
+                                       "modal reduction error"],
+                           "rows": [[wall_disk / wall_k, cpu_disk / cpu_k, float(diff), a * 1e6, a_cb * 1e6,
+                                     float(r_fe.reduction_error)]]}]}
+    print(f"results: {save_results(name, figures)}")
 
 
 if __name__ == "__main__":

@@ -43,6 +43,10 @@ reductor, its default solver and nondimensionalisation (lc = 10 µm, wc = 10^4 r
 solution-count stopper after ``--pyharm-points`` points, as its cost per point is what can be
 measured in reasonable time. microslip's curve is timed on the same structure and solved at
 pyHarm's frequencies to check that both solve the same equations.
+
+The figures are saved to ``benchmarks/results/bench_fe_scale.json`` (``--quick``: ``bench_fe_scale_quick.json``)
+by ``_common.save_results``, for the docs: the full solve's table per H (the ratio ``none / this`` is the
+speed-up over ``reduction="none"`` in the same process), the scale table and the targets' ratios.
 """
 
 from __future__ import annotations
@@ -60,7 +64,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import in_temporary_directory, peak, pyharm_missing, run_pyharm  # noqa: E402
+from _common import in_temporary_directory, peak, pyharm_missing, run_pyharm, save_results  # noqa: E402
 
 LOAD = 37.5  # N, each contact's normal load
 ELEMENTS = 8
@@ -103,6 +107,7 @@ def timed_curve(structure, force, tip, H: int, reduction: str, keep: bool = Fals
     """One curve with the time of its reduction and of its continuation (wrapped, then restored)."""
     from microslip import frequency_response
     from microslip.frequency.analyses import response
+    from microslip.frequency.equations import build
 
     spent = {"reduction": 0.0, "continuation": 0.0}
 
@@ -115,15 +120,15 @@ def timed_curve(structure, force, tip, H: int, reduction: str, keep: bool = Fals
                 spent[name] += time.perf_counter() - t0
         return wrapper
 
-    saved = response.linear_part, response.continuation
-    response.linear_part = timing("reduction", saved[0])
+    saved = build.linear_part, response.continuation  # where frequency_response's path calls them
+    build.linear_part = timing("reduction", saved[0])
     response.continuation = timing("continuation", saved[1])
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # an under-resolved contact energy is not what is measured here
             r = frequency_response(structure, force, RANGE, harmonics=H, reduction=reduction, stability=stability)
     finally:
-        response.linear_part, response.continuation = saved
+        build.linear_part, response.continuation = saved
     w, a = r.peak(tip, harmonic=1)
     out = {"reduction": r.reduction, "modes": r.modes, "curve": r.elapsed, "setup": spent["reduction"],
            "continuation": spent["continuation"], "points": int(r.points), "complete": bool(r.complete),
@@ -341,10 +346,12 @@ def main(argv=None) -> int:
     harmonics = [int(h) for h in args.harmonics.split(",")]
     print(f"bench_fe_scale: {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f} at the start; "
           f"each case in its own process with OPENBLAS_NUM_THREADS=1")
-    summary = {}
+    summary, fulls, pyharm = {}, [], None
+    load_before = os.getloadavg()[0]
     if not args.no_full and 1e3 in sizes:
         for H in harmonics:
-            summary[f"ratio_full H={H}"] = report_full(in_child("full", H=H))
+            fulls.append(in_child("full", H=H))
+            summary[f"ratio_full H={H}"] = report_full(fulls[-1])
     rows = []
     print("\nScale (reduction='auto': exact up to 5000 DOFs, modal with 60 modes above; "
           "every point's stability included):")
@@ -360,8 +367,8 @@ def main(argv=None) -> int:
         if missing:
             print(f"\npyHarm is not installed ({missing.split(':')[0]}); install the bench extra to compare. Skipped.")
         else:
-            summary["ratio_pyharm"] = report_pyharm(in_child("pyharm", dofs=args.pyharm_dofs, H=harmonics[0],
-                                                             points=args.pyharm_points))
+            pyharm = in_child("pyharm", dofs=args.pyharm_dofs, H=harmonics[0], points=args.pyharm_points)
+            summary["ratio_pyharm"] = report_pyharm(pyharm)
     big = [r for r in rows if r["dofs"] > 5e4 and r["contacts"] == 40]
     print("\nTargets:")
     for key, value in summary.items():
@@ -378,7 +385,55 @@ def main(argv=None) -> int:
         by_size.setdefault((r["contacts"], r["H"]), []).append((r["dofs"], r["points"]))
     print("  continuation points by size (contacts, H): "
           + "; ".join(f"{k}: " + ", ".join(f"{d} DOFs {p}" for d, p in v) for k, v in by_size.items()))
+    save(args, argv, load_before, summary, fulls, rows, pyharm)
     return 0
+
+
+def save(args, argv, load_before: float, summary: dict, fulls: list, rows: list, pyharm: dict | None) -> None:
+    """The figures printed, to ``benchmarks/results/bench_fe_scale[_quick].json``."""
+    tables = [{"caption": "the targets' ratios (speed-up over the baseline in the same process)",
+               "columns": ["ratio", "value", "target"],
+               "rows": [[k, v, TARGETS["ratio_pyharm" if k.startswith("ratio_pyharm") else "ratio_full"]]
+                        for k, v in summary.items()]}] if summary else []
+    for out in fulls:
+        no = out["none"]
+        tables.append({"caption": f"{out['dofs']} DOFs, 10 contacts, H = {out['H']}: every reduction in one process "
+                                  f"(load {out['load'][0]:.1f} to {out['load'][1]:.1f}, peak memory "
+                                  f"{out['memory']:.2f} GB); curves without stability, then with it",
+                       "columns": ["reduction", "curve (s)", "continuation (s)", "points", "none / this",
+                                   "its peak (µm)", "top-3 peak (µm)", "vs none", "with stability (s)"],
+                       "rows": [[name, r["curve"], r["continuation"], r["points"], no["curve"] / r["curve"],
+                                 r["peak"] * 1e6, r["top"] * 1e6, r["top"] / no["top"] - 1,
+                                 r.get("with_stability", "-")]
+                                for name, r in (("none", no), ("exact", out["exact"]), ("modal", out["modal"]))]})
+    tables.append({"caption": "scale: reduction='auto', every point's stability included, each case in its own "
+                              "process",
+                   "columns": ["DOFs", "contacts", "H", "reduction", "build (s)", "reduction (s)", "curve (s)",
+                               "continuation (s)", "points", "memory (GB)", "peak (µm)", "error estimate", "load"],
+                   "rows": [[r["dofs"], r["contacts"], r["H"], r["reduction"] + (f" {r['modes']}" if r["modes"] else ""),
+                             r["build"], r["setup"], r["curve"], r["continuation"], r["points"], r["memory"],
+                             r["peak"] * 1e6, r["reduction_error"] if r["reduction_error"] is not None else "-",
+                             f"{r['load'][0]:.1f} to {r['load'][1]:.1f}"] for r in rows]})
+    if pyharm is not None:
+        mine = pyharm["microslip"]
+        tables.append({"caption": f"pyHarm (NLdofs reductor) against microslip on the {pyharm['dofs']}-DOF blade, "
+                                  f"H = {pyharm['H']}, per point",
+                       "columns": ["pyHarm (s)", "pyHarm points", "microslip curve (s)", "microslip points",
+                                   "ratio per point", "same solution"],
+                       "rows": [[pyharm["pyharm_seconds"], pyharm["pyharm_points"], mine["curve"], mine["points"],
+                                 summary["ratio_pyharm"], pyharm["same_solution"]]]})
+    argv = sys.argv[1:] if argv is None else list(argv)
+    pyharm_note = ("pyHarm compared" if pyharm is not None else
+                   "pyHarm not compared (--quick, --no-pyharm, or not installed)")
+    figures = {"description": "Forced responses of scikit-fem blades with sphere contacts (J = 8) at finite-element "
+                              "scale: the curve with reduction 'exact' and 'modal' against the full solve "
+                              "(reduction='none', the baseline, same process), time and memory from 10^3 DOFs up; "
+                              + pyharm_note + ".",
+               "command": "python benchmarks/bench_fe_scale.py" + "".join(f" {a}" for a in argv),
+               "sizes": f"load average {load_before:.2f} at the start; each case in a fresh process with "
+                        "OPENBLAS_NUM_THREADS=1",
+               "tables": tables}
+    print(f"results: {save_results('bench_fe_scale' + ('_quick' if args.quick else ''), figures)}")
 
 
 if __name__ == "__main__":

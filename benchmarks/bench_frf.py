@@ -1,8 +1,10 @@
 """Speed of a whole forced-response curve, microslip against pyHarm in the same run.
 
-Run:  python benchmarks/bench_frf.py
+Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_frf.py      (about a minute)
 The comparison with pyHarm runs when ``pyHarm-os`` is installed (it is the ``bench`` extra of
-pyproject.toml); without it the microslip part runs and the comparison is skipped with a message.
+pyproject.toml); without it the microslip part runs and the comparison is skipped with a message: the
+curve's time is then absolute, and the ratios printed are the stability costs below (the same curve
+with and without Hill's method, in the same run).
 
 The problem (same for both codes): a 1-DOF oscillator m = 1 kg, k = 1e4 N/m, c = 1 N s/m with
 one Jenkins element kt = 1e4 N/m, slip force 1 N, excitation 2 N cos(omega t), omega from 60 to
@@ -28,10 +30,13 @@ a reduced finite-element curve (the scikit-fem blade of about 1000 DOFs, a Jenki
 its four platform nodes, H = 5; needs the fe extra), with reduction="exact" (Hill's problem of the
 whole structure, 11000 unknowns) and "modal" (40 modes, 440 unknowns). Run it with
 OPENBLAS_NUM_THREADS=1 on a shared machine (OpenBLAS's threads slow the reductions' small dense algebra).
+
+The figures are saved to ``benchmarks/results/bench_frf.json`` by ``_common.save_results``, for the docs.
 """
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 import warnings
@@ -44,9 +49,11 @@ from microslip.frequency import StepControl, frequency_point
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import _common  # noqa: E402  (the benchmarks' shared helpers, next to this file)
-from _common import best_of, in_temporary_directory, pyharm_missing, run_pyharm  # noqa: E402
+from _common import best_of, in_temporary_directory, pyharm_missing, run_pyharm, save_results  # noqa: E402
 
 A_TOL = 1e-4
+#: the rows of the saved table of stability costs: curve, points, without (s), with (s), ratio, unstable, bifurcations
+STABILITY_ROWS = []
 
 
 def jenkins_oscillator() -> Structure:
@@ -72,6 +79,8 @@ def stability_cost(label, run, t_curve, repeat=5):
     print(f"{label} with stability (Hill's method at every point): {t * 1e3:.1f} ms, "
           f"+{(t - t_curve) / r.points * 1e3:.3f} ms per point; RATIO with / without {t / t_curve:.2f}x "
           f"({int((~r.stable).sum())} of {r.points} points unstable, {len(r.bifurcations)} bifurcations)")
+    STABILITY_ROWS.append([label, int(r.points), t_curve, t, t / t_curve, int((~r.stable).sum()),
+                           len(r.bifurcations)])
     return r
 
 
@@ -103,6 +112,7 @@ def pyharm_curve(ds):
 
 def main():
     warnings.filterwarnings("ignore")
+    print(f"load average {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
     # reference: microslip with very small steps
     ref = microslip_curve(StepControl(ds_max=0.002, max_angle=0.01, max_points=100000))
     a_ref = peak(ref.omega, ref.amplitude(0, 1))
@@ -113,10 +123,32 @@ def main():
     print(f"microslip: {t_ms * 1e3:7.1f} ms for {curve.points} points "
           f"({t_ms / curve.points * 1e3:.3f} ms per point), peak error {err_ms:+.1e}")
     assert abs(err_ms) < A_TOL
-    stability_cost("microslip", lambda stability: microslip_curve(stability=stability), t_ms)
-    compare_with_pyharm(t_ms, a_ref)
-    sixteen_element_damper()
-    reduced_fe_stability()
+    stability_cost("1-DOF Jenkins oscillator", lambda stability: microslip_curve(stability=stability), t_ms)
+    figures = {"description": "A whole forced-response curve: a 1-DOF Jenkins oscillator (H = 7, 128 samples), "
+                              "against pyHarm to the same peak accuracy in the same run when pyHarm is installed; "
+                              "a blade with a 16-element microslip damper; the cost of the stability of every "
+                              "point (Hill's method), each curve with and without it in the same run, also on a "
+                              "reduced finite-element blade.",
+               "command": "OPENBLAS_NUM_THREADS=1 python benchmarks/bench_frf.py",
+               "sizes": f"1-DOF oscillator: reference peak from {ref.points} points; best of 5 runs "
+                        "(finite-element blade: best of 2)",
+               "oscillator": {"microslip_seconds": t_ms, "points": int(curve.points), "peak_error": err_ms,
+                              "peak_tolerance": A_TOL}}
+    figures["oscillator"].update(compare_with_pyharm(t_ms, a_ref))
+    figures["blade with a 16-element damper"] = sixteen_element_damper()
+    figures["finite-element blade"] = reduced_fe_stability()
+    tables = [{"caption": "the 1-DOF oscillator's curve", "columns": ["figure", "value"],
+               "rows": [[k, v] for k, v in figures.pop("oscillator").items()]}]
+    for key in ("blade with a 16-element damper", "finite-element blade"):
+        if figures.get(key):
+            tables.append({"caption": key, "columns": ["figure", "value"],
+                           "rows": [[k, v] for k, v in figures.pop(key).items()]})
+        figures.pop(key, None)
+    tables.append({"caption": "the cost of stability: each curve with and without Hill's method, same run",
+                   "columns": ["curve", "points", "without (s)", "with (s)", "ratio with / without",
+                               "unstable points", "bifurcations"], "rows": STABILITY_ROWS})
+    figures["tables"] = tables
+    print(f"results: {save_results('bench_frf', figures)}")
 
 
 def compare_with_pyharm(t_ms, a_ref):
@@ -124,7 +156,7 @@ def compare_with_pyharm(t_ms, a_ref):
     missing = pyharm_missing()
     if missing:
         print(f"pyHarm is not installed ({missing.split(':')[0]}); install the bench extra to compare. Skipped.")
-        return
+        return {"pyharm": f"not compared: pyHarm cannot be imported here ({missing.split(':')[0]})"}
     pyharm_curve(0.2)  # warm-up: JIT compilation of pyHarm's kernels
     for ds in (0.05, 0.04, 0.03, 0.02, 0.01):
         t_ph, w, a, pts = pyharm_curve(ds)
@@ -142,6 +174,8 @@ def compare_with_pyharm(t_ms, a_ref):
         diffs.append(abs(one.amplitude(0, 1)[0] / a[k] - 1))
     print(f"same solutions: largest relative difference at 6 of pyHarm's points {max(diffs):.1e}")
     print(f"RATIO pyHarm / microslip, same peak accuracy: {t_ph / t_ms:.0f}x")
+    return {"pyharm_seconds": t_ph, "pyharm_points": pts, "pyharm_ds": ds, "pyharm_peak_error": err_ph,
+            "same_solution": max(diffs), "ratio_pyharm_over_microslip": t_ph / t_ms}
 
 
 def sixteen_element_damper():
@@ -159,7 +193,9 @@ def sixteen_element_damper():
           f"points ({slipping} with the contact dissipating); static state N0 = "
           f"{r16.static_normal_force[0]:.4g} N, T0 = {r16.static_tangential_force[0]:.2g} N, "
           f"{r16.static_closed_elements[0]} of 16 elements closed")
-    stability_cost("blade", run, t16)
+    stability_cost("blade, 16-element damper", run, t16)
+    return {"seconds": t16, "points": int(r16.points), "points_dissipating": int(slipping),
+            "closed_elements": int(r16.static_closed_elements[0])}
 
 
 def reduced_fe_stability():
@@ -168,13 +204,14 @@ def reduced_fe_stability():
         from microslip.fe import blade
     except ImportError as exc:
         print(f"the fe extra is not installed ({exc}): the finite-element stability case is skipped")
-        return
+        return {}
     b = blade(1000, contact_nodes=2)
     s = Structure(b.M, 2e-7 * b.K, b.K, dof_map=b.dof_map)
     for node in b.platform_nodes:
         s.add_contact(MicroslipModel(kt=[2e6], kn=[2e8], gaps=[0.0], mu=0.1), tangential={f"{node}:x": 1.0},
                       normal={f"{node}:y": 1.0}, preload=50.0)
     f = s.force_vector({f"{b.tip_node}:x": 12.0})
+    out = {"dofs": s.ndof, "contacts": len(s.contacts)}
     for reduction, modes in (("exact", None), ("modal", 40)):
         def run(stability=False):
             return frequency_response(s, f, (7000.0, 11000.0), harmonics=5, reduction=reduction, modes=modes,
@@ -185,9 +222,12 @@ def reduced_fe_stability():
         print(f"FE blade, {s.ndof} DOFs, 4 contacts, H = 5, reduction = {reduction!r}"
               + (f" ({modes} modes)" if modes else "") + f": curve alone {t:.2f} s for {r.points} points "
               f"({slipping} with a contact slipping)")
-        with_stability = stability_cost(f"FE blade {reduction}", run, t, repeat=2)
+        with_stability = stability_cost(f"FE blade {reduction}" + (f" ({modes} modes)" if modes else ""), run, t,
+                                        repeat=2)
+        out[f"{reduction}: points"] = int(r.points)
         if reduction == "exact":
-            whole_structure_hill(run, with_stability)
+            out.update(whole_structure_hill(run, with_stability))
+    return out
 
 
 def whole_structure_hill(run, modal):
@@ -210,6 +250,8 @@ def whole_structure_hill(run, modal):
     print(f"  the same curve with Hill's method on the whole structure: {t_whole:.2f} s; the same verdict at every "
           f"point: {same}; leading exponents within {gap:.1e} of omega; bifurcations "
           f"{[b.kind for b in whole.bifurcations]} moved by {moved:.1e} in frequency")
+    return {"exact, Hill's method on the whole structure (s)": t_whole, "same verdict at every point": same,
+            "leading exponents' difference / omega": gap, "bifurcations moved (relative)": float(moved)}
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """Cost of running a design study on Dask: the overhead per case against a plain loop, and 2 workers against 1.
 
 Run:  python benchmarks/bench_sweep.py [--cases N]
+      python benchmarks/bench_sweep.py --quick      (8 cases, 2 interleaved runs)
 
 The study: the blade pair with an under-platform damper of the tests (``tests/study/conftest.py``),
 tips excited in antiphase, 3000 to 5000 rad/s, H = 3, the damper's centrifugal load from 40 N to
@@ -27,7 +28,8 @@ Also timed once: the same loop in a fresh process spawned as Dask spawns its wor
 
 Printed: the overhead per case, the sweep on 1 worker over the loop on the same worker (target under
 5 %) and over the loop in this process, and the throughput of 2 workers over 1 worker (target at least
-1.7 on this 2-core machine). Every curve is checked equal to the loop's bit for bit.
+1.7 on this 2-core machine). Every curve is checked equal to the loop's bit for bit. The figures are saved to
+``benchmarks/results/bench_sweep.json`` (``--quick``: ``bench_sweep_quick.json``) by ``_common.save_results``.
 """
 
 from __future__ import annotations
@@ -44,6 +46,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "benchmarks"))
+from _common import save_results  # noqa: E402
 sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "frequency"), str(ROOT / "tests" / "cli"),
                 str(ROOT / "tests" / "study")]
 
@@ -120,9 +124,20 @@ def _warm(client, study) -> None:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--cases", type=int, default=20, help="number of cases (even, default 20)")
-    parser.add_argument("--repeat", type=int, default=3, help="interleaved runs of each; the best counts (default 3)")
+    parser.add_argument("--cases", type=int, default=None, help="number of cases (even, default 20; --quick 8)")
+    parser.add_argument("--repeat", type=int, default=None,
+                        help="interleaved runs of each; the best counts (default 3; --quick 2)")
+    parser.add_argument("--quick", action="store_true", help="8 cases, 2 interleaved runs")
     args = parser.parse_args(argv)
+    defaults = (8, 2) if args.quick else (20, 3)
+    command = "python benchmarks/bench_sweep.py" + (" --quick" if args.quick else "") + "".join(
+        f" --{k} {v}" for k, v, d in (("cases", args.cases, defaults[0]), ("repeat", args.repeat, defaults[1]))
+        if v is not None and v != d)
+    args.cases = defaults[0] if args.cases is None else args.cases
+    args.repeat = defaults[1] if args.repeat is None else args.repeat
+    if args.cases < 2 or args.cases % 2:
+        parser.error(f"--cases must be an even number of at least 2, got {args.cases}")
+    load_before = os.getloadavg()[0]
     from microslip.study import load_study, sweep
 
     print(f"load average {os.getloadavg()[0]:.2f}; {os.cpu_count()} cores")
@@ -132,10 +147,12 @@ def main(argv=None) -> int:
         cases = study.cases()
         _loop(study, cases[:1])  # warm-up: compiled kernels loaded
         clusters = {}
+        startup = {}
         for n in (1, 2):
             t0 = time.perf_counter()
             clusters[n] = _cluster(n)
             _warm(clusters[n][1], study)
+            startup[n] = time.perf_counter() - t0
             print(f"{n} worker{'s' if n > 1 else ''}: cluster started and one case solved on each worker in "
                   f"{time.perf_counter() - t0:.2f} s")
         t0 = time.perf_counter()
@@ -171,6 +188,27 @@ def main(argv=None) -> int:
               f" (target under 5 %); against the loop in this process: {100 * (t1 / t_loop - 1):+.1f} %")
         print(f"throughput, 2 workers over 1: {t1 / t2:.2f}x (target at least 1.7x)")
         print(f"load average {os.getloadavg()[0]:.2f}")
+    rows = [["loop in this process (the baseline)", t_loop, t_loop / len(cases), 1.0],
+            ["the same loop on the 1-worker cluster's worker", t_worker, t_worker / len(cases), t_worker / t_loop],
+            ["the same loop in a fresh spawned process (run once)", t_fresh, t_fresh / len(cases), t_fresh / t_loop],
+            ["sweep on 1 worker", t1, t1 / len(cases), t1 / t_loop],
+            ["sweep on 2 workers", t2, t2 / len(cases), t2 / t_loop]]
+    figures = {"description": "A design study (the blade pair with an under-platform damper, H = 3) run by "
+                              "microslip.sweep on a local Dask cluster against the same cases in a plain loop in "
+                              "the same process (the baseline) and on the worker; every curve equal to the loop's "
+                              "bit for bit.",
+               "command": command,
+               "sizes": f"{len(cases)} cases, best of {args.repeat} interleaved runs; load average "
+                        f"{load_before:.2f} at the start",
+               "tables": [{"caption": "the whole study (s), best of the interleaved runs",
+                           "columns": ["run", "time (s)", "per case (s)", "/ the loop in this process"],
+                           "rows": rows},
+                          {"caption": "the ratios the targets are set on",
+                           "columns": ["overhead, sweep on 1 worker / loop on that worker - 1 (target < 0.05)",
+                                       "throughput, 2 workers / 1 (target >= 1.7)",
+                                       "cluster start-up and warm-up, 1 worker (s)", "the same, 2 workers (s)"],
+                           "rows": [[t1 / t_worker - 1, t1 / t2, startup[1], startup[2]]]}]}
+    print(f"results: {save_results('bench_sweep' + ('_quick' if args.quick else ''), figures)}")
     return 0
 
 

@@ -41,7 +41,8 @@ at microslip's points: tmdsimpy's EPMC equations are solved at the matching ``la
 ``xi / (2 omega)`` (the same definition in both) are compared relatively (target 1e-4).
 
 Times are wall times on a shared machine: the best of three runs for microslip, of ``--repeat`` (default 1)
-for tmdsimpy; the ratios are what to compare.
+for tmdsimpy; the ratios are what to compare. The figures are saved to ``benchmarks/results/bench_tmdsimpy.json``
+(``_common.save_results``; without tmdsimpy, microslip's times alone and the reason the comparison was skipped).
 """
 
 from __future__ import annotations
@@ -60,7 +61,7 @@ from microslip.kernels import aft as _aft, aft_plane as _aft_plane
 from microslip.frequency import aft_plane, craig_bampton
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import best_of  # noqa: E402
+from _common import best_of, save_results  # noqa: E402
 from bench_aft import best_time  # noqa: E402  (the same timing as the other AFT benchmarks)
 
 LOAD = 37.5  # N, each contact's normal load
@@ -143,6 +144,7 @@ def compare_aft(peer) -> list:
         text = f"  {name:18s} microslip kernel {t_kernel * 1e6:6.1f}, public aft_plane() {t_public * 1e6:6.1f}"
         if peer is None:
             print(text)
+            rows.append([name, t_kernel * 1e6, t_public * 1e6])
             continue
         run = peer_aft(peer, model, line, xn)
         t_peer = best_time(run, repeat=3)
@@ -157,7 +159,8 @@ def compare_aft(peer) -> list:
         ours[1::2, 1::2] = r.dN_dn
         jacobian_error = np.abs(Jp - ours).max() / np.abs(ours).max()
         assert force_error < 1e-10 and jacobian_error < 1e-8, (name, force_error, jacobian_error)
-        rows.append((name, t_kernel, t_peer))
+        rows.append([name, t_kernel * 1e6, t_public * 1e6, t_peer * 1e6, t_peer / t_kernel, force_error,
+                     jacobian_error])
         print(f"{text}, tmdsimpy {t_peer * 1e6:8.0f}: {t_peer / t_kernel:5.0f}x (target {TARGET:.0f}x: "
               f"{'met' if t_peer / t_kernel >= TARGET else 'MISSED'}); forces agree to {force_error:.1e}, "
               f"Jacobians to {jacobian_error:.1e} of the largest")
@@ -251,8 +254,12 @@ def compare_mode(peer, dofs: int, contacts: int, modes: int, repeat: int, ds_max
     print(f"  microslip ({steps}): {t_ours:.3f} s, {mode.points} points ({1e3 * t_ours / mode.points:.2f} ms each), "
           f"{mode.omega[0] * hz:.1f} to {mode.omega[-1] * hz:.1f} Hz, damping ratio up to "
           f"{100 * mode.damping_ratio.max():.2f} %")
+    figures = {"full_dofs": full_dofs, "reduced_dofs": structure.ndof, "contacts": contacts, "modes": modes,
+               "microslip_seconds": t_ours, "microslip_points": int(mode.points),
+               "frequency_hz": [float(mode.omega[0] * hz), float(mode.omega[-1] * hz)],
+               "damping_ratio_max": float(mode.damping_ratio.max())}
     if peer is None:
-        return {}
+        return figures
     other = PeerMode(peer, structure, kt, slip)
     a0, a1 = np.log10(AMPLITUDE)
     t_peer, curve = best_of(lambda: other.continuation(a0, a1), repeat)
@@ -273,6 +280,9 @@ def compare_mode(peer, dofs: int, contacts: int, modes: int, repeat: int, ds_max
         dw.append(X[-2] / mode.omega[k] - 1)
         dz.append(X[-1] / (2 * X[-2]) / mode.damping_ratio[k] - 1)
     worst_w, worst_z = float(np.max(np.abs(dw))), float(np.max(np.abs(dz)))
+    figures.update({"tmdsimpy_seconds": t_peer, "tmdsimpy_points": int(points), "tmdsimpy_reached_end": bool(done),
+                    "ratio_per_mode": t_peer / t_ours,
+                    "ratio_per_point": (t_peer / points) / (t_ours / mode.points)})
     print(f"  at {picks.size} of microslip's amplitudes: frequency within {worst_w:.1e}, damping ratio within "
           f"{worst_z:.1e} (relative; target {AGREEMENT:.0e}: "
           f"{'met' if max(worst_w, worst_z) <= AGREEMENT else 'MISSED'})")
@@ -289,7 +299,9 @@ def compare_mode(peer, dofs: int, contacts: int, modes: int, repeat: int, ds_max
         ez = np.max(np.abs(np.interp(la_ref, la_c, z_c) - ref.damping_ratio)) / ref.damping_ratio.max()
         print(f"  {name}'s points joined by straight lines, against {ref.points} points 4 times closer: frequency "
               f"within {ew:.1e} (relative), damping ratio within {ez:.1e} of its largest value")
-    return {"ours": t_ours, "peer": t_peer, "frequency": worst_w, "damping": worst_z}
+        figures[f"{name} points joined, against a curve 4x finer"] = {"frequency": float(ew), "damping": float(ez)}
+    figures.update({"frequency_difference": worst_w, "damping_difference": worst_z})
+    return figures
 
 
 def main(argv=None) -> int:
@@ -305,9 +317,46 @@ def main(argv=None) -> int:
     print(f"load average {os.getloadavg()[0]:.2f} (2 cores shared)")
     if peer is None:
         print(f"tmdsimpy: not compared: {why}; microslip alone follows")
-    compare_aft(peer)
-    compare_mode(peer, args.dofs, args.contacts, args.modes, args.repeat, args.ds_max)
+    aft_rows = compare_aft(peer)
+    mode = compare_mode(peer, args.dofs, args.contacts, args.modes, args.repeat, args.ds_max)
+    save(peer is not None, why, aft_rows, mode, args)
     return 0
+
+
+def save(compared: bool, why: str | None, aft_rows: list, mode: dict, args) -> None:
+    """The figures to ``benchmarks/results/bench_tmdsimpy.json``: the AFT table, the mode's figures."""
+    columns = ["motion", "microslip kernel (µs)", "public aft_plane() (µs)"]
+    if compared:
+        columns += ["tmdsimpy (µs)", "ratio tmdsimpy / kernel", "force difference", "Jacobian difference"]
+    defaults = {"dofs": 1000, "contacts": 8, "modes": 10, "repeat": 1, "ds_max": None}  # as main's parser
+    options = "".join(f" --{k.replace('_', '-')} {v}" for k, v in vars(args).items() if v != defaults[k])
+    figures = {"description": "microslip against tmdsimpy (run in the same process from TMDSIMPY_PATH): (a) one "
+                              f"contact's AFT with its Jacobian, J = {AFT_ELEMENTS} sphere elements, harmonics "
+                              f"0-{AFT_H}, {AFT_SAMPLES} samples; (b) the nonlinear mode (EPMC) of a Craig-Bampton "
+                              f"blade with Jenkins contacts, harmonics 0-{MODE_H}, {MODE_SAMPLES} samples, modal "
+                              f"amplitude {AMPLITUDE[0]:.0e} to {AMPLITUDE[1]:.0e} kg^1/2 m. Ratios are tmdsimpy's "
+                              f"time over microslip's (target {TARGET:.0f}x)."
+                              + ("" if compared else f" tmdsimpy NOT compared in this run: {why}; microslip's "
+                                 "times alone."),
+               "command": "TMDSIMPY_PATH=/path/to/tmdsimpy OPENBLAS_NUM_THREADS=1 python benchmarks/bench_tmdsimpy.py"
+                          + options,
+               "sizes": f"AFT best of 7 (tmdsimpy best of 3); mode best of 3 for microslip, of {args.repeat} for "
+                        "tmdsimpy",
+               "tmdsimpy_compared": compared,
+               "tables": [{"caption": "(a) AFT with Jacobian, one call", "columns": columns, "rows": aft_rows},
+                          {"caption": "(b) nonlinear mode", "columns": ["figure", "value"],
+                           "rows": [[k, ", ".join(f"{x:.4g}" for x in v) if isinstance(v, list) else v]
+                                    for k, v in _flat(mode)]}]}
+    print(f"results: {save_results('bench_tmdsimpy', figures)}")
+
+
+def _flat(figures: dict, prefix: str = "") -> list:
+    """``(name, value)`` pairs of a nested dict, names joined by `` / ``."""
+    out = []
+    for key, value in figures.items():
+        name = f"{prefix} / {key}" if prefix else key
+        out += _flat(value, name) if isinstance(value, dict) else [(name, value)]
+    return out
 
 
 if __name__ == "__main__":

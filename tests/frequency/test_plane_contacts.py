@@ -4,24 +4,19 @@ the one-direction case, reductions, the contact's cycle and the configuration fi
 import numpy as np
 import pytest
 
-from microslip import MicroslipModel
 from microslip.frequency import (CyclicStructure, Structure, contact_cycle, craig_bampton, frequency_point,
                                  frequency_response, steady_state)
 from microslip.kernels import aft as _aft
 
-MODEL = MicroslipModel(kt=[3e4, 2e4, 1e4], kn=[2e6, 2e6, 2e6], gaps=[0.0, 0.3e-6, 0.6e-6], mu=0.5)
-APPROACH = 1e-6  # N = 2 + 1.4 + 0.8 = 4.2 N, slip force 2.1 N
+from _models import PLANE_APPROACH, PLANE_CONTACT, PLANE_FORCE, plane_chain
 
 
 def puck(kx=1e5, ky=1.2e5, zeta=0.01) -> Structure:
     """One mass (1 kg) moving in x and y on springs, with a contact on its plane to the ground, the normal load
     imposed. Its two modes differ, so a force at an angle to the axes drives an elliptical orbit."""
     s = Structure(np.eye(2), np.diag([2 * zeta * np.sqrt(kx), 2 * zeta * np.sqrt(ky)]), np.diag([kx, ky]))
-    s.add_contact(MODEL, tangential=[{0: 1.0}, {1: 1.0}], approach=APPROACH, name="puck")
+    s.add_contact(PLANE_CONTACT, tangential=[{0: 1.0}, {1: 1.0}], approach=PLANE_APPROACH, name="puck")
     return s
-
-
-FORCE = 1.6 * np.array([np.cos(np.radians(30)), np.sin(np.radians(30))])  # N, in phase, 30 degrees from x
 
 
 # -- directions ------------------------------------------------------------------------------------------
@@ -30,7 +25,7 @@ FORCE = 1.6 * np.array([np.cos(np.radians(30)), np.sin(np.radians(30))])  # N, i
                                         np.array([[1.0, 0, 0], [0, 0, 1.0]]), ([1.0, 0, 0], 2)])
 def test_two_tangential_directions_in_any_form(tangential):
     s = Structure(np.eye(3), None, np.eye(3))
-    c = s.add_contact(MODEL, tangential=tangential, approach=1e-6)
+    c = s.add_contact(PLANE_CONTACT, tangential=tangential, approach=1e-6)
     assert c.planar
     np.testing.assert_array_equal(c.tangential, [1, 0, 0])
     np.testing.assert_array_equal(c.tangential2, [0, 0, 1])
@@ -41,7 +36,7 @@ def test_two_tangential_directions_in_any_form(tangential):
 
 def test_a_flat_list_of_numbers_is_one_direction():
     s = Structure(np.eye(2), None, np.eye(2))
-    c = s.add_contact(MODEL, tangential=[0.6, 0.8], approach=1e-6)
+    c = s.add_contact(PLANE_CONTACT, tangential=[0.6, 0.8], approach=1e-6)
     assert not c.planar and c.tangential2 is None
     np.testing.assert_array_equal(s.second_tangential_directions(), [[0.0], [0.0]])
 
@@ -50,7 +45,7 @@ def test_dof_names_give_two_directions():
     from microslip.fe import DofMap
 
     s = Structure(np.eye(3), None, np.eye(3), dof_map=DofMap.from_names(["12:x", "12:y", "12:z"]))
-    c = s.add_contact(MODEL, tangential=["12:x", "12:y"], normal="12:z", preload=1.0)
+    c = s.add_contact(PLANE_CONTACT, tangential=["12:x", "12:y"], normal="12:z", preload=1.0)
     np.testing.assert_array_equal([c.tangential, c.tangential2], [[1, 0, 0], [0, 1, 0]])
 
 
@@ -65,13 +60,13 @@ def test_dof_names_give_two_directions():
 def test_direction_errors_name_the_item(tangential, message):
     s = Structure(np.eye(2), None, np.eye(2))
     with pytest.raises(ValueError, match=message):
-        s.add_contact(MODEL, tangential=tangential, approach=1e-6)
+        s.add_contact(PLANE_CONTACT, tangential=tangential, approach=1e-6)
 
 
 def test_a_cyclic_sector_refuses_two_directions():
     disk = CyclicStructure(np.eye(3), None, np.eye(3) * 1e4, sectors=6, left=[0], right=[2])
     with pytest.raises(ValueError, match="two tangential directions .* are for a Structure"):
-        disk.add_contact(MODEL, tangential=[{1: 1.0}, {0: 1.0}], approach=1e-6)
+        disk.add_contact(PLANE_CONTACT, tangential=[{1: 1.0}, {0: 1.0}], approach=1e-6)
 
 
 # -- harmonic balance --------------------------------------------------------------------------------------
@@ -79,7 +74,7 @@ def test_a_cyclic_sector_refuses_two_directions():
 @pytest.fixture(scope="module")
 def curve():
     """The curve at the default samples, to locate the peak (single-valued over this range)."""
-    return frequency_response(puck(), FORCE, (330.0, 440.0), harmonics=5, stability=False)
+    return frequency_response(puck(), PLANE_FORCE, (330.0, 440.0), harmonics=5, stability=False)
 
 
 @pytest.mark.parametrize("where", ["peak", 370.0, 395.0, 415.0, 432.0])
@@ -87,13 +82,13 @@ def test_harmonic_balance_equals_time_integration_on_an_elliptical_orbit(curve, 
     omega = curve.peak(0)[0] if where == "peak" else where
     # 2048 AFT samples: on a curved orbit the sampled radial return errs to first order in the step; the
     # difference below is 1.8e-2 with the default 128 samples (H = 7), 4e-3 with 512, 1.7e-4 to 6.6e-4 with 2048
-    point = frequency_point(puck(), FORCE, omega, harmonics=7, samples=2048, stability=False)
+    point = frequency_point(puck(), PLANE_FORCE, omega, harmonics=7, samples=2048, stability=False)
     # an ellipse, not a line: the first harmonics of x and y enclose an area (a1 b2 - b1 a2 = 0 on a line)
     (a1, b1), (a2, b2) = point.contact_t[0, 0, 1:3], point.contact_t2[0, 0, 1:3]
     assert abs(a1 * b2 - b1 * a2) > 0.3 * np.hypot(a1, b1) * np.hypot(a2, b2)
     cycle = contact_cycle(point, 0, 0)
     assert cycle.fractions()["gross slip"] > 0.2  # elements slip: the friction is not a linear spring
-    ti = steady_state(puck(), FORCE, omega, harmonics=7, steps_per_period=4096, tolerance=1e-9, start=point)
+    ti = steady_state(puck(), PLANE_FORCE, omega, harmonics=7, steps_per_period=4096, tolerance=1e-9, start=point)
     assert ti.converged
     # every DOF and harmonic, to the largest dynamic coefficient (the time integration's own step changes it by
     # less than 1e-4: 4096 against 16384 steps)
@@ -114,9 +109,9 @@ def test_the_curve_has_its_peak_inside_the_range(curve):
 def test_a_contact_on_its_plane_moving_along_a_line_is_the_one_direction_contact():
     """Excited along x only, with nothing coupling y, the plane contact's y stays at rest: it is the x contact."""
     plane = Structure(np.eye(2), 0.02 * np.sqrt(1e5) * np.eye(2), np.diag([1e5, 1.2e5]))
-    plane.add_contact(MODEL, tangential=[{0: 1.0}, {1: 1.0}], approach=APPROACH)
+    plane.add_contact(PLANE_CONTACT, tangential=[{0: 1.0}, {1: 1.0}], approach=PLANE_APPROACH)
     line = Structure(np.eye(2), 0.02 * np.sqrt(1e5) * np.eye(2), np.diag([1e5, 1.2e5]))
-    line.add_contact(MODEL, tangential={0: 1.0}, approach=APPROACH)
+    line.add_contact(PLANE_CONTACT, tangential={0: 1.0}, approach=PLANE_APPROACH)
     a = frequency_response(plane, [1.5, 0.0], (300.0, 420.0), harmonics=5, stability=False)
     b = frequency_response(line, [1.5, 0.0], (300.0, 420.0), harmonics=5, stability=False)
     assert not a.contact_t2.any() and not a.contact_T2.any()
@@ -131,17 +126,7 @@ def test_a_contact_on_its_plane_moving_along_a_line_is_the_one_direction_contact
 def test_reductions_keep_both_directions(reduction):
     """A chain of masses with the plane contact on the last one's x and y: reduced to the contact DOFs."""
     n = 6
-    K = np.zeros((2 * n, 2 * n))
-    for axis, k in ((0, 1e5), (1, 1.2e5)):
-        idx = np.arange(axis, 2 * n, 2)
-        for a, b in zip(idx[:-1], idx[1:]):
-            K[np.ix_([a, b], [a, b])] += k * np.array([[1, -1], [-1, 1]])
-        K[idx[0], idx[0]] += k
-    M = np.eye(2 * n) * 0.2
-    s = Structure(M, 1e-4 * K, K)
-    s.add_contact(MODEL, tangential=[{2 * n - 2: 1.0}, {2 * n - 1: 1.0}], approach=APPROACH)
-    force = np.zeros(2 * n)
-    force[2 * n - 2:] = FORCE
+    s, force = plane_chain(n)
     full = frequency_point(s, force, 80.0, harmonics=3, reduction="none", stability=False)
     red = frequency_point(s, force, 80.0, harmonics=3, reduction=reduction, stability=False,
                           modes=2 * n - 1 if reduction == "modal" else None)
@@ -157,17 +142,18 @@ def test_reductions_keep_both_directions(reduction):
 def test_stability_and_the_static_state_with_a_plane_contact():
     s = puck()
     s.add_static_force([0.5, 1.0])  # a static push at an angle: a static tangential force in both directions
-    r = frequency_response(s, {0: [0.5, 1.0], 1: FORCE}, (300.0, 420.0), harmonics=5)
+    r = frequency_response(s, {0: [0.5, 1.0], 1: PLANE_FORCE}, (300.0, 420.0), harmonics=5)
     assert r.stable is not None and r.stable.all()  # a single-valued curve of a damped structure
     # statically stuck (|T0| = 0.76 N < mu N = 2.1 N): each direction shares its load [1, 2] N between its
     # spring and the contact's stuck stiffness sum(kt) = 6e4 N/m
-    assert np.hypot(r.static_tangential_force, r.static_tangential_force2)[0] < MODEL.mu * r.static_normal_force[0]
+    slip_force = PLANE_CONTACT.mu * r.static_normal_force[0]
+    assert np.hypot(r.static_tangential_force, r.static_tangential_force2)[0] < slip_force
     assert r.static_tangential_force[0] == pytest.approx(6e4 / 1.6e5 * 1.0, rel=1e-9)
     assert r.static_tangential_force2[0] == pytest.approx(6e4 / 1.8e5 * 2.0, rel=1e-9)
 
 
 def test_the_cycle_at_a_point_carries_the_harmonic_balance_forces():
-    point = frequency_point(puck(), FORCE, 360.0, harmonics=7, stability=False)
+    point = frequency_point(puck(), PLANE_FORCE, 360.0, harmonics=7, stability=False)
     cy = contact_cycle(point, "puck", 0)
     # the harmonic balance's own march (same samples, same periodic state to 32 ulps): its forces to rounding
     P = _aft.tables(7, point.samples)[1]
@@ -176,17 +162,17 @@ def test_the_cycle_at_a_point_carries_the_harmonic_balance_forces():
     # the friction law on the plane: |T| <= mu N. In gross slip every element's force has its full length
     # mu N_i, but along its own slider's lag, so the sum falls just short of mu N (here by 1.1e-4)
     size = np.hypot(cy.T, cy.T2)
-    assert np.all(size <= MODEL.mu * cy.N * (1 + 1e-12))
+    assert np.all(size <= PLANE_CONTACT.mu * cy.N * (1 + 1e-12))
     gross = cy.state == 2
     assert gross.any()
-    np.testing.assert_allclose(size[gross], MODEL.mu * cy.N[gross], rtol=1e-3)
+    np.testing.assert_allclose(size[gross], PLANE_CONTACT.mu * cy.N[gross], rtol=1e-3)
 
 
 def test_craig_bampton_keeps_the_contact_on_its_plane(tmp_path):
     from microslip.frequency import CraigBampton
 
     s = Structure(np.eye(3), None, np.array([[2e5, -1e5, 0], [-1e5, 2e5, -1e5], [0, -1e5, 1e5]]))
-    s.add_contact(MODEL, tangential=[{1: 1.0}, {2: 1.0}], approach=APPROACH)
+    s.add_contact(PLANE_CONTACT, tangential=[{1: 1.0}, {2: 1.0}], approach=PLANE_APPROACH)
     cb = craig_bampton(s, keep=[1, 2], modes=1)
     c = cb.structure.contacts[0]
     assert c.planar
@@ -198,7 +184,7 @@ def test_craig_bampton_keeps_the_contact_on_its_plane(tmp_path):
 def test_the_configuration_file_takes_two_tangential_directions(tmp_path):
     from microslip.config import ConfigError, load_config
 
-    MODEL.save(tmp_path / "contact.json")
+    PLANE_CONTACT.save(tmp_path / "contact.json")
     text = """
 [structure]
 M = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
@@ -226,7 +212,7 @@ harmonics = 3
 def test_the_frf_command_reports_a_contact_on_its_plane(tmp_path, capsys):
     from microslip.cli import main
 
-    MODEL.save(tmp_path / "contact.json")
+    PLANE_CONTACT.save(tmp_path / "contact.json")
     (tmp_path / "frf.toml").write_text(f"""
 [structure]
 M = [[1.0, 0.0], [0.0, 1.0]]
@@ -237,7 +223,7 @@ tangential = [{{"0" = 1.0}}, {{"1" = 1.0}}]
 approach = "1um"
 name = "puck"
 [excitation]
-h1 = {[float(f) for f in FORCE]}
+h1 = {[float(f) for f in PLANE_FORCE]}
 [sweep]
 omega = [330, 440]
 harmonics = 3
