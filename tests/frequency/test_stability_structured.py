@@ -11,6 +11,7 @@ from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import Structure, frequency_response
 from microslip.frequency.analyses import stability
 from microslip.frequency.analyses.response import MAX_PERIODS, _equations
+from microslip.frequency.equations.hbm import harmonic_operators
 
 from _paths import EXAMPLES
 
@@ -62,13 +63,36 @@ def block_with_arm():
     return s, np.concatenate([BLOCK_FORCE, np.zeros(n - 2)])
 
 
-def test_a_curve_with_folds_gets_the_verdicts_of_the_formed_problem(monkeypatch):
+@pytest.mark.parametrize("disc", [0.5, 0.75, 1.0])
+def test_a_curve_with_folds_gets_the_verdicts_of_the_formed_problem(disc, monkeypatch):
+    """Two folds and an unstable branch between them, with the structured solver's disc at half of omega (its
+    leading-exponent check then always widens it to omega: the widening path), the default and omega."""
     monkeypatch.setattr(stability, "DENSE_LIMIT", 10)  # 55 unknowns: the iterative solvers, formed or not
+    monkeypatch.setattr(stability, "DISC", disc)
     s, f = block_with_arm()
     curve, structured, full = both_methods(s, f, (16000, 17500), 5, "modal", modes=5)
     assert [b.kind for b in full[2]] == ["fold", "fold"]
     assert not full[0].all()  # the branch between the folds is unstable
     agree(curve, structured, full)
+
+
+def test_the_receptance_is_that_of_the_linear_part_inverted(monkeypatch):
+    """:meth:`_ModalParts.receptance` (built per harmonic) against ``R + Phi A^-1 Phi^T`` from ``A^-1`` applied to
+    every column of ``Phi^T``, with classical and with non-classical modal damping, at a shift off 0; to rounding
+    (1e-12 of the largest entry: sums of a few products of the same numbers in another order)."""
+    s, f = block_with_arm()
+    linear = _equations(s, f, 3, None, MAX_PERIODS, "modal", 5)[1].linear
+    for damping in (None, "non-classical"):
+        parts = stability._ModalParts(linear, 3, harmonic_operators(3)[0])
+        if damping:
+            Cm = parts.Cm + 0.3 * np.abs(parts.Cm).max() * (np.eye(5, k=1) + np.eye(5, k=-1))
+            parts.Cm, parts.damping = Cm, None
+        inverse = parts.inverse_linear(16500.0, 120.0)
+        r = parts.nb * parts.retained
+        Phi_t = np.column_stack([parts.lift(e) for e in np.eye(r)])
+        expected = parts.R + parts.project(parts.apply_inverse(inverse, Phi_t))
+        G = parts.receptance(inverse)
+        assert np.abs(G - expected).max() <= 1e-12 * np.abs(expected).max()
 
 
 def test_non_classical_damping(monkeypatch):

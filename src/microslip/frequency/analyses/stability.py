@@ -78,10 +78,16 @@ The modal problem (``reduction="modal"``, or an exact reduction above
 the harmonics (diagonal over the modes under classical damping) and its contact part
 has the rank of the retained unknowns, so the shift-invert products cost a solve of
 the linear part per harmonic and one of a capacitance system of the retained
-unknowns (:class:`_ModalHill`), and the Arnoldi iteration starts from the previous
-point's eigenvectors. The eigenvalues are those of the formed problem, to the
-Arnoldi tolerance (``method="full"`` forms and factorises it at every point, the
-reference the tests compare with).
+unknowns, whose receptance is built harmonic by harmonic (:class:`_ModalHill`),
+and the Arnoldi iteration starts from the previous point's eigenvectors. It covers
+the smaller disc ``|lambda| < DISC omega`` (:data:`DISC`): every exponent of the
+strip whose real part is below ``sqrt(DISC^2 - 1/4) omega`` in size. Where no
+exponent of the strip found has a real part above ``-sqrt(DISC^2 - 1/4) omega``
+(the leading exponent could lie beyond), and at the two points of each
+bifurcation (the exponents its position is interpolated from), the disc is
+``|lambda| < omega`` as for the formed problem. The eigenvalues are those of the
+formed problem, to the Arnoldi tolerance (``method="full"`` forms and factorises
+it at every point, the reference the tests compare with).
 
 Limit: where a contact element just reaches its slip limit somewhere on the orbit
 (the onset of microslip, a contact dissipating almost nothing), the friction force
@@ -363,11 +369,11 @@ class _ModalHill(HillProblem):
             lu, piv = sla.lu_factor(np.eye(r) + G @ self.Jc, check_finite=False)
         if not np.all(np.diag(lu)):
             return None
-        Jc = self.Jc
+        Jc, getrs = self.Jc, sla.lapack.dgetrs
 
         def solve(b):
             y = model.apply_inverse(inverse, b)
-            z = sla.lu_solve((lu, piv), model.project(y), check_finite=False)  # (I + G Jc)^-1 Phi y
+            z = getrs(lu, piv, model.project(y))[0]  # (I + G Jc)^-1 Phi y
             return y - model.apply_inverse(inverse, model.lift(Jc @ z))
 
         return solve
@@ -470,8 +476,8 @@ class _ModalParts:
         if P.ndim == 1:  # classical damping: the diagonals of each harmonic (Q signed per row: + on cosine rows)
             rows = np.r_[0, 1:nb:2]  # the static row and each harmonic's cosine rows
             P, Q = P.reshape(nb, self.modes)[rows], Q.reshape(nb, self.modes)[rows]
-            GP = np.einsum("im,hm,jm->hij", phi, P, phi)
-            GQ = np.einsum("im,hm,jm->hij", phi, Q, phi)
+            GP = (phi[None] * P[:, None, :]) @ phi.T
+            GQ = (phi[None] * Q[:, None, :]) @ phi.T
         else:
             GP = phi @ P @ phi.T
             GQ = phi @ Q @ phi.T
