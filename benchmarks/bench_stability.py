@@ -1,4 +1,4 @@
-"""The cost of stability along a reduced curve: Hill's method by the structured solver against main's and the formed problem.
+"""The cost of stability along a reduced curve: the structured solver against its baseline and the formed problem.
 
 Run:  python benchmarks/bench_stability.py            (H = 5; about a minute)
       python benchmarks/bench_stability.py --repeat 3 --harmonics 7
@@ -53,8 +53,8 @@ BASELINE = "49f95a1"
 def baseline_assess():
     """``assess`` of the stability module at :data:`BASELINE`, loaded from git as a module of the same package."""
     import importlib.util
-
     import subprocess
+
     root = Path(__file__).resolve().parents[1]
     source = subprocess.run(["git", "show", f"{BASELINE}:src/microslip/frequency/analyses/stability.py"], cwd=root,
                             check=True, capture_output=True, text=True).stdout
