@@ -403,7 +403,7 @@ class _ModalParts:
         classical = off.size == 0 or off.max() <= CLASSICAL * max(float(np.abs(self.Cm).max()), 1e-300)
         self.damping = np.diag(self.Cm).copy() if classical else None
         self.phi_r = np.asarray(linear.phi_r, dtype=float)
-        mr = self.retained = self.phi_r.shape[0]
+        self.retained = self.phi_r.shape[0]
         self.R = np.kron(np.eye(self.nb), np.asarray(linear.residual, dtype=float))
         p = np.arange(self.nb)
         self.harmonic = (p + 1) // 2  # of each row of coefficients
