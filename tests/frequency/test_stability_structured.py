@@ -6,11 +6,14 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from microslip import MicroslipModel, Sphere, tune
 from microslip.frequency import Structure, frequency_response
 from microslip.frequency.analyses import stability
 from microslip.frequency.analyses.response import MAX_PERIODS, _equations
+from microslip.frequency.equations.hbm import harmonic_operators
 
 from _paths import EXAMPLES
 
@@ -62,13 +65,36 @@ def block_with_arm():
     return s, np.concatenate([BLOCK_FORCE, np.zeros(n - 2)])
 
 
-def test_a_curve_with_folds_gets_the_verdicts_of_the_formed_problem(monkeypatch):
+@pytest.mark.parametrize("disc", [0.5, 0.75, 1.0])
+def test_a_curve_with_folds_gets_the_verdicts_of_the_formed_problem(disc, monkeypatch):
+    """Two folds and an unstable branch between them, with the structured solver's disc at half of omega (its
+    leading-exponent check then always widens it to omega: the widening path), the default and omega."""
     monkeypatch.setattr(stability, "DENSE_LIMIT", 10)  # 55 unknowns: the iterative solvers, formed or not
+    monkeypatch.setattr(stability, "DISC", disc)
     s, f = block_with_arm()
     curve, structured, full = both_methods(s, f, (16000, 17500), 5, "modal", modes=5)
     assert [b.kind for b in full[2]] == ["fold", "fold"]
     assert not full[0].all()  # the branch between the folds is unstable
     agree(curve, structured, full)
+
+
+def test_the_receptance_is_that_of_the_linear_part_inverted(monkeypatch):
+    """:meth:`_ModalParts.receptance` (built per harmonic) against ``R + Phi A^-1 Phi^T`` from ``A^-1`` applied to
+    every column of ``Phi^T``, with classical and with non-classical modal damping, at a shift off 0; to rounding
+    (1e-12 of the largest entry: sums of a few products of the same numbers in another order)."""
+    s, f = block_with_arm()
+    linear = _equations(s, f, 3, None, MAX_PERIODS, "modal", 5)[1].linear
+    for damping in (None, "non-classical"):
+        parts = stability._ModalParts(linear, 3, harmonic_operators(3)[0])
+        if damping:
+            Cm = parts.Cm + 0.3 * np.abs(parts.Cm).max() * (np.eye(5, k=1) + np.eye(5, k=-1))
+            parts.Cm, parts.damping = Cm, None
+        inverse = parts.inverse_linear(16500.0, 120.0)
+        r = parts.nb * parts.retained
+        Phi_t = np.column_stack([parts.lift(e) for e in np.eye(r)])
+        expected = parts.R + parts.project(parts.apply_inverse(inverse, Phi_t))
+        G = parts.receptance(inverse)
+        assert np.abs(G - expected).max() <= 1e-12 * np.abs(expected).max()
 
 
 def test_non_classical_damping(monkeypatch):
@@ -133,3 +159,40 @@ def test_the_method_is_checked():
     _, hb, _ = _equations(s, f, 3, None, MAX_PERIODS, "modal", 5)
     with pytest.raises(ValueError, match="method must be one of"):
         stability.assess(hb, np.zeros((1, hb.n)), [16000.0], method="dense")
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2 ** 32 - 1), level=st.floats(-2.0, 1.0), skew=st.floats(0.0, 0.3),
+       omega=st.floats(15000.0, 18000.0))
+def test_random_contact_jacobians_get_the_exponents_of_the_formed_problem(seed, level, skew, omega):
+    """Property: for a contact Jacobian of the retained unknowns drawn at random (stiffening or softening,
+    symmetric or not: stable and unstable points), the structured solver's verdict and leading exponent are those
+    of the formed problem. Leading real parts within 1e-8 of omega, as in :func:`agree` (both shift-invert Arnoldi
+    to 1e-10 on the same problem). Points whose leading exponent has a real part above 0.5 omega are left out:
+    the structured solver's disc does not see them (the documented limit)."""
+    s, f = block_with_arm()
+    _, hb, _ = _equations(s, f, 5, None, MAX_PERIODS, "modal", 5)
+    limit = stability.DENSE_LIMIT
+    stability.DENSE_LIMIT = 10  # 55 unknowns: the iterative solvers, formed or not
+    try:
+        formed, structured = stability._Builder(hb, "full"), stability._Builder(hb)
+        rng = np.random.default_rng(seed)
+        r = formed.Phi.shape[0]
+        B = rng.standard_normal((r, r)) / np.sqrt(r)
+        Jc = 10.0 ** level * 1e7 * (B @ B.T * np.sign(level + 0.5) + skew * (B - B.T))
+        X = np.linalg.solve(np.eye(r) + formed.R @ Jc, formed.Phi)
+        J0 = formed.Lam + omega * formed.DC - omega ** 2 * formed.WI + formed.Phi.T @ (Jc @ X)
+        full = stability.HillProblem(J0, formed.C1 + 2 * omega * formed.M1, formed.D2, formed.m, omega).exponents()
+        new = stability._ModalHill(structured.parts, Jc, omega, stability.NEAREST_START).exponents()
+    except np.linalg.LinAlgError:  # a draw singular at and near 0 (both solvers refuse it)
+        return
+    finally:
+        stability.DENSE_LIMIT = limit
+    assume(full.size and full[0].real < 0.5 * omega)
+    assert new.size and np.any(new.real > stability.TOLERANCE * omega) == np.any(full.real > stability.TOLERANCE
+                                                                                  * omega)
+    # the leading real part (mass-proportional damping gives several exponents one real part: which of them leads
+    # is a tie), and every exponent of the formed problem in the smaller disc found
+    assert abs(new[0].real - full[0].real) <= 1e-8 * omega
+    for lam in full[np.abs(full) < 0.7 * omega]:
+        assert np.min(np.minimum(np.abs(new - lam), np.abs(new - np.conj(lam)))) <= 1e-8 * omega

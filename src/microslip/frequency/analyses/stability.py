@@ -78,10 +78,16 @@ The modal problem (``reduction="modal"``, or an exact reduction above
 the harmonics (diagonal over the modes under classical damping) and its contact part
 has the rank of the retained unknowns, so the shift-invert products cost a solve of
 the linear part per harmonic and one of a capacitance system of the retained
-unknowns (:class:`_ModalHill`), and the Arnoldi iteration starts from the previous
-point's eigenvectors. The eigenvalues are those of the formed problem, to the
-Arnoldi tolerance (``method="full"`` forms and factorises it at every point, the
-reference the tests compare with).
+unknowns, whose receptance is built harmonic by harmonic (:class:`_ModalHill`),
+and the Arnoldi iteration starts from the previous point's eigenvectors. It covers
+the smaller disc ``|lambda| < DISC omega`` (:data:`DISC`): every exponent of the
+strip whose real part is below ``sqrt(DISC^2 - 1/4) omega`` in size. Where no
+exponent of the strip found has a real part above ``-sqrt(DISC^2 - 1/4) omega``
+(the leading exponent could lie beyond), and at the two points of each
+bifurcation (the exponents its position is interpolated from), the disc is
+``|lambda| < omega`` as for the formed problem. The eigenvalues are those of the
+formed problem, to the Arnoldi tolerance (``method="full"`` forms and factorises
+it at every point, the reference the tests compare with).
 
 Limit: where a contact element just reaches its slip limit somewhere on the orbit
 (the onset of microslip, a contact dissipating almost nothing), the friction force
@@ -128,6 +134,12 @@ ARNOLDI_EXTRA = 2
 #: two eigenvalues whose real parts and imaginary parts modulo omega agree to this share of omega are
 #: copies of one Floquet exponent (at the two edges of the strip)
 COPY_TOLERANCE = 1e-3
+#: the Arnoldi iteration's tolerance: a Ritz pair is converged when its residual is below this share of its value
+ARNOLDI_TOLERANCE = 1e-10
+#: the structured solver's disc ``|lambda| < DISC omega`` (a share of omega; 1 for the formed problem's rule), and
+#: eigenvectors beyond it passed on to the next point (an eigenvalue entering the disc is then already in the start)
+DISC = 0.75
+BLOCK_GUARD = 2
 #: a Floquet exponent is unstable when its real part exceeds ``TOLERANCE * omega``
 TOLERANCE = 1e-7
 #: how :func:`assess` solves the Hill problem of a modal model: without forming it (the linear part inverted
@@ -239,7 +251,7 @@ class HillProblem:
         most = min(2 * n - 2, NEAREST_LIMIT)
         k = min(max(self.start, 1), most)
         while True:
-            mu = spla.eigs(linear, k=k, which="LM", return_eigenvectors=False, tol=1e-10)
+            mu = spla.eigs(linear, k=k, which="LM", return_eigenvectors=False, tol=ARNOLDI_TOLERANCE)
             lam = sigma + 1.0 / mu
             if np.max(np.abs(lam - sigma)) >= self.omega or k >= most:
                 self.needed = int(np.count_nonzero(np.abs(lam - sigma) < self.omega))
@@ -260,21 +272,24 @@ class _ModalHill(HillProblem):
     system of the retained unknowns (Sherman--Morrison--Woodbury). With
     ``Q(sigma) = A(sigma) + Phi^T Jc (I + R Jc)^-1 Phi`` (the module docstring's
     modal problem, ``A`` its linear part) and ``G(sigma) = R + Phi A(sigma)^-1 Phi^T``
-    (the modal model's receptance of the retained unknowns, harmonic-major):
+    (the modal model's receptance of the retained unknowns, harmonic-major, one
+    block per harmonic):
 
     ``Q^-1 = A^-1 - A^-1 Phi^T Jc (I + G Jc)^-1 Phi A^-1``.
 
-    The eigenvalues nearest the shift come from the Arnoldi iteration and the
-    stopping rule of :meth:`HillProblem._nearest`, started from the previous
-    point's eigenvectors (``basis``, ``(2n, k)``, or None).
+    The eigenvalues nearest the shift come from ARPACK's Arnoldi iteration started
+    from the previous point's eigenvectors (``basis``, ``(2n, q)``, or None), until
+    they cover the disc ``|lambda| < DISC omega`` and hold the leading exponent
+    (:meth:`_arnoldi`); ``disc`` overrides :data:`DISC`.
     """
 
-    def __init__(self, model, Jc, omega: float, start: int, basis=None):
+    def __init__(self, model, Jc, omega: float, start: int, basis=None, disc: float | None = None):
         self.J0 = self.D1 = self.D2 = None  # never formed
+        self.disc = DISC if disc is None else float(disc)
         self.m, self.n, self.omega = model.modes, model.nb * model.modes, float(omega)
         self.start, self.needed = start, 0
         self.model, self.Jc, self.basis = model, Jc, basis
-        self.vectors = None  # after eigenvalues(): the real parts of the disc's eigenvectors (the next start)
+        self.vectors = None  # after eigenvalues(): an orthonormal basis of the disc's eigenvectors (the next start)
 
     def eigenvalues(self) -> np.ndarray:
         for sigma in (0.0, 1e-6 * self.omega):
@@ -283,12 +298,12 @@ class _ModalHill(HillProblem):
                 break
         else:
             raise np.linalg.LinAlgError("Hill's problem is singular at and near 0")
-        return self._arnoldi(solve, sigma)
+        return self._arnoldi(self._companion(solve, sigma), sigma)
 
     def _companion(self, solve, sigma: float):
-        """``(A - sigma B)^-1 B`` of the companion form applied to ``z`` ``(2n,)`` (``D2 = I``), its second half
-        scaled by ``1 / omega`` (the same eigenvalues; both halves of an eigenvector ``(p, lambda p / omega)`` of one
-        size near the disc, which the iteration's accuracy needs)."""
+        """``(A - sigma B)^-1 B`` of the companion form applied to ``z`` ``(2n,)`` or ``(2n, p)`` (``D2 = I``), its
+        second half scaled by ``1 / omega`` (the same eigenvalues; both halves of an eigenvector ``(p, lambda p /
+        omega)`` of one size near the disc, which the iteration's accuracy needs)."""
         n, omega, model = self.n, self.omega, self.model
 
         def op(z):
@@ -298,10 +313,26 @@ class _ModalHill(HillProblem):
 
         return op
 
-    def _arnoldi(self, solve, sigma: float) -> np.ndarray:
-        """The eigenvalues nearest ``sigma`` covering the disc ``|lambda - sigma| < omega`` (the rule of
-        :meth:`HillProblem._nearest`), the iteration started from the previous point's eigenvectors."""
-        op = self._companion(solve, sigma)
+    def _keep(self, lam, sigma: float, X, radius: float) -> None:
+        """:attr:`needed` and :attr:`vectors` from the eigenvalues ``lam`` and eigenvectors ``X`` ``(2n, k)`` found:
+        the disc's eigenvectors and :data:`BLOCK_GUARD` beyond it (the nearest), one of each conjugate pair, real
+        and imaginary parts, orthonormalised."""
+        distance = np.abs(lam - sigma)
+        inside = distance < radius
+        self.needed = int(np.count_nonzero(inside))
+        order = np.argsort(distance, kind="stable")
+        chosen = order[:self.needed + BLOCK_GUARD]
+        chosen = chosen[lam[chosen].imag >= 0]  # a conjugate pair's span is that of one member's two parts
+        parts = [X[:, chosen].real, X[:, chosen[lam[chosen].imag > 0]].imag]
+        V = np.hstack(parts)
+        self.vectors = np.linalg.qr(V)[0] if V.shape[1] else None
+
+    def _arnoldi(self, op, sigma: float) -> np.ndarray:
+        """The eigenvalues nearest ``sigma`` by ARPACK, the iteration started from the previous point's eigenvectors,
+        until they cover the disc ``|lambda - sigma| < DISC omega`` (the rule of :meth:`HillProblem._nearest` on a
+        smaller disc) and hold the leading exponent: a strip exponent found with a real part above ``-sqrt(DISC^2 -
+        1/4) omega``, which no exponent of the strip outside the disc can exceed unless unstable (else the disc
+        ``|lambda - sigma| < omega``)."""
         size = 2 * self.n
         linear = spla.LinearOperator((size, size), matvec=op, dtype=float)
         v0 = None
@@ -309,14 +340,20 @@ class _ModalHill(HillProblem):
             v0 = self.basis.sum(axis=1) + 1e-3 * np.random.default_rng(0).standard_normal(size) / np.sqrt(size)
         most = min(size - 2, NEAREST_LIMIT)
         k = min(max(self.start, 1), most)
+        radius = self.disc * self.omega
         while True:
             ncv = min(max(2 * k + 1, ARNOLDI_BASIS), size)
-            mu, X = spla.eigs(linear, k=k, which="LM", tol=1e-10, v0=v0, ncv=ncv)
+            mu, X = spla.eigs(linear, k=k, which="LM", tol=ARNOLDI_TOLERANCE, v0=v0, ncv=ncv)
             lam = sigma + 1.0 / mu
-            if np.max(np.abs(lam - sigma)) >= self.omega or k >= most:
-                inside = np.abs(lam - sigma) < self.omega
-                self.needed = int(np.count_nonzero(inside))
-                self.vectors = X[:, inside].real
+            covered = np.max(np.abs(lam - sigma)) >= radius
+            if covered and radius < self.omega:
+                strip = lam[np.abs(lam.imag) <= 0.5 * self.omega]
+                floor = -np.sqrt(max(self.disc ** 2 - 0.25, 0.0)) * self.omega
+                if not strip.size or strip.real.max() <= floor:  # the leading exponent may lie beyond the disc
+                    radius = self.omega
+                    covered = np.max(np.abs(lam - sigma)) >= radius
+            if covered or k >= most:
+                self._keep(lam, sigma, X, radius)
                 return lam
             k = min(2 * k, most)
 
@@ -325,19 +362,19 @@ class _ModalHill(HillProblem):
         inverse = model.inverse_linear(self.omega, sigma)
         if inverse is None:
             return None
-        r = model.nb * model.retained
-        L = model.apply_inverse(inverse, model.Phi_t)  # A^-1 Phi^T, (n, r)
-        G = model.project(L) + model.R  # the receptance R + Phi A^-1 Phi^T, (r, r)
+        G = model.receptance(inverse)  # R + Phi A^-1 Phi^T, (r, r)
+        r = G.shape[0]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", sla.LinAlgWarning)  # a zero pivot: refused just below
             lu, piv = sla.lu_factor(np.eye(r) + G @ self.Jc, check_finite=False)
         if not np.all(np.diag(lu)):
             return None
-        W = self.Jc @ sla.lu_solve((lu, piv), np.eye(r), check_finite=False)  # Jc (I + G Jc)^-1
+        Jc, getrs = self.Jc, sla.lapack.dgetrs
 
         def solve(b):
             y = model.apply_inverse(inverse, b)
-            return y - L @ (W @ model.project(y))
+            z = getrs(lu, piv, model.project(y))[0]  # (I + G Jc)^-1 Phi y
+            return y - model.apply_inverse(inverse, model.lift(Jc @ z))
 
         return solve
 
@@ -366,8 +403,7 @@ class _ModalParts:
         classical = off.size == 0 or off.max() <= CLASSICAL * max(float(np.abs(self.Cm).max()), 1e-300)
         self.damping = np.diag(self.Cm).copy() if classical else None
         self.phi_r = np.asarray(linear.phi_r, dtype=float)
-        mr = self.retained = self.phi_r.shape[0]
-        self.Phi_t = np.kron(np.eye(self.nb), self.phi_r.T)  # Phi^T, (n, nb mr)
+        self.retained = self.phi_r.shape[0]
         self.R = np.kron(np.eye(self.nb), np.asarray(linear.residual, dtype=float))
         p = np.arange(self.nb)
         self.harmonic = (p + 1) // 2  # of each row of coefficients
@@ -418,12 +454,42 @@ class _ModalParts:
         return (self.phi_r @ Y).reshape((self.nb * self.retained,) + y.shape[1:])
 
     def apply_D1(self, a, omega: float) -> np.ndarray:
-        """``(I (x) Cm + 2 omega D (x) I) a`` for ``a`` ``(n,)``."""
+        """``(I (x) Cm + 2 omega D (x) I) a`` for ``a`` ``(n,)`` or ``(n, p)``."""
         if self.damping is not None:
-            return self.c_flat * a + (2.0 * omega) * self.d_flat * a[self.partner]
-        A = a.reshape(self.nb, self.modes)
-        return (A @ self.Cm + (2.0 * omega) * (self.D @ A)).ravel()
+            c, d = (self.c_flat, self.d_flat) if a.ndim == 1 else (self.c_flat[:, None], self.d_flat[:, None])
+            return c * a + (2.0 * omega) * d * a[self.partner]
+        A = a.reshape(self.nb, self.modes, -1)
+        out = np.einsum("ij,hjp->hip", self.Cm.T, A) + (2.0 * omega) * np.einsum("hk,kjp->hjp", self.D, A)
+        return out.reshape(a.shape)
 
+    def lift(self, w) -> np.ndarray:
+        """``Phi^T w``: modal coefficients ``(n,)`` or ``(n, p)`` of forces ``w`` on the retained unknowns
+        ``(nb mr,)`` or ``(nb mr, p)``."""
+        W = w.reshape(self.nb, self.retained, -1)
+        return (self.phi_r.T @ W).reshape((self.nb * self.modes,) + w.shape[1:])
+
+    def receptance(self, inverse) -> np.ndarray:
+        """``G = R + Phi A^-1 Phi^T`` ``(nb mr, nb mr)`` from :meth:`inverse_linear`'s ``A^-1``: on harmonic ``h``'s
+        cosine and sine rows ``[[Phi P Phi^T, Phi Q Phi^T], [-Phi Q Phi^T, Phi P Phi^T]]`` (``h = 0``: its ``P``)."""
+        P, Q = inverse
+        phi, nb, mr = self.phi_r, self.nb, self.retained
+        if P.ndim == 1:  # classical damping: the diagonals of each harmonic (Q signed per row: + on cosine rows)
+            rows = np.r_[0, 1:nb:2]  # the static row and each harmonic's cosine rows
+            P, Q = P.reshape(nb, self.modes)[rows], Q.reshape(nb, self.modes)[rows]
+            GP = (phi[None] * P[:, None, :]) @ phi.T
+            GQ = (phi[None] * Q[:, None, :]) @ phi.T
+        else:
+            GP = phi @ P @ phi.T
+            GQ = phi @ Q @ phi.T
+        G = self.R.copy()
+        G[:mr, :mr] += GP[0]
+        for h in range(1, self.H + 1):
+            c, s = slice((2 * h - 1) * mr, 2 * h * mr), slice(2 * h * mr, (2 * h + 1) * mr)
+            G[c, c] += GP[h]
+            G[s, s] += GP[h]
+            G[c, s] += GQ[h]
+            G[s, c] -= GQ[h]
+        return G
 
 def _factor(A):
     """``solve(b)`` with a factorisation of ``A`` (sparse or dense), None when ``A`` is exactly singular."""
@@ -528,8 +594,9 @@ class _Builder:
             self.Kx, self.Cx, self.Mx = (_kron(I, K, sparse), _kron(self.D, C, sparse), _kron(self.W, M, sparse))
             self.rows = (np.arange(nb)[:, None] * m + hb.retained[None, :]).ravel()  # the retained unknowns
 
-    def problem(self, x, omega: float) -> HillProblem:
-        """The Hill problem at the solution ``x`` (m) of ``hb`` at ``omega`` (rad/s)."""
+    def problem(self, x, omega: float, disc: float | None = None) -> HillProblem:
+        """The Hill problem at the solution ``x`` (m) of ``hb`` at ``omega`` (rad/s) (``disc``: the structured solver's
+        disc as a share of ``omega``, default :data:`DISC`)."""
         hb = self.hb
         if self.kind == "none":
             _, J0, _ = hb._evaluate(x, omega)
@@ -538,7 +605,7 @@ class _Builder:
             hb._aft(x)
             Jc = _dense(hb._contact_jacobian()) if hb.nc else np.zeros((hb.n, hb.n))  # on the retained DOFs
             if hasattr(self, "parts"):
-                return _ModalHill(self.parts, Jc, omega, self.start, self.basis)
+                return _ModalHill(self.parts, Jc, omega, self.start, self.basis, disc)
             if self.kind == "modal":
                 X = np.linalg.solve(np.eye(Jc.shape[0]) + self.R @ Jc, self.Phi)
                 J0 = self.Lam + omega * self.DC - omega ** 2 * self.WI + self.Phi.T @ (Jc @ X)
@@ -546,10 +613,10 @@ class _Builder:
                 J0 = self._whole(Jc, omega)
         return HillProblem(J0, self.C1 + (2.0 * omega) * self.M1, self.D2, self.m, omega, self.solve_D2, self.start)
 
-    def exponents(self, x, omega: float) -> np.ndarray:
+    def exponents(self, x, omega: float, disc: float | None = None) -> np.ndarray:
         """The Floquet exponents at the solution ``x`` (m) at ``omega`` (rad/s); the next point's solver starts from
         a few more eigenvalues than this one's disc ``|lambda| <= omega`` held (the curve changes little)."""
-        problem = self.problem(x, omega)
+        problem = self.problem(x, omega, disc)
         lam = problem.exponents()
         self.start = max(NEAREST_START, problem.needed + problem.needed // 4 + 2)
         if isinstance(problem, _ModalHill):
@@ -628,6 +695,14 @@ def _crossing(a: float, b: float) -> float:
     return float(np.clip(a / (a - b), 0.0, 1.0)) if a != b and a * b <= 0 else 0.5
 
 
+def _unstable(exponents, omegas) -> tuple[list, list]:
+    """Per point: the unstable exponents of each kind (counts) and :func:`_kinds`' masks."""
+    kinds = [_kinds(lam, w) for lam, w in zip(exponents, omegas)]
+    unstable = [{k: int(np.count_nonzero(m & (lam.real > TOLERANCE * w))) for k, m in kind.items()}
+                for lam, w, kind in zip(exponents, omegas, kinds)]
+    return unstable, kinds
+
+
 def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured"
            ) -> tuple[np.ndarray | None, np.ndarray | None, list[Bifurcation]]:
     """Stability of every point of a curve and the bifurcations between them.
@@ -666,11 +741,15 @@ def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured"
         return None, None, []
     with one_blas_thread():
         exponents = [builder.exponents(x, float(w)) for x, w in zip(xs, omegas)]
+        unstable, kinds = _unstable(exponents, omegas)
+        if hasattr(builder, "parts"):  # the structured solver's smaller disc: each side of a bifurcation on the
+            # formed problem's disc, so that the exponents it is interpolated from are those the formed rule finds
+            changed = [k for k in range(len(omegas) - 1) if unstable[k] != unstable[k + 1]]
+            for k in sorted({k for c in changed for k in (c, c + 1)}):
+                exponents[k] = builder.exponents(xs[k], float(omegas[k]), disc=1.0)
+            unstable, kinds = _unstable(exponents, omegas)
     stable = np.array([not np.any(lam.real > TOLERANCE * w) for lam, w in zip(exponents, omegas)])
     leading = np.array([lam[0] if lam.size else complex(np.nan, np.nan) for lam in exponents])
-    kinds = [_kinds(lam, w) for lam, w in zip(exponents, omegas)]
-    unstable = [{k: int(np.count_nonzero(m & (lam.real > TOLERANCE * w))) for k, m in kind.items()}
-                for lam, w, kind in zip(exponents, omegas, kinds)]
     found = []
     for k in range(len(omegas) - 1):
         a, b = exponents[k], exponents[k + 1]
