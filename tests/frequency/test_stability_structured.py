@@ -15,6 +15,7 @@ from microslip.frequency.analyses import stability
 from microslip.frequency.analyses.response import MAX_PERIODS, _equations
 from microslip.frequency.equations.hbm import harmonic_operators
 
+from _models import plane_chain
 from _paths import EXAMPLES
 
 sys.path.insert(0, str(EXAMPLES))
@@ -120,18 +121,7 @@ def test_a_plane_contact(monkeypatch):
     """A chain of masses in x and y with a contact on its plane at the free end (two tangential directions);
     7 modes, H = 3: 49 unknowns."""
     monkeypatch.setattr(stability, "DENSE_LIMIT", 10)
-    n = 4
-    K = np.zeros((2 * n, 2 * n))
-    for axis, k in ((0, 1e5), (1, 1.2e5)):
-        idx = np.arange(axis, 2 * n, 2)
-        for a, b in zip(idx[:-1], idx[1:]):
-            K[np.ix_([a, b], [a, b])] += k * np.array([[1, -1], [-1, 1]])
-        K[idx[0], idx[0]] += k
-    s = Structure(np.eye(2 * n) * 0.2, 1e-4 * K, K)
-    model = MicroslipModel(kt=[3e4, 2e4, 1e4], kn=[2e6, 2e6, 2e6], gaps=[0.0, 0.3e-6, 0.6e-6], mu=0.5)
-    s.add_contact(model, tangential=[{2 * n - 2: 1.0}, {2 * n - 1: 1.0}], approach=1e-6)
-    force = np.zeros(2 * n)
-    force[2 * n - 2:] = 1.6 * np.array([np.cos(np.radians(30)), np.sin(np.radians(30))])
+    s, force = plane_chain(4)
     curve, structured, full = both_methods(s, force, (150.0, 350.0), 3, "modal", modes=7)
     assert curve.contact_dissipation.max() > 0  # the contact slips
     agree(curve, structured, full)
