@@ -89,12 +89,16 @@ class HarmonicOperator:
             return self.A[h]
         return self.B[h] if row % 2 else -self.B[h]
 
-    def submatrix(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-        """The dense block ``J[rows][:, cols]`` (index arrays), built from the parts without the whole matrix."""
+    def submatrix(self, rows: np.ndarray, cols: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """The dense block ``J[rows][:, cols]`` (index arrays), built from the parts without the whole matrix
+        (into ``out``, shape ``(rows.size, cols.size)``, when given)."""
         m = self.ndof
         r_slot, r_dof = np.divmod(rows, m)
         c_slot, c_dof = np.divmod(cols, m)
-        out = np.zeros((rows.size, cols.size))
+        if out is None:
+            out = np.zeros((rows.size, cols.size))
+        else:
+            out[...] = 0.0
         c_sets = {int(c): np.flatnonzero(c_slot == c) for c in np.unique(c_slot)}
         for r in np.unique(r_slot):
             ri = np.flatnonzero(r_slot == r)
@@ -105,7 +109,9 @@ class HarmonicOperator:
         if self.contacts is not None:
             if not sp.isspmatrix_csr(self.contacts):
                 self.contacts = self.contacts.tocsr()  # rows picked once per block
-            out += self.contacts[rows][:, cols].toarray()
+                self.contacts.sum_duplicates()
+            picked = self.contacts[rows][:, cols].tocoo()  # no two entries at one place: summed above
+            out[picked.row, picked.col] += picked.data
         if self.factor != 1.0:
             out *= self.factor
         return out

@@ -27,9 +27,15 @@ def dense(A) -> np.ndarray:
     return A.toarray() if hasattr(A, "toarray") else np.asarray(A)
 
 
-def submatrix(A, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-    """The dense block ``A[rows][:, cols]`` of an operator or an array (index arrays)."""
-    return A.submatrix(rows, cols) if hasattr(A, "submatrix") else np.asarray(A)[np.ix_(rows, cols)]
+def submatrix(A, rows: np.ndarray, cols: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+    """The dense block ``A[rows][:, cols]`` of an operator or an array (index arrays), into ``out`` when given."""
+    if hasattr(A, "submatrix"):
+        return A.submatrix(rows, cols, out)
+    block = np.asarray(A)[np.ix_(rows, cols)]
+    if out is None:
+        return block
+    out[...] = block
+    return out
 
 
 def block_index(rows: np.ndarray, cols: np.ndarray) -> tuple:
@@ -69,8 +75,8 @@ class ScaledColumns:
     def groups(self) -> list | None:
         return groups(self.A)  # scaling columns moves no entry
 
-    def submatrix(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-        out = submatrix(self.A, rows, cols)
+    def submatrix(self, rows: np.ndarray, cols: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        out = submatrix(self.A, rows, cols, out)
         out *= self.s[cols]
         return out
 
@@ -106,15 +112,17 @@ class Bordered:
         border = np.arange(self.n, self.shape[0])
         return [(interior, np.concatenate([coupled, border])) for interior, coupled in inner]
 
-    def submatrix(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    def submatrix(self, rows: np.ndarray, cols: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         n = self.n
         r_in, c_in = np.flatnonzero(rows < n), np.flatnonzero(cols < n)
         r_out, c_out = np.flatnonzero(rows >= n), np.flatnonzero(cols >= n)
-        head = submatrix(self.A, rows[r_in], cols[c_in])
-        if r_out.size == 0 and c_out.size == 0:
-            return head
-        out = np.empty((rows.size, cols.size))
-        out[block_index(r_in, c_in)] = head
+        if out is None:
+            out = np.empty((rows.size, cols.size))
+        where = block_index(r_in, c_in)
+        if isinstance(where[0], slice) and isinstance(where[1], slice):  # a view: filled in place
+            submatrix(self.A, rows[r_in], cols[c_in], out[where])
+        else:
+            out[where] = submatrix(self.A, rows[r_in], cols[c_in])
         out[block_index(r_in, c_out)] = self.U[np.ix_(rows[r_in], cols[c_out] - n)]
         out[block_index(r_out, c_in)] = self.V[np.ix_(rows[r_out] - n, cols[c_in])]
         out[block_index(r_out, c_out)] = self.D[np.ix_(rows[r_out] - n, cols[c_out] - n)]
