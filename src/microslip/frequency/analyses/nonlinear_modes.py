@@ -379,9 +379,9 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):  # a diverging iterate fails by name
             y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
         report = Progress(10, enabled=progress)
-        branches = []
+        branches, lines = [], []
         ys, ss, iters, complete, stopped = follow(
-            eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, report=report, branch_points=branches,
+            eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, report=report, branch_points=branches, lines=lines,
             describe=lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
         if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
             phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
@@ -391,7 +391,14 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
                                f"{result.points} points, before the end of the range ({hi:.6g} kg^1/2 m)",
                                replace(result, elapsed=time.perf_counter() - start)) from None
     report.done(f"nonlinear mode: {result.points} points")
-    if not complete:
+    if lines:
+        warnings.warn(f"the mode ran onto a line of periodic motions at modal amplitude {np.exp(lines[0]):.6g} kg^1/2 m "
+                      f"({result.omega[-1]:.6g} rad/s) that does not end: along it only the mean (harmonic 0) "
+                      f"position of some body changes -- typically an under-platform damper whose contacts all slide "
+                      f"or stay open over the period, so that nothing holds its mean position; the curve ends there, "
+                      f"below the range's end ({hi:.6g}). A retention (UnderPlatformDamper(retention=...), N/m) "
+                      f"holds the damper's mean position", IncompleteCurveWarning, stacklevel=2)
+    elif not complete:
         warnings.warn(f"the continuation stopped at max_points = {ctl.max_points} points at modal amplitude "
                       f"{result.modal_amplitude[-1]:.6g} kg^1/2 m, before the end of the range ({hi:.6g}); raise "
                       f"StepControl.max_points (or ds_max) to follow the whole mode", IncompleteCurveWarning,
