@@ -401,7 +401,8 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         Receives the ``omega`` (rad/s) where the curve ran onto a straight line
         of solutions at that one value and followed it, in steps doubling from
         point to point, to :data:`LINE_REACH` times ``control.ds_max`` without
-        reaching its end: the continuation stops there (``complete`` False).
+        reaching its end: the continuation stops there (``complete`` False), and
+        the points on the line are dropped (the curve ends where it starts).
         Such a line is a free motion of the solution at one parameter value
         (a body whose contacts all slide or stay open over the period, its mean
         position then free); a line that ends (at a kink, where a contact changes
@@ -450,6 +451,7 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
     complete = False
+    line_start = None  # index of the point where a line at one parameter value starts
     while len(omegas) < ctl.max_points:
         refused_angle = np.inf  # turn at the last step refused for turning too much
         failed = False  # the corrector failed at this point already
@@ -519,11 +521,14 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         turn = 0.0 if kink else angle
         factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(turn, 1e-12))
         if on_line:  # every point of a straight line at one parameter value is as good: cross it in doubling steps
+            line_start = len(omegas) - 2 if line_start is None else line_start
             if ds >= LINE_REACH * ctl.ds_max:  # still straight after that: the line does not end
                 if lines is not None:
                     lines.append(float(y[-1]))
-                break
+                del xs[line_start + 1:], omegas[line_start + 1:], iters[line_start + 1:]  # the curve ends where
+                break                                                                     # the line starts
             ds *= 2.0
             continue
+        line_start = None
         ds = float(np.clip(ds * max(factor, 0.5), ctl.ds_min, ctl.ds_max))
     return np.array(xs), np.array(omegas), np.array(iters), complete
