@@ -337,7 +337,11 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     Warns
     -----
     IncompleteCurveWarning
-        When the continuation stops at ``control.max_points`` before ``amplitude[1]``.
+        When the continuation stops at ``control.max_points`` before ``amplitude[1]``,
+        or where the mode runs onto a line of periodic motions at one amplitude
+        that does not end (only the mean position of a body changes along it:
+        an under-platform damper whose contacts all slide or stay open over the
+        period); the mode then ends where the line starts.
     BranchPointWarning
         When the mode passes a branch point (another branch of periodic motions
         crosses it; the curve goes on along its own).

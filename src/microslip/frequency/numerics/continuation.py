@@ -385,8 +385,11 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         A solution at ``omega_start`` (converged).
     omega_start, omega_end : float
         Frequency range (rad/s); the curve is followed while it stays inside.
-    x_scale, r_scale : float
-        Scales of ``x`` (m) and of the residual (N).
+    x_scale : float or ndarray, shape (n,)
+        Scale of ``x`` (m), one for all unknowns or one each (the arclength weighs
+        ``x / x_scale``).
+    r_scale : float
+        Scale of the residual (N).
     control : StepControl, optional
         Step-size settings.
     callback : callable, optional
