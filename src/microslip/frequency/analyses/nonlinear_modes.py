@@ -244,6 +244,21 @@ def _check_diameter(structure: Structure, nodal_diameter):
     return nd
 
 
+#: the arclength of a mode weighs the static (harmonic 0) part of the motion per unit amplitude this many times
+#: less than its harmonics, frequency and damping: an under-platform damper's mean position, held by friction alone
+#: where its contacts slide, drifts with the amplitude by up to several times the motion's own amplitude and
+#: otherwise spends the steps (back and forth across the kinks where its contacts change state) on the drift
+HARMONIC0_SCALE = 30.0
+
+
+def arclength_scale(ndof: int, size: int) -> np.ndarray:
+    """The scale of each of a mode's ``size`` scaled unknowns in the arclength: :data:`HARMONIC0_SCALE` on the
+    first ``ndof`` (harmonic 0), 1 on the others."""
+    scale = np.ones(size)
+    scale[:ndof] = HARMONIC0_SCALE
+    return scale
+
+
 #: points per decade of amplitude at least, with the default step control
 POINTS_PER_DECADE = 20
 
@@ -385,7 +400,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         report = Progress(10, enabled=progress)
         branches, lines = [], []
         ys, ss, iters, complete, stopped = follow(
-            eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, report=report, branch_points=branches, lines=lines,
+            eq, y, s0, s1, x_scale=arclength_scale(hb.ndof, y.size), r_scale=1.0, control=ctl, report=report, branch_points=branches, lines=lines,
             describe=lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
         if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
             phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
