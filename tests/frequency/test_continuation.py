@@ -82,3 +82,39 @@ def test_the_factored_bordered_system_gives_the_determinants_sign_with_any_last_
     A[:, 3] = 0.0  # singular: no sign, NaN solves (the continuation then shortens its step)
     f = _Factored(A, A[-1])
     assert f.sign_with_row(rng.normal(size=80)) == 0.0 and np.isnan(f.solve(np.ones(80))).all()
+
+
+class Plateau(Zigzag):
+    """``R(x, omega) = omega - g(x)``: ``g`` rises with slope 1 to 0.5 at ``x = 0``, stays there until ``end``,
+    then rises again -- a straight line of solutions at ``omega = 0.5`` (unbounded with ``end`` None)."""
+
+    def __init__(self, end=None):
+        super().__init__()
+        self.end = end
+
+    def _evaluate(self, x, omega, jacobian=True):
+        u = float(x[0])
+        g, slope = (0.5 + u, 1.0) if u < 0 else (0.5, 0.0)
+        if self.end is not None and u > self.end:
+            g, slope = 0.5 + (u - self.end), 1.0
+        R = np.array([omega - g])
+        return R if not jacobian else (R, np.array([[-slope]]), np.array([1.0]))
+
+
+def test_a_line_of_solutions_at_one_parameter_value_that_does_not_end_stops_the_curve_where_it_starts():
+    lines = []
+    xs, omegas, _, complete = continuation(Plateau(), np.array([-0.5]), 0.0, 1.0, x_scale=1.0, r_scale=1.0,
+                                           lines=lines)
+    assert not complete and lines == [pytest.approx(0.5, abs=1e-12)]
+    # the points up to the line's start, every one on the curve; none on the line beyond its first point
+    np.testing.assert_allclose(omegas, 0.5 + np.minimum(xs[:, 0], 0.0), rtol=0, atol=1e-12)
+    assert xs[-1, 0] < 0.1 and len(omegas) < 60  # the line (arclength 1e6 ds_max) took no point of the curve's
+
+
+def test_a_line_of_solutions_that_ends_is_crossed_in_few_points():
+    end = 2.0  # 40 steps of ds_max = 0.05 long (the range of omega, 1, is the scaled length unit)
+    xs, omegas, _, complete = continuation(Plateau(end), np.array([-0.5]), 0.0, 1.0, x_scale=1.0, r_scale=1.0)
+    assert complete and omegas[-1] == 1.0
+    np.testing.assert_allclose(omegas, [0.5 + min(x, 0.0) + max(x - end, 0.0) for x in xs[:, 0]], rtol=0, atol=1e-12)
+    on_line = np.count_nonzero((xs[:, 0] > 1e-9) & (xs[:, 0] < end - 1e-9))
+    assert 0 < on_line < 12  # doubling steps from ds_max: about log2(40) + the steps shortened near its end

@@ -244,6 +244,21 @@ def _check_diameter(structure: Structure, nodal_diameter):
     return nd
 
 
+#: the arclength of a mode weighs the static (harmonic 0) part of the motion per unit amplitude this many times
+#: less than its harmonics, frequency and damping: an under-platform damper's mean position, held by friction alone
+#: where its contacts slide, drifts with the amplitude by up to several times the motion's own amplitude and
+#: otherwise spends the steps (back and forth across the kinks where its contacts change state) on the drift
+HARMONIC0_SCALE = 30.0
+
+
+def arclength_scale(ndof: int, size: int) -> np.ndarray:
+    """The scale of each of a mode's ``size`` scaled unknowns in the arclength: :data:`HARMONIC0_SCALE` on the
+    first ``ndof`` (harmonic 0), 1 on the others."""
+    scale = np.ones(size)
+    scale[:ndof] = HARMONIC0_SCALE
+    return scale
+
+
 #: points per decade of amplitude at least, with the default step control
 POINTS_PER_DECADE = 20
 
@@ -337,7 +352,11 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     Warns
     -----
     IncompleteCurveWarning
-        When the continuation stops at ``control.max_points`` before ``amplitude[1]``.
+        When the continuation stops at ``control.max_points`` before ``amplitude[1]``,
+        or where the mode runs onto a line of periodic motions at one amplitude
+        that does not end (only the mean position of a body changes along it:
+        an under-platform damper whose contacts all slide or stay open over the
+        period); the mode then ends where the line starts.
     BranchPointWarning
         When the mode passes a branch point (another branch of periodic motions
         crosses it; the curve goes on along its own).
@@ -379,9 +398,9 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):  # a diverging iterate fails by name
             y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
         report = Progress(10, enabled=progress)
-        branches = []
+        branches, lines = [], []
         ys, ss, iters, complete, stopped = follow(
-            eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, report=report, branch_points=branches,
+            eq, y, s0, s1, x_scale=arclength_scale(hb.ndof, y.size), r_scale=1.0, control=ctl, report=report, branch_points=branches, lines=lines,
             describe=lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
         if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
             phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
@@ -391,7 +410,14 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
                                f"{result.points} points, before the end of the range ({hi:.6g} kg^1/2 m)",
                                replace(result, elapsed=time.perf_counter() - start)) from None
     report.done(f"nonlinear mode: {result.points} points")
-    if not complete:
+    if lines:
+        warnings.warn(f"the mode ran onto a line of periodic motions at modal amplitude {np.exp(lines[0]):.6g} kg^1/2 m "
+                      f"({result.omega[-1]:.6g} rad/s) that does not end: along it only the mean (harmonic 0) "
+                      f"position of some body changes -- typically an under-platform damper whose contacts all slide "
+                      f"or stay open over the period, so that nothing holds its mean position; the curve ends there, "
+                      f"below the range's end ({hi:.6g}). A retention (UnderPlatformDamper(retention=...), N/m) "
+                      f"holds the damper's mean position", IncompleteCurveWarning, stacklevel=2)
+    elif not complete:
         warnings.warn(f"the continuation stopped at max_points = {ctl.max_points} points at modal amplitude "
                       f"{result.modal_amplitude[-1]:.6g} kg^1/2 m, before the end of the range ({hi:.6g}); raise "
                       f"StepControl.max_points (or ds_max) to follow the whole mode", IncompleteCurveWarning,

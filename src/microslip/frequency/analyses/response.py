@@ -621,7 +621,10 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
     -----
     IncompleteCurveWarning
         When the curve stops at ``control.max_points`` points (the message
-        names the limit and the frequency reached).
+        names the limit and the frequency reached), or where it runs onto a
+        line of solutions at one frequency that does not end (only a body's
+        mean position changes along it: a damper held by no closed contact;
+        see :func:`~microslip.frequency.numerics.continuation.continuation`).
     """
     start = time.perf_counter()
     lo, hi = _omega_range(omega)
@@ -637,8 +640,9 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
                                                        reduction, modes, engine_order)
         report = Progress(10, enabled=progress)
         describe = lambda w, count: f"omega = {w:.6g} rad/s ({w / (2 * np.pi):.6g} Hz), {count} points"  # noqa: E731
+        lines = []
         xs, omegas, iters, complete, stopped = follow(hb, x, lo, hi, x_scale=x_scale, r_scale=r_scale,
-                                                      control=control, report=report, describe=describe)
+                                                      control=control, report=report, describe=describe, lines=lines)
         result = _collect(hb, xs, omegas, iters, static, complete)
         if stopped:
             raise CurveInterrupted(f"interrupted at omega = {omegas[-1]:.6g} rad/s after {omegas.size} points, "
@@ -652,7 +656,13 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
                                        "itself is complete; its stability is not known)",
                                        replace(result, elapsed=time.perf_counter() - start)) from None
     report.done(f"frequency response: {omegas.size} points")
-    if not complete:
+    if lines:
+        warnings.warn(f"the curve ran onto a line of solutions at omega = {lines[0]:.6g} rad/s that does not end: along "
+                      f"it only the mean (harmonic 0) position of some body changes -- typically a damper whose "
+                      f"contacts all slide or stay open over the period, so that nothing holds its mean position; "
+                      f"the curve ends there, before the end of the range ({hi:.6g} rad/s)", IncompleteCurveWarning,
+                      stacklevel=2)
+    elif not complete:
         warnings.warn(incomplete_message(result, hi, control or StepControl()), IncompleteCurveWarning,
                       stacklevel=2)
     return replace(result, elapsed=time.perf_counter() - start)
@@ -705,7 +715,8 @@ class _Accepted:
 
 
 def follow(problem, x0, start: float, end: float, *, x_scale: float, r_scale: float, control=None,
-           report: Progress | None = None, describe=None, branch_points: list | None = None):
+           report: Progress | None = None, describe=None, branch_points: list | None = None,
+           lines: list | None = None):
     """:func:`~microslip.frequency.numerics.continuation.continuation`, keeping what it has when interrupted.
 
     ``(xs, params, iterations, complete, interrupted)``: on Ctrl-C the points
@@ -732,7 +743,7 @@ def follow(problem, x0, start: float, end: float, *, x_scale: float, r_scale: fl
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
             xs, params, iters, complete = continuation(followed, x0, start, end, x_scale=x_scale, r_scale=r_scale,
                                                        control=control, callback=followed.accepted,
-                                                       branch_points=branch_points)
+                                                       branch_points=branch_points, lines=lines)
     except KeyboardInterrupt:
         xs = np.array([np.asarray(x0, dtype=float)] + followed.xs)
         params = np.array([start] + followed.params)

@@ -158,7 +158,7 @@ def _newton(problem, x, omega, r_scale, x_scale, tolerance, max_iterations, solv
             R_new, J_new = problem._evaluate(x_new, omega, jacobian=False), None
             norm_new = np.linalg.norm(R_new) / r_scale
         x = x_new
-        step = lam * np.max(np.abs(dx)) / x_scale
+        step = lam * float(np.max(np.abs(dx) / x_scale))
         if J_new is None:
             R_new, J_new, _ = _evaluate(problem, x, omega, solver)
             norm_new = np.linalg.norm(R_new) / r_scale
@@ -227,6 +227,15 @@ def _correct(problem, y_pred, tau, scale, r_scale, ctl, last=None, solver=None):
 #: of a smooth curve, passed on the same branch (a step past a corner onto the branch coming back from it loses
 #: the change when halved well before that)
 BRANCH_STEP = 1e-3
+
+#: a step along which the parameter moves less than this fraction of the step's length, and which turns by less than
+#: :data:`LINE_ANGLE` times ``max_angle`` from the last, lies on a line of solutions at one parameter value
+LINE_PARAMETER = 1e-9
+LINE_ANGLE = 1e-3
+
+#: such a line is crossed in steps that double from one point to the next (its points differ only along the line);
+#: still straight at a step this many times ``ds_max``, it does not end and the continuation stops there
+LINE_REACH = 1e6
 
 #: smallest dense bordered system whose LU factors are kept for the point's orientation: below it, a solve
 #: and a determinant of their own cost less than the factors' calls (the crossover was measured on small
@@ -364,7 +373,8 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
 
 
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
-                 control: StepControl | None = None, callback=None, branch_points: list | None = None):
+                 control: StepControl | None = None, callback=None, branch_points: list | None = None,
+                 lines: list | None = None):
     """Follow the solution curve of ``R(x, omega) = 0`` from ``omega_start`` to ``omega_end``.
 
     Parameters
@@ -375,8 +385,11 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         A solution at ``omega_start`` (converged).
     omega_start, omega_end : float
         Frequency range (rad/s); the curve is followed while it stays inside.
-    x_scale, r_scale : float
-        Scales of ``x`` (m) and of the residual (N).
+    x_scale : float or ndarray, shape (n,)
+        Scale of ``x`` (m), one for all unknowns or one each (the arclength weighs
+        ``x / x_scale``).
+    r_scale : float
+        Scale of the residual (N).
     control : StepControl, optional
         Step-size settings.
     callback : callable, optional
@@ -387,6 +400,16 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
         smooth stretch (the secant straight, the corrector converging), which
         halving the step does not remove: another branch of solutions crosses the
         curve there. The curve goes on along the same branch.
+    lines : list, optional
+        Receives the ``omega`` (rad/s) where the curve ran onto a straight line
+        of solutions at that one value and followed it, in steps doubling from
+        point to point, to :data:`LINE_REACH` times ``control.ds_max`` without
+        reaching its end: the continuation stops there (``complete`` False), and
+        the points on the line are dropped (the curve ends where it starts).
+        Such a line is a free motion of the solution at one parameter value
+        (a body whose contacts all slide or stay open over the period, its mean
+        position then free); a line that ends (at a kink, where a contact changes
+        state) is crossed in those doubling steps and the curve goes on.
 
     Returns
     -------
@@ -403,13 +426,14 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     solver = _solver_for(problem)  # one factorisation reused over many steps when the Jacobian is an operator
     if solver is None:
         return _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points,
-                             solver)
+                             solver, lines)
     with solver_threads():  # small products; the rare factorisations take the threads they need
         return _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points,
-                             solver)
+                             solver, lines)
 
 
-def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points, solver):
+def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points, solver,
+                  lines=None):
     n = x0.size
     scale = np.empty(n + 1)
     scale[:-1] = x_scale
@@ -430,6 +454,7 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
     xs, omegas, iters = [x0.copy()], [omega_start], [0]
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
     complete = False
+    line_start = None  # index of the point where a line at one parameter value starts
     while len(omegas) < ctl.max_points:
         refused_angle = np.inf  # turn at the last step refused for turning too much
         failed = False  # the corrector failed at this point already
@@ -470,6 +495,10 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
                 ds *= 0.5
                 continue
             break
+        # a straight step that leaves the parameter where it was (to rounding): the solutions form a line at one
+        # parameter value (a body held by contacts that all slide or stay open, its mean position free)
+        on_line = (not kink and angle <= LINE_ANGLE * ctl.max_angle
+                   and abs(yc[-1] - y[-1]) <= LINE_PARAMETER * np.linalg.norm((yc - y) / scale) * scale[-1])
         y, tau = yc, secant
         if not lo <= y[-1] <= hi:
             # left the range: end exactly on its edge (or stop if it turned back out)
@@ -494,5 +523,15 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         # grow when the corrector was quick and the curve straight, shrink otherwise
         turn = 0.0 if kink else angle
         factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(turn, 1e-12))
+        if on_line:  # every point of a straight line at one parameter value is as good: cross it in doubling steps
+            line_start = len(omegas) - 2 if line_start is None else line_start
+            if ds >= LINE_REACH * ctl.ds_max:  # still straight after that: the line does not end
+                if lines is not None:
+                    lines.append(float(y[-1]))
+                del xs[line_start + 1:], omegas[line_start + 1:], iters[line_start + 1:]  # the curve ends where
+                break                                                                     # the line starts
+            ds *= 2.0
+            continue
+        line_start = None
         ds = float(np.clip(ds * max(factor, 0.5), ctl.ds_min, ctl.ds_max))
     return np.array(xs), np.array(omegas), np.array(iters), complete
