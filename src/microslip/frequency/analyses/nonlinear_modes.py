@@ -244,21 +244,6 @@ def _check_diameter(structure: Structure, nodal_diameter):
     return nd
 
 
-#: the arclength of a mode weighs the static (harmonic 0) part of the motion per unit amplitude this many times
-#: less than its harmonics, frequency and damping: an under-platform damper's mean position, held by friction alone
-#: where its contacts slide, drifts with the amplitude by up to several times the motion's own amplitude and
-#: otherwise spends the steps (back and forth across the kinks where its contacts change state) on the drift
-HARMONIC0_SCALE = 30.0
-
-
-def arclength_scale(ndof: int, size: int) -> np.ndarray:
-    """The scale of each of a mode's ``size`` scaled unknowns in the arclength: :data:`HARMONIC0_SCALE` on the
-    first ``ndof`` (harmonic 0), 1 on the others."""
-    scale = np.ones(size)
-    scale[:ndof] = HARMONIC0_SCALE
-    return scale
-
-
 #: points per decade of amplitude at least, with the default step control
 POINTS_PER_DECADE = 20
 
@@ -400,7 +385,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         report = Progress(10, enabled=progress)
         branches, lines = [], []
         ys, ss, iters, complete, stopped = follow(
-            eq, y, s0, s1, x_scale=arclength_scale(hb.ndof, y.size), r_scale=1.0, control=ctl, report=report, branch_points=branches, lines=lines,
+            eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, report=report, branch_points=branches, lines=lines,
             describe=lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
         if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
             phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
@@ -411,8 +396,8 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
                                replace(result, elapsed=time.perf_counter() - start)) from None
     report.done(f"nonlinear mode: {result.points} points")
     if lines:
-        warnings.warn(f"the mode ran onto a line of periodic motions at modal amplitude {np.exp(lines[0]):.6g} kg^1/2 m "
-                      f"({result.omega[-1]:.6g} rad/s) that does not end: along it only the mean (harmonic 0) "
+        warnings.warn(f"the mode ran onto a line of periodic motions at modal amplitude {np.exp(lines[0]):.6g} "
+                      f"kg^1/2 m ({result.omega[-1]:.6g} rad/s) that does not end: along it only the mean (harmonic 0) "
                       f"position of some body changes -- typically an under-platform damper whose contacts all slide "
                       f"or stay open over the period, so that nothing holds its mean position; the curve ends there, "
                       f"below the range's end ({hi:.6g}). A retention (UnderPlatformDamper(retention=...), N/m) "

@@ -657,8 +657,8 @@ def frequency_response(structure: Structure, force, omega, *, harmonics: int = 5
                                        replace(result, elapsed=time.perf_counter() - start)) from None
     report.done(f"frequency response: {omegas.size} points")
     if lines:
-        warnings.warn(f"the curve ran onto a line of solutions at omega = {lines[0]:.6g} rad/s that does not end: along "
-                      f"it only the mean (harmonic 0) position of some body changes -- typically a damper whose "
+        warnings.warn(f"the curve ran onto a line of solutions at omega = {lines[0]:.6g} rad/s that does not end: "
+                      f"along it only the mean (harmonic 0) position of some body changes -- typically a damper whose "
                       f"contacts all slide or stay open over the period, so that nothing holds its mean position; "
                       f"the curve ends there, before the end of the range ({hi:.6g} rad/s)", IncompleteCurveWarning,
                       stacklevel=2)

@@ -54,7 +54,7 @@ from ...common import _checks
 from ...common.errors import BranchPointWarning, ConvergenceError
 from .blas import solver_threads
 from .krylov import Bordered, ScaledColumns
-from .reuse import ReusedFactorisation, newton_rtol
+from .reuse import ReusedFactorisation, lu_sign, newton_rtol
 
 
 @dataclass
@@ -254,9 +254,7 @@ class _Factored:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", sla.LinAlgWarning)  # exactly singular: solves give NaN
             self.lu, self.piv = sla.lu_factor(A, check_finite=False)
-        diagonal = np.diagonal(self.lu)
-        swaps = int(np.count_nonzero(self.piv != np.arange(self.piv.size)))
-        self.sign = float(np.prod(np.sign(diagonal))) * (-1.0 if swaps % 2 else 1.0)
+        self.sign = lu_sign(self.lu, self.piv)
         self.singular = self.sign == 0
 
     def solve(self, b: np.ndarray) -> np.ndarray:

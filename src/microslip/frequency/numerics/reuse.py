@@ -61,6 +61,13 @@ COUNTS = {"factorisations": 0, "krylov_iterations": 0}
 ELIMINATION_RCOND = 1e-8
 
 
+def lu_sign(lu: np.ndarray, piv: np.ndarray) -> float:
+    """Sign of the determinant of the matrix whose LU factors (LAPACK's ``getrf``: unit lower ``L``) are ``lu``,
+    ``piv``: the signs of ``U``'s diagonal times the parity of the row interchanges."""
+    swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
+    return float(np.prod(np.sign(np.diagonal(lu)))) * (-1.0 if swaps % 2 else 1.0)
+
+
 def factors(A, dtype):
     """LU factors of the operator or array ``A`` (:class:`_Eliminated` when it has groups of interior unknowns that
     can be eliminated first, else :class:`_Factors` of its dense matrix)."""
@@ -84,10 +91,8 @@ class _Factors:
         with warnings.catch_warnings(), factor_threads(A.shape[0]):
             warnings.simplefilter("ignore", sla.LinAlgWarning)
             self.lu, self.piv = sla.lu_factor(np.asarray(A, dtype=dtype), overwrite_a=True, check_finite=False)
-        diagonal = np.diagonal(self.lu)
-        swaps = int(np.count_nonzero(self.piv != np.arange(self.piv.size)))
-        self.sign = float(np.prod(np.sign(diagonal))) * (-1.0 if swaps % 2 else 1.0)
-        self.singular = self.sign == 0 or not np.all(np.isfinite(diagonal))
+        self.sign = lu_sign(self.lu, self.piv)
+        self.singular = self.sign == 0 or not np.all(np.isfinite(np.diagonal(self.lu)))
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         if self.singular:
@@ -132,8 +137,7 @@ class _Eliminated:
             G = submatrix(A, coupled, e)
             at = position[coupled]
             S[block_index(at, at)] -= G @ X
-            swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
-            sign *= float(np.prod(np.sign(np.diagonal(lu)))) * (-1.0 if swaps % 2 else 1.0)
+            sign *= lu_sign(lu, piv)
             self.parts.append((e, at, inverse.astype(dtype), X.astype(dtype), G.astype(dtype)))
         self.rest = _Factors(S, dtype)
         self.singular = self.rest.singular
