@@ -11,6 +11,7 @@ import datetime
 import json
 import os
 import platform
+import subprocess
 import sys
 import tempfile
 import time
@@ -20,6 +21,19 @@ import numpy as np
 
 #: where :func:`save_results` writes, one JSON file per benchmark
 RESULTS = Path(__file__).resolve().parent / "results"
+#: the repository the benchmarks belong to (for :func:`baseline_source`)
+REPO = Path(__file__).resolve().parent.parent
+
+
+def baseline_source(commit: str) -> Path:
+    """``src`` of ``commit`` exported once (``git archive``) into a temporary folder, for a baseline run in a
+    subprocess; the folder is kept, so its numba cache stays warm between runs."""
+    root = Path(tempfile.gettempdir()) / f"microslip-baseline-{commit}"
+    if not (root / "src" / "microslip").is_dir():
+        root.mkdir(parents=True, exist_ok=True)
+        archive = subprocess.run(["git", "-C", str(REPO), "archive", commit, "src"], capture_output=True, check=True)
+        subprocess.run(["tar", "-x", "-C", str(root)], input=archive.stdout, check=True)
+    return root / "src"
 
 
 def best_of(fn, repeat=5):

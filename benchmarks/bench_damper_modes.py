@@ -41,7 +41,6 @@ from pathlib import Path
 
 import numpy as np
 
-REPO = Path(__file__).resolve().parent.parent
 BASELINE = "49f95a1"
 AMPLITUDE = (1e-9, 1e-4)  # kg^1/2 m
 SECTORS, DIAMETER = 12, 3
@@ -102,18 +101,10 @@ def run(harmonics: int, budget: int) -> dict:
             "amplitude": mode.modal_amplitude.tolist()}
 
 
-def baseline_source() -> Path:
-    """The pinned commit's ``src`` exported once into a temporary folder (kept: its numba cache stays warm)."""
-    root = Path(tempfile.gettempdir()) / f"microslip-baseline-{BASELINE}"
-    if not (root / "src" / "microslip").is_dir():
-        root.mkdir(parents=True, exist_ok=True)
-        archive = subprocess.run(["git", "-C", str(REPO), "archive", BASELINE, "src"], capture_output=True, check=True)
-        subprocess.run(["tar", "-x", "-C", str(root)], input=archive.stdout, check=True)
-    return root / "src"
-
-
 def run_baseline(harmonics: int, budget: int) -> dict:
-    env = dict(os.environ, PYTHONPATH=str(baseline_source()), OPENBLAS_NUM_THREADS="1")
+    from _common import baseline_source  # benchmarks/ on the path: see main
+
+    env = dict(os.environ, PYTHONPATH=str(baseline_source(BASELINE)), OPENBLAS_NUM_THREADS="1")
     done = subprocess.run([sys.executable, __file__, "--child", "--harmonics", str(harmonics), "--budget", str(budget)],
                           capture_output=True, text=True, env=env, cwd=tempfile.gettempdir())
     if done.returncode != 0:

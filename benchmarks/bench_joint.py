@@ -46,9 +46,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import save_results  # noqa: E402
+from _common import baseline_source, save_results  # noqa: E402
 
-REPO = Path(__file__).resolve().parent.parent
 BASELINE = "f0499a5"
 HARMONICS = 3
 SAMPLES = 128
@@ -155,18 +154,8 @@ print(json.dumps({"seconds": t, "points": int(m.points), "a": m.modal_amplitude.
 """
 
 
-def baseline_source() -> Path:
-    """The pinned commit's ``src`` exported once into a temporary folder (kept: its numba cache stays warm)."""
-    root = Path(tempfile.gettempdir()) / f"microslip-baseline-{BASELINE}"
-    if not (root / "src" / "microslip").is_dir():
-        root.mkdir(parents=True, exist_ok=True)
-        archive = subprocess.run(["git", "-C", str(REPO), "archive", BASELINE, "src"], capture_output=True, check=True)
-        subprocess.run(["tar", "-x", "-C", str(root)], input=archive.stdout, check=True)
-    return root / "src"
-
-
 def run_baseline(structure, points: int | None, amplitude) -> dict:
-    src = baseline_source()
+    src = baseline_source(BASELINE)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "structure.npz"
         export_structure(structure, path)
