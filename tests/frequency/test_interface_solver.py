@@ -109,6 +109,26 @@ def test_operators_apply_their_dense_matrices():
     assert np.array_equal(D[b, a], -op.B[0])
 
 
+def test_a_structures_operator_equals_the_one_of_its_formed_blocks():
+    """``HarmonicOperator.of_structure`` applies ``K``, ``M``, ``C`` to every harmonic at once instead of forming
+    ``A = K - (h omega)^2 M`` and ``B = h omega (C - xi M)``: the same operator up to the order of the sums (so
+    to rounding, 1e-13 of the largest product), and the same entries exactly where blocks are assembled."""
+    rng = np.random.default_rng(5)
+    m, H, omega = 6, 3, 1.7
+    K, M, C = (rng.standard_normal((m, m)) for _ in range(3))
+    xi = 0.3  # a nonlinear mode's: the damping C - xi M
+    contacts = sp.random(7 * m, 7 * m, density=0.05, random_state=6)
+    parts = HarmonicOperator.of_structure(K, M, C, omega, H, contacts, 1.5, interior=[4, 5], xi=xi)
+    W = omega * np.arange(1, H + 1)[:, None, None]
+    formed = HarmonicOperator(K, K[None] - W * W * M[None], W * (C - xi * M)[None], contacts, 1.5, interior=[4, 5])
+    v = rng.standard_normal(7 * m)
+    assert np.max(np.abs(parts.matvec(v) - formed.matvec(v))) <= 1e-13 * np.max(np.abs(formed.matvec(v)))
+    rows, cols = rng.permutation(7 * m)[:20], rng.permutation(7 * m)[:17]
+    assert np.array_equal(parts.submatrix(rows, cols), formed.submatrix(rows, cols))
+    assert np.array_equal(parts.scaled(2.0).toarray(), formed.scaled(2.0).toarray())
+    assert parts.groups()[1][0].tolist() == formed.groups()[1][0].tolist()
+
+
 def interior_operator(seed: int, m: int = 9, H: int = 2, touched: int = 5, border: bool = True):
     """A random harmonic operator whose last ``m - touched`` DOFs no contact touches, bordered and scaled as the
     continuation wraps a nonlinear mode's Jacobian (or bare); the contacts couple the touched DOFs across

@@ -523,6 +523,18 @@ def friction_work_plane(packed, planar, xt, xt2, xn, synthesis, max_periods: int
     opens : ndarray of bool, shape (nc,)
         Whether some element opens and closes during the cycle, likewise.
     """
+    from ..kernels.friction_work import friction_work_plane_batch
+
+    kt, kn, gaps, offsets, mu = packed
+    periods = np.zeros(offsets.size - 1, dtype=np.int64)
+    friction_work_plane_batch(kt, kn, gaps, offsets, mu, np.ascontiguousarray(planar, dtype=np.bool_),
+                              *(np.ascontiguousarray(x, dtype=float) for x in (xt, xt2, xn)),
+                              np.ascontiguousarray(synthesis, dtype=float), int(max_periods), work, opens, periods)
+    check_periodic(periods, max_periods)
+
+
+def friction_work_plane_reference(packed, planar, xt, xt2, xn, synthesis, max_periods: int, work, opens) -> None:
+    """:func:`friction_work_plane` contact by contact in NumPy (the compiled batch's slow twin, for the tests)."""
     from ..kernels.element import STICK
     from ..kernels.plane_march import march_plane, periodic_state
 

@@ -1,7 +1,8 @@
-"""Compiled energy dissipated per cycle by each contact along one direction (private).
+"""Compiled energy dissipated per cycle by each contact, along one direction or on its plane (private).
 
-Plain float64 arrays in and out; the checked wrapper is
-:func:`microslip.frequency.aft.friction_work`, which states the definition.
+Plain float64 arrays in and out; the checked wrappers are
+:func:`microslip.frequency.aft.friction_work` and :func:`~microslip.frequency.aft.friction_work_plane`,
+which state the definition.
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ import numba as nb
 import numpy as np
 
 from .element import STICK, march
+from .plane_march import march_plane, periodic_state
 
 
 @nb.njit(cache=True, nogil=True)
@@ -64,5 +66,46 @@ def friction_work_batch(kt, kn, gaps, offsets, mu, t, n, t0, n0, max_periods, wo
             for i in range(J):
                 if cond[m, i] != STICK:  # the slider at each sample: T = kt (t - s) in every condition
                     step = 0.5 * (Ti[m, i] + Ti[p, i]) * ((t_c[m] - Ti[m, i] / k[i]) - (t_c[p] - Ti[p, i] / k[i]))
+                    total += max(step, 0.0)
+        work[c] = total
+
+
+@nb.njit(cache=True, nogil=True)
+def friction_work_plane_batch(kt, kn, gaps, offsets, mu, planar, xt, xt2, xn, synthesis, max_periods, work, opens,
+                              periods):  # pragma: no cover - compiled
+    """:func:`friction_work_batch` of the contacts that move on their planes (``planar[c]``), from the coefficients
+    ``xt``, ``xt2``, ``xn`` (``(nc, 2H+1)``, m) and the synthesis table ``(Ns, 2H+1)``: the AFT's periodic
+    state, one period marched, the work ``(T_k-1 + T_k) . (s_k - s_k-1) / 2`` of each element's force on its
+    slider's travel summed over the steps where the slider moves, each step's floored at zero. ``periods[c]``
+    receives the periods the state took (``-1``: not periodic within ``max_periods``; its work is not written).
+    """
+    Ns = synthesis.shape[0]
+    for c in range(offsets.shape[0] - 1):
+        if not planar[c]:
+            continue
+        lo, hi = offsets[c], offsets[c + 1]
+        J = hi - lo
+        k, kn_c, g = kt[lo:hi], kn[lo:hi], gaps[lo:hi]
+        s = np.empty((2, J))
+        periods[c] = periodic_state(k, kn_c, g, mu[c], xt[c], xt2[c], xn[c], synthesis, max_periods, s)
+        if periods[c] < 0:
+            continue
+        t1, t2, n = synthesis @ xt[c], synthesis @ xt2[c], synthesis @ xn[c]
+        n_min, n_max = n.min(), n.max()
+        opens[c] = False
+        for i in range(J):
+            if n_min <= g[i] and n_max > g[i]:
+                opens[c] = True
+        Ti, cond = np.empty((Ns, J, 2)), np.empty((Ns, J), dtype=np.int8)
+        march_plane(k, kn_c, g, mu[c], t1, t2, n, s, np.empty((Ns, 2)), np.empty(Ns), Ti, cond)
+        total = 0.0
+        for m in range(Ns):
+            p = m - 1 if m > 0 else Ns - 1  # the step into sample 0 starts from the last sample
+            for i in range(J):
+                if cond[m, i] != STICK:  # the slider at each sample: T = kt (t - s) in every condition
+                    step = 0.5 * ((Ti[m, i, 0] + Ti[p, i, 0]) * ((t1[m] - Ti[m, i, 0] / k[i])
+                                                                 - (t1[p] - Ti[p, i, 0] / k[i]))
+                                  + (Ti[m, i, 1] + Ti[p, i, 1]) * ((t2[m] - Ti[m, i, 1] / k[i])
+                                                                   - (t2[p] - Ti[p, i, 1] / k[i])))
                     total += max(step, 0.0)
         work[c] = total

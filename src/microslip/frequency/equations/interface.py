@@ -4,11 +4,11 @@ When the contacts use most of a structure's DOFs (a jointed structure reduced to
 coordinates) a condensation keeps almost every DOF and costs more than it saves. These equations keep
 every DOF, as :class:`~.hbm.HarmonicBalance` does, and hold the linear structure as its dense ``M``,
 ``C``, ``K``: harmonic ``h`` at ``omega`` acts on ``(a_h, b_h)`` through ``[[A, B], [-B, A]]`` with
-``A = K - (h omega)^2 M`` and ``B = h omega C`` (``C - xi M`` for a nonlinear mode), built in
-``O(ndof^2)`` per harmonic and point. The Jacobian is returned to the solvers as a
-:class:`HarmonicOperator` -- those blocks plus each contact's small block (its DOFs x harmonics),
-applied in ``O(ndof^2 H + contacts H^2)`` -- and assembled into a dense matrix only when the solver
-factorises it (:mod:`~microslip.frequency.numerics.reuse`). Other callers of ``_evaluate`` receive the
+``A = K - (h omega)^2 M`` and ``B = h omega C`` (``C - xi M`` for a nonlinear mode), never formed to
+be applied: ``K``, ``M`` and ``C`` each multiply every harmonic's coefficients at once. The Jacobian is
+returned to the solvers as a :class:`HarmonicOperator` -- those blocks plus each contact's small block
+(its DOFs x harmonics), applied in ``O(ndof^2 H + contacts H^2)`` -- and assembled into a dense matrix
+(only the entries asked for) when the solver factorises it (:mod:`~microslip.frequency.numerics.reuse`). Other callers of ``_evaluate`` receive the
 dense Jacobian, as from :class:`~.hbm.HarmonicBalance`.
 """
 
@@ -47,16 +47,53 @@ class HarmonicOperator:
     """
 
     def __init__(self, static, A, B, contacts, factor: float = 1.0, interior=None):
-        self.static, self.A, self.B, self.contacts, self.factor = static, A, B, contacts, factor
+        self.static, self._A, self._B, self.contacts, self.factor = static, A, B, contacts, factor
         self.ndof = static.shape[0]
         self.H = A.shape[0]
         self.n = (2 * self.H + 1) * self.ndof
         self.shape = (self.n, self.n)
         self.interior = np.zeros(0, dtype=int) if interior is None else np.asarray(interior, dtype=int)
+        self.parts = None
+
+    @classmethod
+    def of_structure(cls, K, M, C, omega: float, harmonics: int, contacts, factor: float = 1.0,
+                     interior=None, xi: float = 0.0) -> "HarmonicOperator":
+        """The operator of a structure ``K``, ``M``, ``C`` (each ``(ndof, ndof)``: N/m, kg, N s/m) at ``omega``
+        (rad/s): ``A = K - (h omega)^2 M``, ``B = h omega (C - xi M)`` for ``h = 1..harmonics`` (``xi``, 1/s:
+        a nonlinear mode's negative damping).
+
+        Applied as three products of ``K``, ``M`` and ``C`` with every harmonic's coefficients at once, so the
+        matrices are read once per product instead of once per harmonic and block; ``A`` and ``B`` are formed
+        only when asked for (a dense block or the whole matrix).
+        """
+        W = omega * np.arange(1, harmonics + 1, dtype=float)
+        op = cls(K, np.empty((harmonics, 0, 0)), None, contacts, factor, interior)
+        op._A = op._B = None
+        op.parts = (K, M, C, float(xi), W)
+        return op
+
+    @property
+    def A(self) -> np.ndarray:
+        """Harmonic ``h``'s diagonal blocks ``A``, shape ``(H, ndof, ndof)`` (N/m)."""
+        if self._A is None:
+            K, M, _, _, W = self.parts
+            self._A = K[None] - (W * W)[:, None, None] * M[None]
+        return self._A
+
+    @property
+    def B(self) -> np.ndarray:
+        """Harmonic ``h``'s coupling blocks ``B``, shape ``(H, ndof, ndof)`` (N/m)."""
+        if self._B is None:
+            _, M, C, xi, W = self.parts
+            self._B = W[:, None, None] * (C - xi * M if xi else C)[None]
+        return self._B
 
     def scaled(self, factor: float) -> "HarmonicOperator":
         """This operator times ``factor`` (the arrays shared)."""
-        return HarmonicOperator(self.static, self.A, self.B, self.contacts, self.factor * factor, self.interior)
+        out = HarmonicOperator(self.static, np.empty((self.H, 0, 0)), None, self.contacts, self.factor * factor,
+                               self.interior)
+        out._A, out._B, out.parts = self._A, self._B, self.parts
+        return out
 
     def groups(self) -> list | None:
         """The interior DOFs' unknowns, harmonic by harmonic, and the unknowns each group is coupled to.
@@ -77,17 +114,23 @@ class HarmonicOperator:
                         np.concatenate([a + touched, b + touched])))
         return out
 
-    def _slot_block(self, row: int, col: int):
+    def _slot_block(self, row: int, col: int, rows: np.ndarray, cols: np.ndarray):
         """The linear part's block of harmonic slots ``(row, col)`` (slot 0 static, ``2h - 1`` and ``2h`` harmonic
-        ``h``'s ``a_h`` and ``b_h``), None where it is zero."""
+        ``h``'s ``a_h`` and ``b_h``) at the DOFs ``rows`` x ``cols``, None where it is zero."""
         if row == col == 0:
-            return self.static
+            return self.static[np.ix_(rows, cols)]
         if row == 0 or col == 0 or (row + 1) // 2 != (col + 1) // 2:
             return None
         h = (row + 1) // 2 - 1
+        ix = np.ix_(rows, cols)
+        if self.parts is not None and self._A is None:  # the entries only, formed as A and B form them
+            K, M, C, xi, W = self.parts
+            if row == col:
+                return K[ix] - (W[h] * W[h]) * M[ix]
+            return (W[h] if row % 2 else -W[h]) * (C[ix] - xi * M[ix] if xi else C[ix])
         if row == col:
-            return self.A[h]
-        return self.B[h] if row % 2 else -self.B[h]
+            return self.A[h][ix]
+        return self.B[h][ix] if row % 2 else -self.B[h][ix]
 
     def submatrix(self, rows: np.ndarray, cols: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """The dense block ``J[rows][:, cols]`` (index arrays), built from the parts without the whole matrix
@@ -103,9 +146,9 @@ class HarmonicOperator:
         for r in np.unique(r_slot):
             ri = np.flatnonzero(r_slot == r)
             for c, ci in c_sets.items():
-                block = self._slot_block(int(r), c)
+                block = self._slot_block(int(r), c, r_dof[ri], c_dof[ci])
                 if block is not None:
-                    out[block_index(ri, ci)] = block[np.ix_(r_dof[ri], c_dof[ci])]
+                    out[block_index(ri, ci)] = block
         if self.contacts is not None:
             if not sp.isspmatrix_csr(self.contacts):
                 self.contacts = self.contacts.tocsr()  # rows picked once per block
@@ -118,6 +161,8 @@ class HarmonicOperator:
 
     def linear(self, v: np.ndarray) -> np.ndarray:
         """The linear structure's part applied to ``v`` (without ``factor``), shape ``(n,)``."""
+        if self.parts is not None:
+            return structure_apply(*self.parts, v)
         return linear_apply(self.static, self.A, self.B, v)
 
     def matvec(self, v: np.ndarray) -> np.ndarray:
@@ -145,6 +190,23 @@ class HarmonicOperator:
         if self.factor != 1.0:
             out *= self.factor
         return out
+
+
+def structure_apply(K, M, C, xi, W, v) -> np.ndarray:
+    """``linear_apply`` of ``A = K - W^2 M``, ``B = W (C - xi M)`` (``W``, shape ``(H,)``: each harmonic's
+    frequency, rad/s) without forming them: ``K``, ``M`` and ``C`` each multiply every harmonic's coefficients
+    at once."""
+    m = K.shape[0]
+    V = np.reshape(v, (-1, m))
+    KV, MV, DV = V @ K.T, V @ M.T, V @ C.T
+    if xi:
+        DV -= xi * MV
+    w = np.repeat(W, 2)[:, None]
+    out = KV
+    out[1:] -= (w * w) * MV[1:]
+    out[1::2] += W[:, None] * DV[2::2]
+    out[2::2] -= W[:, None] * DV[1::2]
+    return out.ravel()
 
 
 def linear_apply(static, A, B, v) -> np.ndarray:
@@ -192,27 +254,16 @@ class InterfaceBalance(HarmonicBalance):
         self.Bt2 = structure.second_tangential_directions()
         touched = np.any(self.Bt != 0, axis=1) | np.any(self.Bn != 0, axis=1) | np.any(self.Bt2 != 0, axis=1)
         self.interior = np.flatnonzero(~touched)  # DOFs of no contact: coupled by the linear structure alone
-        self._linear_key = None
 
     @property
     def compiled(self) -> bool:
         return False
 
-    def _blocks(self, omega: float):
-        """``(static, A, B)`` at ``omega`` with the damping ``C - xi M`` (kept for the last ``(omega, xi)``)."""
-        key = (omega, self.xi)
-        if self._linear_key != key:
-            h = np.arange(1, self.H + 1, dtype=float)[:, None, None]
-            W = h * omega
-            damping = self.C - self.xi * self.M if self.xi else self.C
-            self._linear = (self.K, self.K[None] - (W * W) * self.M[None], W * damping[None])
-            self._linear_key = key
-        return self._linear
-
     def operator(self, omega: float, contacts: bool = False) -> HarmonicOperator:
         """``Z(omega)`` (with the contacts' Jacobian of the last AFT when ``contacts``) as an operator."""
-        return HarmonicOperator(*self._blocks(omega), self._contact_jacobian() if contacts and self.nc else None,
-                                interior=self.interior)
+        return HarmonicOperator.of_structure(self.K, self.M, self.C, omega, self.H,
+                                             self._contact_jacobian() if contacts and self.nc else None,
+                                             interior=self.interior, xi=self.xi)
 
     def dynamic_stiffness(self, omega: float):
         """``Z(omega)``, dense ``(n, n)`` (N/m)."""
@@ -220,7 +271,7 @@ class InterfaceBalance(HarmonicBalance):
 
     def _residual(self, x, omega: float) -> np.ndarray:
         """``R`` (N), shape ``(n,)``; the AFT's forces and Jacobians are left for :meth:`_contact_jacobian`."""
-        R = linear_apply(*self._blocks(omega), x) - self.f
+        R = self.operator(omega).linear(x) - self.f
         if self.nc:
             self._aft(x)
             R += self._contact_residual()
@@ -263,7 +314,8 @@ class InterfaceBalance(HarmonicBalance):
                 if coupled:
                     dx = np.linalg.solve(self.operator(w, contacts=False).toarray() + contacts.toarray(), -R)[m:]
                 else:
-                    _, A, B = self._blocks(float(w))
+                    linear = self.operator(float(w))
+                    A, B = linear.A, linear.B
                     try:
                         dx = _harmonic_solve(A[h - 1], B[h - 1], block[:, rows], -R[rows])
                     except np.linalg.LinAlgError:
