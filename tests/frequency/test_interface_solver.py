@@ -26,6 +26,7 @@ from microslip.frequency.equations import build as build_module
 from microslip.frequency.equations.epmc import DampedBalance
 from microslip.frequency.equations.hbm import HarmonicBalance
 from microslip.frequency.equations.interface import HarmonicOperator, InterfaceBalance
+from microslip.kernels.structure_products import structure_products, structure_products_reference
 from microslip.frequency.numerics.krylov import Bordered, ScaledColumns, gmres
 from microslip.frequency.numerics.reuse import (MAX_KRYLOV, RTOL, ReusedFactorisation, _Eliminated, _Factors,
                                                 factors, newton_rtol)
@@ -127,6 +128,31 @@ def test_a_structures_operator_equals_the_one_of_its_formed_blocks():
     assert np.array_equal(parts.submatrix(rows, cols), formed.submatrix(rows, cols))
     assert np.array_equal(parts.scaled(2.0).toarray(), formed.scaled(2.0).toarray())
     assert parts.groups()[1][0].tolist() == formed.groups()[1][0].tolist()
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**31), m=st.integers(1, 40), rows=st.integers(1, 9))
+def test_the_compiled_structure_products_equal_numpys(seed, m, rows):
+    """The kernel's sums are reassociated (vectorised), NumPy's BLAS sums in its own order: equal to 1e-13 of the
+    products' scale (``sum |K_ij| |v_j|``, which bounds either's rounding by ``n`` ulps)."""
+    rng = np.random.default_rng(seed)
+    K, M, C = (rng.standard_normal((m, m)) * 10.0 ** rng.integers(-8, 9) for _ in range(3))
+    V = rng.standard_normal((rows, m))
+    out = [np.empty((rows, m)) for _ in range(3)]
+    structure_products(K, M, C, V, *out)
+    for A, got, ref in zip((K, M, C), out, structure_products_reference(K, M, C, V)):
+        scale = np.abs(V) @ np.abs(A).T
+        assert np.all(np.abs(got - ref) <= 1e-13 * scale)
+
+
+def test_the_compiled_structure_products_propagate_nan():
+    """A failed step's NaN must reach the solver's checks: no fast-math assumption of finite numbers."""
+    K = M = C = np.eye(3)
+    V = np.array([[1.0, np.nan, 2.0], [1.0, 2.0, 3.0]])
+    out = [np.empty((2, 3)) for _ in range(3)]
+    structure_products(K, M, C, V, *out)
+    for got in out:
+        assert np.isnan(got[0]).all() and np.isfinite(got[1]).all()
 
 
 def interior_operator(seed: int, m: int = 9, H: int = 2, touched: int = 5, border: bool = True):

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from ...kernels.structure_products import structure_products
 from ..aft import MAX_PERIODS
 from ..numerics.blas import solver_threads
 from ..numerics.krylov import block_index
@@ -197,8 +198,9 @@ def structure_apply(K, M, C, xi, W, v) -> np.ndarray:
     frequency, rad/s) without forming them: ``K``, ``M`` and ``C`` each multiply every harmonic's coefficients
     at once."""
     m = K.shape[0]
-    V = np.reshape(v, (-1, m))
-    KV, MV, DV = V @ K.T, V @ M.T, V @ C.T
+    V = np.ascontiguousarray(np.reshape(v, (-1, m)), dtype=float)
+    KV, MV, DV = np.empty_like(V), np.empty_like(V), np.empty_like(V)
+    structure_products(*(np.ascontiguousarray(A, dtype=float) for A in (K, M, C)), V, KV, MV, DV)
     if xi:
         DV -= xi * MV
     w = np.repeat(W, 2)[:, None]
@@ -249,7 +251,7 @@ class InterfaceBalance(HarmonicBalance):
                  max_periods: int = MAX_PERIODS):
         self._setup(structure, force, harmonics, samples, max_periods, getattr(structure, "ndof", 0))
         self.dense = False  # the contacts' Jacobian sparse (HarmonicBalance._contact_jacobian)
-        self.K, self.C, self.M = (_dense(A) for A in (structure.K, structure.C, structure.M))
+        self.K, self.C, self.M = (np.ascontiguousarray(_dense(A)) for A in (structure.K, structure.C, structure.M))
         self.Bt, self.Bn, self.n0 = structure.contact_directions()
         self.Bt2 = structure.second_tangential_directions()
         touched = np.any(self.Bt != 0, axis=1) | np.any(self.Bn != 0, axis=1) | np.any(self.Bt2 != 0, axis=1)
