@@ -8,8 +8,8 @@ every DOF, as :class:`~.hbm.HarmonicBalance` does, and hold the linear structure
 be applied: ``K``, ``M`` and ``C`` each multiply every harmonic's coefficients at once. The Jacobian is
 returned to the solvers as a :class:`HarmonicOperator` -- those blocks plus each contact's small block
 (its DOFs x harmonics), applied in ``O(ndof^2 H + contacts H^2)`` -- and assembled into a dense matrix
-(only the entries asked for) when the solver factorises it (:mod:`~microslip.frequency.numerics.reuse`). Other callers of ``_evaluate`` receive the
-dense Jacobian, as from :class:`~.hbm.HarmonicBalance`.
+(only the entries asked for) when the solver factorises it (:mod:`~microslip.frequency.numerics.reuse`).
+Other callers of ``_evaluate`` receive the dense Jacobian, as from :class:`~.hbm.HarmonicBalance`.
 """
 
 from __future__ import annotations
@@ -197,14 +197,23 @@ def structure_apply(K, M, C, xi, W, v) -> np.ndarray:
     """``linear_apply`` of ``A = K - W^2 M``, ``B = W (C - xi M)`` (``W``, shape ``(H,)``: each harmonic's
     frequency, rad/s) without forming them: ``K``, ``M`` and ``C`` each multiply every harmonic's coefficients
     at once."""
+    return structure_combine(*products(K, M, C, v), xi, W)
+
+
+def products(K, M, C, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(V K^T, V M^T, V C^T)`` of the coefficients ``V = v.reshape(-1, ndof)`` (one row per harmonic slot)."""
     m = K.shape[0]
     V = np.ascontiguousarray(np.reshape(v, (-1, m)), dtype=float)
-    KV, MV, DV = np.empty_like(V), np.empty_like(V), np.empty_like(V)
-    structure_products(*(np.ascontiguousarray(A, dtype=float) for A in (K, M, C)), V, KV, MV, DV)
-    if xi:
-        DV -= xi * MV
+    KV, MV, CV = np.empty_like(V), np.empty_like(V), np.empty_like(V)
+    structure_products(*(np.ascontiguousarray(A, dtype=float) for A in (K, M, C)), V, KV, MV, CV)
+    return KV, MV, CV
+
+
+def structure_combine(KV, MV, CV, xi, W) -> np.ndarray:
+    """:func:`structure_apply` from the :func:`products` (not modified), shape ``(n,)``."""
+    DV = CV - xi * MV if xi else CV
     w = np.repeat(W, 2)[:, None]
-    out = KV
+    out = KV.copy()
     out[1:] -= (w * w) * MV[1:]
     out[1::2] += W[:, None] * DV[2::2]
     out[2::2] -= W[:, None] * DV[1::2]
@@ -256,6 +265,7 @@ class InterfaceBalance(HarmonicBalance):
         self.Bt2 = structure.second_tangential_directions()
         touched = np.any(self.Bt != 0, axis=1) | np.any(self.Bn != 0, axis=1) | np.any(self.Bt2 != 0, axis=1)
         self.interior = np.flatnonzero(~touched)  # DOFs of no contact: coupled by the linear structure alone
+        self._products_of = self._products_at = None
 
     @property
     def compiled(self) -> bool:
@@ -273,7 +283,7 @@ class InterfaceBalance(HarmonicBalance):
 
     def _residual(self, x, omega: float) -> np.ndarray:
         """``R`` (N), shape ``(n,)``; the AFT's forces and Jacobians are left for :meth:`_contact_jacobian`."""
-        R = self.operator(omega).linear(x) - self.f
+        R = structure_combine(*self._products(x), self.xi, omega * np.arange(1, self.H + 1, dtype=float)) - self.f
         if self.nc:
             self._aft(x)
             R += self._contact_residual()
@@ -326,15 +336,24 @@ class InterfaceBalance(HarmonicBalance):
                     best = max(best, float(np.max(np.abs(dx))))
         return best if best > 0 else max(float(np.max(np.abs(x_static))), 1e-12)
 
+    def _products(self, x):
+        """``(V K^T, V M^T, V C^T)`` of ``x``'s coefficients ``V`` ``(2H+1, ndof)``, kept for the last ``x``: the
+        residual and its derivatives in ``omega`` and ``xi`` at one point take them once."""
+        if self._products_of is None or not np.array_equal(self._products_of, x):
+            self._products_at = products(self.K, self.M, self.C, x)
+            self._products_of = np.array(x, dtype=float)
+        return self._products_at
+
     def _harmonic_products(self, x):
         """``(M v, (C - xi M) v, h)`` for the harmonics' coefficients ``v`` of ``x``, each ``(2H, ndof)``, and the
         harmonic of each row ``(2H, 1)``."""
-        V = np.reshape(x, (self.nb, self.ndof))[1:]
-        Mv = V @ self.M.T
-        Cv = V @ self.C.T - self.xi * Mv if self.xi else V @ self.C.T
+        _, MV, CV = self._products(x)
+        Mv = MV[1:]
+        Cv = CV[1:] - self.xi * Mv if self.xi else CV[1:]
         return Mv, Cv, np.repeat(np.arange(1, self.H + 1, dtype=float), 2)[:, None]
 
-    _evaluate_reference = _evaluate  # the same NumPy operations (no compiled kernel here)
+    #: the same operations: the one compiled loop, the structure's products, is tested against its own twin
+    _evaluate_reference = _evaluate
 
     def _omega_derivative(self, x, omega: float) -> np.ndarray:
         """``dR/domega`` (N s), shape ``(n,)``: ``dA/domega = -2 h^2 omega M``, ``dB/domega = h (C - xi M)``."""
