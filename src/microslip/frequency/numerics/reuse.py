@@ -121,7 +121,8 @@ class _Eliminated:
         self.keep = np.setdiff1d(np.arange(n), interior)
         position = np.full(n, -1)
         position[self.keep] = np.arange(self.keep.size)
-        S = submatrix(A, self.keep, self.keep)
+        # the Schur complement is assembled in the precision and the column order of its factorisation: no copy
+        S = submatrix(A, self.keep, self.keep, np.empty((self.keep.size,) * 2, dtype=dtype, order="F"))
         sign, self.parts, self.stable = 1.0, [], True
         for e, coupled in parts:
             E = submatrix(A, e, e)
