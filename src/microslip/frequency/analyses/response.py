@@ -485,8 +485,8 @@ def _check_determined(structure: Structure) -> None:
         return
     K = structure.K.toarray() if sp.issparse(structure.K) else np.array(structure.K, dtype=float)
     Bt, Bn, _ = structure.contact_directions()
-    for c, contact in enumerate(structure.contacts):
-        K = K + contact.model.kn.sum() * np.outer(Bn[:, c], Bn[:, c])
+    kn = np.array([contact.model.kn.sum() for contact in structure.contacts])
+    K = K + (Bn * kn) @ Bn.T  # each contact's normal springs along its normal
     K = 0.5 * (K + K.T)
     lam, vec = np.linalg.eigh(K)
     scale = max(float(np.max(np.abs(lam))), 1e-300)
