@@ -5,11 +5,11 @@ systems solved thousands of times, on a machine whose cores are busy, they
 made a nonlinear mode of a 20-DOF chain take 37 s instead of 0.3 s with one
 thread. The solvers of small dense problems run with one BLAS thread; so do the
 solvers of interface-dominated structures (their products are small: harmonic
-blocks of the structure, contacts' blocks), except for their factorisations of
-the whole Jacobian (or of its contact unknowns) from :data:`LARGE_DENSE` unknowns
-on and the solves with those factors, which get :data:`FACTOR_THREADS`
-(:func:`large_threads`): a triangular solve with factors of that size reads far
-more memory than one core draws.
+blocks of the structure, contacts' blocks), except for their rare factorisations
+of the whole Jacobian, which get :data:`FACTOR_THREADS` (:func:`factor_threads`).
+Solves with those factors keep one thread: a triangular solve reads each factor
+entry once, so it is bound by the memory's bandwidth, which a second thread on the
+same memory does not raise.
 """
 
 from __future__ import annotations
@@ -20,10 +20,9 @@ from functools import cache
 
 #: unknowns up to which the harmonic balance uses dense linear algebra (and one BLAS thread)
 DENSE_LIMIT = 600
-#: BLAS threads of a large dense factorisation, or solve with its factors, inside a one-thread block (None: as many
-#: as outside it)
+#: BLAS threads of a large dense factorisation inside a one-thread block (None: as many as outside it)
 FACTOR_THREADS: int | None = None
-#: unknowns from which a factorisation (and a solve with its factors) is large
+#: unknowns from which a factorisation is large
 LARGE_DENSE = 2000
 
 
@@ -42,9 +41,9 @@ def one_blas_thread():
 
 
 @contextmanager
-def large_threads(n: int):
-    """BLAS threads for a dense factorisation of ``n`` unknowns or a solve with its factors: from :data:`LARGE_DENSE`
-    on, those in force outside any one-thread block (or :data:`FACTOR_THREADS`), else as they are."""
+def factor_threads(n: int):
+    """BLAS threads for a dense factorisation of ``n`` unknowns: from :data:`LARGE_DENSE` on, those in force outside
+    any one-thread block (or :data:`FACTOR_THREADS`), else as they are."""
     if n < LARGE_DENSE or _outside[-1] is None:
         yield
         return
@@ -57,7 +56,7 @@ _outside: list = [None]  # BLAS threads when the outermost one-thread block was 
 
 @contextmanager
 def solver_threads():
-    """One BLAS thread in the block, remembering the threads outside it for :func:`large_threads`."""
+    """One BLAS thread in the block, remembering the threads outside it for :func:`factor_threads`."""
     if _outside[-1] is None:
         outside = max([i["num_threads"] for i in _controller().info() if i["user_api"] == "blas"], default=1)
     else:

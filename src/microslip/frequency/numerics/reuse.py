@@ -30,7 +30,7 @@ import warnings
 import numpy as np
 import scipy.linalg as sla
 
-from .blas import large_threads
+from .blas import factor_threads
 from .krylov import block_index, dense, gmres, groups, submatrix
 
 #: GMRES iterations before the system is factorised instead
@@ -88,7 +88,7 @@ class _Factors:
         self.sign = 0.0
         if self.singular:
             return
-        with warnings.catch_warnings(), large_threads(A.shape[0]):
+        with warnings.catch_warnings(), factor_threads(A.shape[0]):
             warnings.simplefilter("ignore", sla.LinAlgWarning)
             self.lu, self.piv = sla.lu_factor(np.asarray(A, dtype=dtype), overwrite_a=True, check_finite=False)
         self.sign = lu_sign(self.lu, self.piv)
@@ -97,8 +97,7 @@ class _Factors:
     def solve(self, b: np.ndarray) -> np.ndarray:
         if self.singular:
             return np.full(np.shape(b), np.nan)
-        with large_threads(self.shape[0]):
-            out = sla.lu_solve((self.lu, self.piv), b.astype(self.lu.dtype), check_finite=False)
+        out = sla.lu_solve((self.lu, self.piv), b.astype(self.lu.dtype), check_finite=False)
         return out.astype(float)
 
 
@@ -155,8 +154,7 @@ class _Eliminated:
             y = inverse @ b[e]
             rhs[at] -= G @ y
             interior.append(y)
-        with large_threads(self.rest.shape[0]):
-            kept = sla.lu_solve((self.rest.lu, self.rest.piv), rhs, overwrite_b=True, check_finite=False)
+        kept = sla.lu_solve((self.rest.lu, self.rest.piv), rhs, overwrite_b=True, check_finite=False)
         x = np.empty(b.shape, dtype=self.dtype)
         x[self.keep] = kept
         for (e, at, _, X, _), y in zip(self.parts, interior):
