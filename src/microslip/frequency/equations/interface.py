@@ -29,6 +29,11 @@ def _dense(A) -> np.ndarray:
     return A.toarray() if sp.issparse(A) else np.asarray(A, dtype=float)
 
 
+#: entries of a static state's contact Jacobian across harmonics up to this fraction of its largest entry in the
+#: harmonic's own block are the AFT's rounding (a constant state couples no two harmonics), not a coupling
+COUPLING_ROUNDING = 1e-12
+
+
 class HarmonicOperator:
     """The harmonic balance Jacobian ``c (Z(omega) + J_contacts)`` as an operator, shape ``(n, n)`` (N/m).
 
@@ -321,7 +326,10 @@ class InterfaceBalance(HarmonicBalance):
             if np.max(np.abs(R[rows])) <= 1e-13 * np.max(np.abs(R)):  # not excited: the AFT's rounding at most
                 continue
             block = contacts[rows].toarray()
-            coupled = np.any(block[:, :rows.start]) or np.any(block[:, rows.stop:])
+            # the AFT of a constant state leaves its rounding in other harmonics' columns, not a coupling
+            across = max(np.max(np.abs(block[:, :rows.start]), initial=0.0),
+                         np.max(np.abs(block[:, rows.stop:]), initial=0.0))
+            coupled = across > COUPLING_ROUNDING * np.max(np.abs(block[:, rows]), initial=0.0)
             for w in omegas:
                 if coupled:
                     dx = np.linalg.solve(self.operator(w, contacts=False).toarray() + contacts.toarray(), -R)[m:]
