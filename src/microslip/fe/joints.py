@@ -34,6 +34,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..common._numeric import eigsh_repeatable
 from ..common import _checks
 from ._optional import require
 from .dof_map import DofMap
@@ -410,7 +411,7 @@ def lap_joint(contacts: int = 120, *, modes: int = 40, length: float = 0.24, wid
     lu = spla.splu(Kii)
     psi = -lu.solve(Kib)
     op = spla.LinearOperator(Kii.shape, matvec=lu.solve, dtype=float)
-    lam, phi = spla.eigsh(Kii, k=modes, M=Mii, sigma=0.0, which="LM", OPinv=op)
+    lam, phi = eigsh_repeatable(Kii, k=modes, M=Mii, sigma=0.0, which="LM", OPinv=op)
     order = np.argsort(lam)
     lam, phi = lam[order], phi[:, order]
     Tp = np.zeros((n, b.size + modes))

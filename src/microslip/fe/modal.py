@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
+from ..common._numeric import eigsh_repeatable
 from ..common import _checks
 from .files import check_matrix
 
@@ -51,7 +51,7 @@ def natural_frequencies(M, K, count: int = 6) -> np.ndarray:
         raise ValueError(f"count must be below the number of DOFs ({n}), got {count}")
     if sp.issparse(M) or sp.issparse(K):
         try:
-            lam = spla.eigsh(sp.csc_matrix(K), k=count, M=sp.csc_matrix(M), sigma=-1.0, which="LM",
+            lam = eigsh_repeatable(sp.csc_matrix(K), k=count, M=sp.csc_matrix(M), sigma=-1.0, which="LM",
                              return_eigenvectors=False)
         except RuntimeError as err:  # K + M singular (splu) or no convergence (ARPACK)
             raise ValueError(f"the natural frequencies of M and K could not be computed ({err}): M must be "

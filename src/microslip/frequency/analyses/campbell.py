@@ -24,9 +24,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from scipy.optimize import brentq
 
+from ...common._numeric import eigsh_repeatable
 from ...common import _checks
 from ...common._io import write_csv
 from ...common._progress import Progress
@@ -85,7 +85,7 @@ def eigenfrequencies(K, M, modes: int) -> np.ndarray:
     else:
         Ms = sp.csc_matrix(M)
         scale = float(np.median(np.abs(K.diagonal())) / np.median(np.abs(Ms.diagonal())))
-        lam = np.sort(spla.eigsh(sp.csc_matrix(K), k=modes, M=Ms, sigma=-1e-6 * scale, which="LM",
+        lam = np.sort(eigsh_repeatable(sp.csc_matrix(K), k=modes, M=Ms, sigma=-1e-6 * scale, which="LM",
                                  return_eigenvectors=False))
     return np.sqrt(np.maximum(lam, 0.0))
 

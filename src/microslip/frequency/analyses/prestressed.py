@@ -21,8 +21,8 @@ from typing import Mapping
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
+from ...common._numeric import eigsh_repeatable
 from ...common import _checks
 from ...common._io import write_csv
 from ..equations.epmc import DENSE_EIGEN, stuck_matrices
@@ -265,7 +265,7 @@ class Prestress:
         else:
             Ks, Ms = sp.csc_matrix(K), sp.csc_matrix(M)
             scale = float(np.median(np.abs(Ks.diagonal())) / np.median(np.abs(Ms.diagonal())))
-            lam, vec = spla.eigsh(Ks, k=n, M=Ms, sigma=-1e-6 * scale, which="LM")
+            lam, vec = eigsh_repeatable(Ks, k=n, M=Ms, sigma=-1e-6 * scale, which="LM")
             refuse_indefinite(lam, Ks, Ms, "the structure with its contacts stuck at the prestress")
             order = np.argsort(lam)
             lam, vec = lam[order], vec[:, order]

@@ -16,6 +16,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ...common._numeric import eigsh_repeatable
 from ...common import _checks
 from ...common._io import write_csv
 from ...common._progress import Progress
@@ -465,7 +466,7 @@ def _surely_determined(structure: Structure) -> bool:
     if not scale > 0:
         return False
     try:
-        lam = spla.eigsh(K, k=1, sigma=-1e-10 * scale, which="LM", return_eigenvectors=False)
+        lam = eigsh_repeatable(K, k=1, sigma=-1e-10 * scale, which="LM", return_eigenvectors=False)
     except (spla.ArpackError, RuntimeError):  # no convergence or an exactly singular shifted matrix
         return False
     return bool(lam[0] > 1e-11 * scale)

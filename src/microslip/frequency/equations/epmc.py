@@ -35,8 +35,8 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
+from ...common._numeric import eigsh_repeatable
 from ..numerics.krylov import Bordered
 from .cyclic_balance import CyclicHarmonicBalance
 from .hbm import HarmonicBalance, harmonic_operators
@@ -191,7 +191,7 @@ def stuck_mode(structure: Structure, q0, mode: int, nodal_diameter: int | None =
     else:
         Ms = sp.csc_matrix(M)
         scale = float(np.median(np.abs(K.diagonal())) / np.median(np.abs(Ms.diagonal())))
-        lam, vec = spla.eigsh(sp.csc_matrix(K), k=mode, M=Ms, sigma=-1e-6 * scale, which="LM")
+        lam, vec = eigsh_repeatable(sp.csc_matrix(K), k=mode, M=Ms, sigma=-1e-6 * scale, which="LM")
         refuse_indefinite(lam, K, Ms, "the linear mode of the structure with its contacts stuck")
         order = np.argsort(lam)
         lam, phi = float(lam[order[-1]]), vec[:, order[-1]]

@@ -49,6 +49,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ...common._numeric import eigsh_repeatable
 from ...common.errors import MicroslipError, SingularInteriorError
 
 #: interior DOFs up to which the interior block is factorised densely
@@ -349,7 +350,7 @@ class _SpectralInterior:
         k = min(SERIES_MODES, most)
         while True:
             try:
-                lam, phi = spla.eigsh(K, k=k, M=M, sigma=0.0, which="LM", OPinv=op)
+                lam, phi = eigsh_repeatable(K, k=k, M=M, sigma=0.0, which="LM", OPinv=op)
             except (spla.ArpackError, ValueError):
                 return None
             # Rayleigh-Ritz on the converged subspace: exactly mass-orthonormal modes

@@ -19,6 +19,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ...common._numeric import eigsh_repeatable
 from ...common import _checks
 from ...common._io import atomic_write
 from ...fe.files import FileFormatError, NpzArrays
@@ -227,7 +228,7 @@ def craig_bampton(structure: Structure, keep, modes: int) -> CraigBampton:
             lam, phi = lam[:modes], phi[:, :modes]
         elif modes:
             op = spla.LinearOperator(Kii.shape, matvec=lu.solve, dtype=float)
-            lam, phi = spla.eigsh(Kii, k=modes, M=Mii, sigma=0.0, which="LM", OPinv=op)
+            lam, phi = eigsh_repeatable(Kii, k=modes, M=Mii, sigma=0.0, which="LM", OPinv=op)
             refuse_indefinite(lam, Kii, Mii, fixed)
             order = np.argsort(lam)
             lam, phi = lam[order], phi[:, order]

@@ -28,6 +28,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ...common._numeric import eigsh_repeatable
 from ..structures.structure import refuse_indefinite
 from .condensation import CLASSICAL, ORDERING, Condensation, SingularInteriorError, _Products
 
@@ -85,7 +86,7 @@ class ModalCondensation:
         else:
             lu = spla.splu(sp.csc_matrix(shifted), permc_spec=ORDERING)
             op = spla.LinearOperator(shifted.shape, matvec=lu.solve, dtype=float)
-            lam, phi = spla.eigsh(sp.csr_matrix(K), k=k, M=sp.csr_matrix(M), sigma=s, which="LM", OPinv=op)
+            lam, phi = eigsh_repeatable(sp.csr_matrix(K), k=k, M=sp.csr_matrix(M), sigma=s, which="LM", OPinv=op)
             refuse_indefinite(lam, K, M, "a modal reduction")  # the eigenvalues nearest the shift
             order = np.argsort(lam)
             lam, phi = lam[order], phi[:, order]
