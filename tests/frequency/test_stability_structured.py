@@ -33,17 +33,22 @@ def both_methods(structure, force, omega, harmonics, reduction, modes=None, samp
 
 
 def agree(curve, structured, full):
-    """The same verdict at every point, the same bifurcations, the leading exponents to the Arnoldi tolerance."""
+    """The same verdict at every point, the same bifurcations, the leading exponents to the Arnoldi tolerance at
+    the points computed; a point skipped (NaN) is far inside the stable region by the formed problem."""
     stable, leading, found = structured
     assert stable is not None and np.array_equal(stable, full[0])
     assert [b.kind for b in found] == [b.kind for b in full[2]]
     for a, b in zip(found, full[2]):
         # interpolated between the same two points from exponents equal to the Arnoldi tolerance
         assert a.point == pytest.approx(b.point, abs=1e-6)
+    skipped = np.isnan(leading) & np.isfinite(full[1])
+    # a skipped point lies between computed ones below -FAR omega: its own exponent is below the boundary by far
+    # (half of FAR: the leading exponent moves little over SKIP_RUN points where it is not near a fold)
+    assert np.all(full[1][skipped].real < -0.5 * stability.FAR * curve.omega[skipped])
     # both from shift-invert Arnoldi with tolerance 1e-10 on the same problem: 1e-8 of omega leaves room for the
     # conditioning of the eigenvalues; a conjugate pair may come in either order
     both = np.isfinite(leading) & np.isfinite(full[1])
-    assert np.array_equal(both, np.isfinite(full[1]))
+    assert np.array_equal(both | skipped, np.isfinite(full[1]))
     gap = np.minimum(np.abs(leading - full[1]), np.abs(leading - np.conj(full[1])))[both]
     assert np.all(gap <= 1e-8 * curve.omega[both])
 
@@ -77,6 +82,34 @@ def test_a_curve_with_folds_gets_the_verdicts_of_the_formed_problem(disc, monkey
     assert [b.kind for b in full[2]] == ["fold", "fold"]
     assert not full[0].all()  # the branch between the folds is unstable
     agree(curve, structured, full)
+
+
+def test_points_near_the_boundary_are_computed_and_the_folds_located_as_with_every_point(monkeypatch):
+    """The fold curve (stable, two folds, an unstable branch, stable): the skipping solver leaves out points far
+    inside the stable region only. Every point whose leading exponent (formed problem) is within FAR omega of the
+    boundary, every point within TURN_WINDOW of a turn, and both points of each fold are computed; the verdicts and
+    the folds' positions are those of every point computed, to rounding (the same exponents at the same points:
+    1e-9 of a point, interpolated from exponents equal to the Arnoldi tolerance); and points are skipped (else the
+    test would not test skipping)."""
+    monkeypatch.setattr(stability, "DENSE_LIMIT", 10)
+    s, f = block_with_arm()
+    curve, skipping, full = both_methods(s, f, (16000, 17500), 5, "modal", modes=5)
+    _, hb, _ = _equations(s, f, 5, None, MAX_PERIODS, "modal", 5)
+    every = stability.assess(hb, curve.coefficients.reshape(curve.points, -1), curve.omega, every_point=True)
+    computed = np.isfinite(skipping[1])
+    assert 0 < np.count_nonzero(~computed) < curve.points
+    near = full[1].real >= -stability.FAR * curve.omega
+    assert near.any() and computed[near].all()
+    assert computed[stability._turning(curve.omega)].all()
+    assert [b.kind for b in every[2]] == [b.kind for b in skipping[2]] == ["fold", "fold"]
+    for a, b in zip(skipping[2], every[2]):
+        assert computed[int(np.floor(a.point))] and computed[int(np.floor(a.point)) + 1]
+        assert a.point == pytest.approx(b.point, abs=1e-9)
+        assert a.omega == pytest.approx(b.omega, rel=1e-12)
+    assert np.array_equal(skipping[0], every[0])
+    assert np.all(np.isfinite(every[1]))  # every point computed on request
+    with pytest.raises(TypeError, match="every_point must be True or False"):
+        stability.assess(hb, curve.coefficients.reshape(curve.points, -1), curve.omega, every_point="yes")
 
 
 def test_the_receptance_is_that_of_the_linear_part_inverted(monkeypatch):
