@@ -219,3 +219,48 @@ def test_random_contact_jacobians_get_the_exponents_of_the_formed_problem(seed, 
     assert abs(new[0].real - full[0].real) <= 1e-8 * omega
     for lam in full[np.abs(full) < 0.7 * omega]:
         assert np.min(np.minimum(np.abs(new - lam), np.abs(new - np.conj(lam)))) <= 1e-8 * omega
+
+
+class _Scripted:
+    """A stand-in for the solver of :func:`stability._skipping`: point ``k``'s exponents are ``script[k]`` (the
+    points are indices), and the points it was asked for are recorded."""
+
+    def __init__(self, script):
+        self.script, self.asked = script, []
+
+    def exponents(self, x, omega):
+        k = int(x[0])
+        self.asked.append(k)
+        return self.script[k]
+
+
+def skipped(script, omegas=None):
+    """The points :func:`stability._skipping` leaves out of ``script`` (leading real parts over omega per point, None:
+    no exponent resolved), omega 1 rad/s rising unless given."""
+    omegas = np.arange(1.0, len(script) + 1) if omegas is None else np.asarray(omegas, dtype=float)
+    lams = [np.empty(0, complex) if r is None else np.array([complex(r * w, 0.3 * w)]) for r, w in zip(script, omegas)]
+    solver = _Scripted(lams)
+    out = stability._skipping(solver, np.arange(len(script), dtype=float)[:, None], omegas)
+    assert sorted(solver.asked) == sorted(set(solver.asked))  # no point computed twice
+    return [k for k, lam in enumerate(out) if lam is None]
+
+
+def test_the_skipping_rule():
+    """The rule of :func:`stability._skipping` on scripted leading exponents (real part over omega): far inside
+    everywhere, SKIP_RUN points of each SKIP_RUN + 1 after the first are skipped, never the last; a leading exponent
+    that approaches the boundary (the line through the last two computed points reaches -FAR) stops the skipping;
+    a run whose right neighbour is near the boundary, unstable or unresolved is computed after all; near a turn of
+    the curve nothing is skipped."""
+    far = -10 * stability.FAR
+    assert stability.SKIP_RUN == 2 and stability.TURN_WINDOW == 2  # the patterns below are written for these
+    assert skipped([far] * 8) == [1, 2, 4, 5]
+    # approaching: -10, ..., -4 FAR at points 0 and 3; the line reaches -1 FAR at point 4.5: point 4 is skipped
+    # (the line at -2 FAR), point 5 is computed, and the run 4 is computed after all (point 5 is near, -FAR/2)
+    assert skipped([far, far, far, -4 * stability.FAR, -3 * stability.FAR, -0.5 * stability.FAR, far, far]) == [1, 2]
+    # an unstable point right of a skipped run: the run is computed after all, the verdict changes between
+    # computed points
+    assert skipped([far, far, far, 0.01, far, far, far, far]) == [5, 6]
+    # nothing known of point 3 (no exponent resolved): the run before it computed, and no trend through it
+    assert skipped([far, far, far, None, far, far, far, far]) == [6]
+    # the curve turns back at point 4: points 2..6 are computed
+    assert skipped([far] * 10, [1, 2, 3, 4, 5, 4.5, 4, 3.5, 3, 2.5]) == [1, 7, 8]

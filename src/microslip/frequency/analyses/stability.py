@@ -89,6 +89,23 @@ bifurcation (the exponents its position is interpolated from), the disc is
 formed problem, to the Arnoldi tolerance (``method="full"`` forms and factorises
 it at every point, the reference the tests compare with).
 
+Along a curve the structured solver skips points far inside the stable region
+(:func:`assess`, ``every_point=False``): a point is skipped when the last point
+computed has its leading exponent below ``-FAR omega`` (:data:`FAR`: a decay of
+more than ``2 pi FAR`` per period, four orders of magnitude inside
+:data:`TOLERANCE`), the straight line through the leading real parts of the last
+two points computed stays below that at it, at most :data:`SKIP_RUN` points in a
+row are skipped, and the curve does not turn back in frequency within
+:data:`TURN_WINDOW` points (where folds are). A run of skipped points whose two
+computed neighbours are not both far inside is computed after all. So every
+change of verdict lies between two computed points: the bifurcations are found
+and located from the same exponents as with every point computed, and a skipped
+point is stable (its leading exponent NaN). What this does not see: an
+instability that starts and ends within ``SKIP_RUN + 1`` steps of a curve whose
+computed points on both sides are far inside the stable region, while the curve
+does not turn (a Neimark--Sacker or period-doubling bubble narrower than two
+steps, or a branch point pair); ``every_point=True`` computes every point.
+
 Limit: where a contact element just reaches its slip limit somewhere on the orbit
 (the onset of microslip, a contact dissipating almost nothing), the friction force
 has a kink on the orbit and its linearisation depends on which side of it the AFT
@@ -741,17 +758,22 @@ def _skipping(builder: _Builder, xs: np.ndarray, omegas: np.ndarray) -> list:
     exponents = [None] * count
     turning = _turning(omegas)
     computed, run = [], 0
+
+    def far_ahead(k: int) -> bool:  # the last point computed far inside, and the trend of the last two stays so at k
+        if not computed or not _far(exponents[computed[-1]], omegas[computed[-1]]):
+            return False
+        if len(computed) == 1:
+            return True
+        a, b = computed[-2], computed[-1]
+        if not exponents[a].size:  # nothing known of the trend
+            return False
+        ra, rb = exponents[a][0].real / omegas[a], exponents[b][0].real / omegas[b]
+        return rb + (rb - ra) / (b - a) * (k - b) < -FAR
+
     for k in range(count):
-        if 0 < k < count - 1 and run < SKIP_RUN and not turning[k] and computed and _far(exponents[computed[-1]],
-                                                                                          omegas[computed[-1]]):
-            ahead = True
-            if len(computed) >= 2:
-                a, b = computed[-2], computed[-1]
-                ra, rb = exponents[a][0].real / omegas[a], exponents[b][0].real / omegas[b]
-                ahead = rb + (rb - ra) / (b - a) * (k - b) < -FAR
-            if ahead:
-                run += 1
-                continue
+        if 0 < k < count - 1 and run < SKIP_RUN and not turning[k] and far_ahead(k):
+            run += 1
+            continue
         exponents[k] = builder.exponents(xs[k], float(omegas[k]))
         computed.append(k)
         run = 0
