@@ -251,16 +251,16 @@ def test_the_skipping_rule():
     that approaches the boundary (the line through the last two computed points reaches -FAR) stops the skipping;
     a run whose right neighbour is near the boundary, unstable or unresolved is computed after all; near a turn of
     the curve nothing is skipped."""
-    far = -10 * stability.FAR
-    assert stability.SKIP_RUN == 2 and stability.TURN_WINDOW == 2  # the patterns below are written for these
-    assert skipped([far] * 8) == [1, 2, 4, 5]
-    # approaching: -10, ..., -4 FAR at points 0 and 3; the line reaches -1 FAR at point 4.5: point 4 is skipped
-    # (the line at -2 FAR), point 5 is computed, and the run 4 is computed after all (point 5 is near, -FAR/2)
-    assert skipped([far, far, far, -4 * stability.FAR, -3 * stability.FAR, -0.5 * stability.FAR, far, far]) == [1, 2]
+    far, F = -10 * stability.FAR, stability.FAR
+    assert stability.SKIP_RUN == 3 and stability.TURN_WINDOW == 2  # the patterns below are written for these
+    assert skipped([far] * 8) == [1, 2, 3, 5, 6]
+    # approaching: the line through points 0 and 4 (-10 F, -4 F) is at -2.5 F at point 5 (skipped) and at -F at
+    # point 6: computed from there on, each next line reaching -F
+    assert skipped([far, far, far, far, -4 * F, -3 * F, -2 * F, -1.5 * F, -0.5 * F, far, far]) == [1, 2, 3, 5]
     # an unstable point right of a skipped run: the run is computed after all, the verdict changes between
     # computed points
-    assert skipped([far, far, far, 0.01, far, far, far, far]) == [5, 6]
-    # nothing known of point 3 (no exponent resolved): the run before it computed, and no trend through it
-    assert skipped([far, far, far, None, far, far, far, far]) == [6]
+    assert skipped([far, far, far, far, 0.01, far, far, far, far, far]) == [6, 7, 8]
+    # nothing known of point 4 (no exponent resolved): the run before it computed, and no trend through it
+    assert skipped([far, far, far, far, None, far, far, far, far, far]) == [7, 8]
     # the curve turns back at point 4: points 2..6 are computed
     assert skipped([far] * 10, [1, 2, 3, 4, 5, 4.5, 4, 3.5, 3, 2.5]) == [1, 7, 8]

@@ -171,7 +171,7 @@ PD_BAND = 1e-6
 #: points in a row are skipped between two computed ones, and none within ``TURN_WINDOW`` points of a point where
 #: the curve turns back in frequency (where folds are)
 FAR = 1e-3
-SKIP_RUN = 2
+SKIP_RUN = 3
 TURN_WINDOW = 2
 
 
