@@ -28,7 +28,8 @@ Each is timed ``--repeat`` times, best of; wall time and this process's CPU time
 is shared: CPU time moves less with its load). The ratios are "stability adds X of the curve". Then the
 verdicts of the methods at every point of one curve are compared: points with equal verdicts, the
 bifurcations (kinds and frequencies printed), and the largest difference of the leading exponents relative to
-omega at the points computed by both.
+omega at the points computed by both; the same on a curve with two folds (the structured-solver tests' inclined
+block with an arm), whose verdict changes along it.
 """
 
 from __future__ import annotations
@@ -115,7 +116,7 @@ def agreement(stability, baseline, hb, xs, omegas) -> dict:
     new = stability.assess(hb, xs, omegas)
     computed = int(np.count_nonzero(np.isfinite(new[1])))
     print(f"skipping: {computed} of {omegas.size} points computed; bifurcations "
-          f"{[(b.kind, round(b.omega / 2 / np.pi, 3)) for b in new[2]]} (kind, Hz)")
+          f"{[(b.kind, round(b.omega / 2 / np.pi, 6)) for b in new[2]]} (kind, Hz)")
     out = {"computed": computed, "points": int(omegas.size),
            "bifurcations": [(b.kind, b.omega / 2 / np.pi, b.point) for b in new[2]]}
     for key, other in (("every point", stability.assess(hb, xs, omegas, every_point=True)),
@@ -126,11 +127,35 @@ def agreement(stability, baseline, hb, xs, omegas) -> dict:
         same = [(b.kind, round(b.point, 6)) for b in new[2]] == [(b.kind, round(b.point, 6)) for b in other[2]]
         print(f"against {key}: verdicts equal at {equal} of {omegas.size} points "
               f"({int(np.count_nonzero(~other[0]))} unstable); bifurcations {'the same' if same else 'DIFFER'} "
-              f"{[(b.kind, round(b.omega / 2 / np.pi, 3)) for b in other[2]]}; leading exponents within {gap:.1e} "
+              f"{[(b.kind, round(b.omega / 2 / np.pi, 6)) for b in other[2]]}; leading exponents within {gap:.1e} "
               f"of omega at the points computed")
         out[key] = {"equal_verdicts": equal, "same_bifurcations": same, "leading_gap_over_omega": float(gap),
                     "bifurcations": [(b.kind, b.omega / 2 / np.pi, b.point) for b in other[2]]}
     return out
+
+
+def fold_case(stability, baseline) -> dict:
+    """The agreement of :func:`agreement` on a curve whose verdict changes: the inclined block with a stiff arm of the
+    structured-solver tests (two folds, an unstable branch between them; 5 modes, H = 5), with ``DENSE_LIMIT``
+    lowered in both modules so that its 55 unknowns go to the structured solver."""
+    tests = Path(__file__).resolve().parents[1] / "tests"
+    sys.path[:0] = [str(tests), str(tests / "frequency")]
+    from test_stability_structured import block_with_arm  # the test's case, not a copy of it
+
+    from microslip import frequency_response
+    from microslip.frequency.analyses.response import MAX_PERIODS, _equations
+
+    structure, force = block_with_arm()
+    curve = frequency_response(structure, force, (16000.0, 17500.0), harmonics=5, reduction="modal", modes=5,
+                               stability=False)
+    _, hb, _ = _equations(structure, force, 5, None, MAX_PERIODS, "modal", 5)
+    limits = stability.DENSE_LIMIT, baseline.__globals__["DENSE_LIMIT"]
+    stability.DENSE_LIMIT = baseline.__globals__["DENSE_LIMIT"] = 10
+    try:
+        print(f"inclined block with an arm, 5 modes, H = 5, {curve.points} points:")
+        return agreement(stability, baseline, hb, curve.coefficients.reshape(curve.points, -1), curve.omega)
+    finally:
+        stability.DENSE_LIMIT, baseline.__globals__["DENSE_LIMIT"] = limits
 
 
 def main(argv=None) -> int:
@@ -195,7 +220,8 @@ def main(argv=None) -> int:
           f"at most {TARGET:.0%} -> {'met' if figures['adds_cpu']['structured'] <= TARGET else 'missed'} (cpu)")
 
     hb, xs, omegas = captured["args"]
-    figures["agreement"] = {"blade": agreement(stability, baseline, hb, xs, omegas)}
+    figures["agreement"] = {"blade": agreement(stability, baseline, hb, xs, omegas),
+                            "folds": fold_case(stability, baseline)}
     figures["whole_structure"] = whole_structure(args.repeat)
     print("saved", save_results("stability", figures))
     return 0
