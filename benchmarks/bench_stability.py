@@ -11,9 +11,11 @@ modal Hill problem at every point. In one process, after a warm-up curve (Numba'
 * the curve without stability (``stability=False``);
 * the same curve with stability by the structured solver (the default: the problem is never formed, the
   linear part is inverted per harmonic and the contacts go through a capacitance system of the retained
-  unknowns, the Arnoldi iteration starts from the previous point's eigenvectors);
+  unknowns, the Arnoldi iteration starts from the previous point's eigenvectors; points far inside the stable
+  region skipped, ``stability.FAR`` / ``SKIP_RUN``);
+* the same with every point computed (``stability.assess(..., every_point=True)``);
 * the same curve with stability by the structured solver as it was at commit :data:`BASELINE` (its module loaded
-  from git under another name: a dense ``A^-1 Phi^T`` per point, the disc ``|lambda| < omega``);
+  from git under another name: every point computed);
 * the same curve with stability from the formed problem (``stability.assess(..., method="full")``: the
   problem assembled and factorised at every point, as before the structured solver).
 
@@ -24,8 +26,10 @@ stability comes from the structured 60-mode modal model (the verdicts of both co
 
 Each is timed ``--repeat`` times, best of; wall time and this process's CPU time are both printed (the machine
 is shared: CPU time moves less with its load). The ratios are "stability adds X of the curve". Then the
-verdicts of both methods at every point of one curve are compared: points with equal verdicts, the
-bifurcations, and the largest difference of the leading exponents relative to omega.
+verdicts of the methods at every point of one curve are compared: points with equal verdicts, the
+bifurcations (kinds and frequencies printed), and the largest difference of the leading exponents relative to
+omega at the points computed by both; the same on a curve with two folds (the structured-solver tests' inclined
+block with an arm), whose verdict changes along it.
 """
 
 from __future__ import annotations
@@ -46,8 +50,8 @@ from bench_fe_scale import RANGE, blade_case  # noqa: E402
 
 #: stability may add at most this share of the curve's time (issue 26, item 6)
 TARGET = 0.5
-#: the commit whose structured solver is the baseline (main before the smaller disc and the per-harmonic receptance)
-BASELINE = "49f95a1"
+#: the commit whose structured solver is the baseline (main before the skipping: every point computed)
+BASELINE = "71e9e55"
 
 
 def baseline_assess():
@@ -105,6 +109,55 @@ def whole_structure(repeat: int) -> dict:
             "equal_verdicts": equal, "leading_gap_over_omega": gap}
 
 
+def agreement(stability, baseline, hb, xs, omegas) -> dict:
+    """The skipping solver's verdicts, bifurcations (kind, frequency) and leading exponents at the points it computes
+    against every point computed, the :data:`BASELINE` solver and the formed problem, printed; and how many points
+    it computed."""
+    new = stability.assess(hb, xs, omegas)
+    computed = int(np.count_nonzero(np.isfinite(new[1])))
+    print(f"skipping: {computed} of {omegas.size} points computed; bifurcations "
+          f"{[(b.kind, round(b.omega / 2 / np.pi, 6)) for b in new[2]]} (kind, Hz)")
+    out = {"computed": computed, "points": int(omegas.size),
+           "bifurcations": [(b.kind, b.omega / 2 / np.pi, b.point) for b in new[2]]}
+    for key, other in (("every point", stability.assess(hb, xs, omegas, every_point=True)),
+                       ("baseline", baseline(hb, xs, omegas)),
+                       ("full", stability.assess(hb, xs, omegas, method="full"))):
+        equal = int(np.count_nonzero(new[0] == other[0]))
+        gap = np.nanmax(np.minimum(np.abs(new[1] - other[1]), np.abs(new[1] - np.conj(other[1]))) / omegas)
+        same = [(b.kind, round(b.point, 6)) for b in new[2]] == [(b.kind, round(b.point, 6)) for b in other[2]]
+        print(f"against {key}: verdicts equal at {equal} of {omegas.size} points "
+              f"({int(np.count_nonzero(~other[0]))} unstable); bifurcations {'the same' if same else 'DIFFER'} "
+              f"{[(b.kind, round(b.omega / 2 / np.pi, 6)) for b in other[2]]}; leading exponents within {gap:.1e} "
+              f"of omega at the points computed")
+        out[key] = {"equal_verdicts": equal, "same_bifurcations": same, "leading_gap_over_omega": float(gap),
+                    "bifurcations": [(b.kind, b.omega / 2 / np.pi, b.point) for b in other[2]]}
+    return out
+
+
+def fold_case(stability, baseline) -> dict:
+    """The agreement of :func:`agreement` on a curve whose verdict changes: the inclined block with a stiff arm of the
+    structured-solver tests (two folds, an unstable branch between them; 5 modes, H = 5), with ``DENSE_LIMIT``
+    lowered in both modules so that its 55 unknowns go to the structured solver."""
+    tests = Path(__file__).resolve().parents[1] / "tests"
+    sys.path[:0] = [str(tests), str(tests / "frequency")]
+    from test_stability_structured import block_with_arm  # the test's case, not a copy of it
+
+    from microslip import frequency_response
+    from microslip.frequency.analyses.response import MAX_PERIODS, _equations
+
+    structure, force = block_with_arm()
+    curve = frequency_response(structure, force, (16000.0, 17500.0), harmonics=5, reduction="modal", modes=5,
+                               stability=False)
+    _, hb, _ = _equations(structure, force, 5, None, MAX_PERIODS, "modal", 5)
+    limits = stability.DENSE_LIMIT, baseline.__globals__["DENSE_LIMIT"]
+    stability.DENSE_LIMIT = baseline.__globals__["DENSE_LIMIT"] = 10
+    try:
+        print(f"inclined block with an arm, 5 modes, H = 5, {curve.points} points:")
+        return agreement(stability, baseline, hb, curve.coefficients.reshape(curve.points, -1), curve.omega)
+    finally:
+        stability.DENSE_LIMIT, baseline.__globals__["DENSE_LIMIT"] = limits
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--harmonics", type=int, default=5)
@@ -129,6 +182,7 @@ def main(argv=None) -> int:
     run(stability=False)  # warm-up
     baseline = baseline_assess()
     variants = {"without": (lambda: run(stability=False), None), "structured": (run, spy),
+                "every": (run, functools.partial(assess, every_point=True)),
                 "baseline": (run, baseline), "full": (run, functools.partial(assess, method="full"))}
     rows = {key: (np.inf, np.inf, None) for key in variants}
     try:  # in rounds, each variant once per round (the machine's load drifts less between them), best of
@@ -149,15 +203,16 @@ def main(argv=None) -> int:
     figures = {"H": H, "points": points, "dofs": structure.ndof, "target_adds": TARGET, "baseline_commit": BASELINE}
     for key, label in (("without", "curve without stability"), ("full", "with stability, formed problem"),
                        ("baseline", f"with stability, structured at {BASELINE}"),
-                       ("structured", "with stability, structured")):
+                       ("every", "with stability, every point"), ("structured", "with stability, skipping")):
         w, c = rows[key][:2]
         adds = ("", "") if key == "without" else (f"{(w - base_w) / base_w:13.0%}", f"{(c - base_c) / base_c:12.0%}")
         print(f"{label:40}{w:9.3f}{c:9.3f}{adds[0]:>13}{adds[1]:>12}")
         figures[key] = {"wall": w, "cpu": c}
     for clock in ("wall", "cpu"):
         alone = figures["without"][clock]
-        full, before, new = (figures[k][clock] - alone for k in ("full", "baseline", "structured"))
-        figures[f"adds_{clock}"] = {"full": full / alone, "baseline": before / alone, "structured": new / alone,
+        full, before, every, new = (figures[k][clock] - alone for k in ("full", "baseline", "every", "structured"))
+        figures[f"adds_{clock}"] = {"full": full / alone, "baseline": before / alone, "every": every / alone,
+                                    "structured": new / alone,
                                     "speed_up_over_full": full / new if new > 0 else float("inf"),
                                     "speed_up_over_baseline": before / new if new > 0 else float("inf")}
     print(f"stability itself {figures['adds_cpu']['speed_up_over_baseline']:.2f}x faster than at {BASELINE}, "
@@ -165,18 +220,8 @@ def main(argv=None) -> int:
           f"at most {TARGET:.0%} -> {'met' if figures['adds_cpu']['structured'] <= TARGET else 'missed'} (cpu)")
 
     hb, xs, omegas = captured["args"]
-    new = stability.assess(hb, xs, omegas)
-    figures["agreement"] = {}
-    for key, other in (("full", stability.assess(hb, xs, omegas, method="full")),
-                       ("baseline", baseline(hb, xs, omegas))):
-        equal = int(np.count_nonzero(new[0] == other[0]))
-        gap = np.nanmax(np.minimum(np.abs(new[1] - other[1]), np.abs(new[1] - np.conj(other[1]))) / omegas)
-        same = [(b.kind, round(b.point, 6)) for b in new[2]] == [(b.kind, round(b.point, 6)) for b in other[2]]
-        print(f"against {key}: verdicts equal at {equal} of {omegas.size} points "
-              f"({int(np.count_nonzero(~other[0]))} unstable); bifurcations {'the same' if same else 'DIFFER'} "
-              f"({len(other[2])}); leading exponents within {gap:.1e} of omega")
-        figures["agreement"][key] = {"equal_verdicts": equal, "points": int(omegas.size), "same_bifurcations": same,
-                                     "leading_gap_over_omega": float(gap)}
+    figures["agreement"] = {"blade": agreement(stability, baseline, hb, xs, omegas),
+                            "folds": fold_case(stability, baseline)}
     figures["whole_structure"] = whole_structure(args.repeat)
     print("saved", save_results("stability", figures))
     return 0

@@ -33,17 +33,22 @@ def both_methods(structure, force, omega, harmonics, reduction, modes=None, samp
 
 
 def agree(curve, structured, full):
-    """The same verdict at every point, the same bifurcations, the leading exponents to the Arnoldi tolerance."""
+    """The same verdict at every point, the same bifurcations, the leading exponents to the Arnoldi tolerance at
+    the points computed; a point skipped (NaN) is far inside the stable region by the formed problem."""
     stable, leading, found = structured
     assert stable is not None and np.array_equal(stable, full[0])
     assert [b.kind for b in found] == [b.kind for b in full[2]]
     for a, b in zip(found, full[2]):
         # interpolated between the same two points from exponents equal to the Arnoldi tolerance
         assert a.point == pytest.approx(b.point, abs=1e-6)
+    skipped = np.isnan(leading) & np.isfinite(full[1])
+    # a skipped point lies between computed ones below -FAR omega: its own exponent is below the boundary by far
+    # (half of FAR: the leading exponent moves little over SKIP_RUN points where it is not near a fold)
+    assert np.all(full[1][skipped].real < -0.5 * stability.FAR * curve.omega[skipped])
     # both from shift-invert Arnoldi with tolerance 1e-10 on the same problem: 1e-8 of omega leaves room for the
     # conditioning of the eigenvalues; a conjugate pair may come in either order
     both = np.isfinite(leading) & np.isfinite(full[1])
-    assert np.array_equal(both, np.isfinite(full[1]))
+    assert np.array_equal(both | skipped, np.isfinite(full[1]))
     gap = np.minimum(np.abs(leading - full[1]), np.abs(leading - np.conj(full[1])))[both]
     assert np.all(gap <= 1e-8 * curve.omega[both])
 
@@ -77,6 +82,34 @@ def test_a_curve_with_folds_gets_the_verdicts_of_the_formed_problem(disc, monkey
     assert [b.kind for b in full[2]] == ["fold", "fold"]
     assert not full[0].all()  # the branch between the folds is unstable
     agree(curve, structured, full)
+
+
+def test_points_near_the_boundary_are_computed_and_the_folds_located_as_with_every_point(monkeypatch):
+    """The fold curve (stable, two folds, an unstable branch, stable): the skipping solver leaves out points far
+    inside the stable region only. Every point whose leading exponent (formed problem) is within FAR omega of the
+    boundary, every point within TURN_WINDOW of a turn, and both points of each fold are computed; the verdicts and
+    the folds' positions are those of every point computed, to rounding (the same exponents at the same points:
+    1e-9 of a point, interpolated from exponents equal to the Arnoldi tolerance); and points are skipped (else the
+    test would not test skipping)."""
+    monkeypatch.setattr(stability, "DENSE_LIMIT", 10)
+    s, f = block_with_arm()
+    curve, skipping, full = both_methods(s, f, (16000, 17500), 5, "modal", modes=5)
+    _, hb, _ = _equations(s, f, 5, None, MAX_PERIODS, "modal", 5)
+    every = stability.assess(hb, curve.coefficients.reshape(curve.points, -1), curve.omega, every_point=True)
+    computed = np.isfinite(skipping[1])
+    assert 0 < np.count_nonzero(~computed) < curve.points
+    near = full[1].real >= -stability.FAR * curve.omega
+    assert near.any() and computed[near].all()
+    assert computed[stability._turning(curve.omega)].all()
+    assert [b.kind for b in every[2]] == [b.kind for b in skipping[2]] == ["fold", "fold"]
+    for a, b in zip(skipping[2], every[2]):
+        assert computed[int(np.floor(a.point))] and computed[int(np.floor(a.point)) + 1]
+        assert a.point == pytest.approx(b.point, abs=1e-9)
+        assert a.omega == pytest.approx(b.omega, rel=1e-12)
+    assert np.array_equal(skipping[0], every[0])
+    assert np.all(np.isfinite(every[1]))  # every point computed on request
+    with pytest.raises(TypeError, match="every_point must be True or False"):
+        stability.assess(hb, curve.coefficients.reshape(curve.points, -1), curve.omega, every_point="yes")
 
 
 def test_the_receptance_is_that_of_the_linear_part_inverted(monkeypatch):
@@ -186,3 +219,48 @@ def test_random_contact_jacobians_get_the_exponents_of_the_formed_problem(seed, 
     assert abs(new[0].real - full[0].real) <= 1e-8 * omega
     for lam in full[np.abs(full) < 0.7 * omega]:
         assert np.min(np.minimum(np.abs(new - lam), np.abs(new - np.conj(lam)))) <= 1e-8 * omega
+
+
+class _Scripted:
+    """A stand-in for the solver of :func:`stability._skipping`: point ``k``'s exponents are ``script[k]`` (the
+    points are indices), and the points it was asked for are recorded."""
+
+    def __init__(self, script):
+        self.script, self.asked = script, []
+
+    def exponents(self, x, omega):
+        k = int(x[0])
+        self.asked.append(k)
+        return self.script[k]
+
+
+def skipped(script, omegas=None):
+    """The points :func:`stability._skipping` leaves out of ``script`` (leading real parts over omega per point, None:
+    no exponent resolved), omega 1 rad/s rising unless given."""
+    omegas = np.arange(1.0, len(script) + 1) if omegas is None else np.asarray(omegas, dtype=float)
+    lams = [np.empty(0, complex) if r is None else np.array([complex(r * w, 0.3 * w)]) for r, w in zip(script, omegas)]
+    solver = _Scripted(lams)
+    out = stability._skipping(solver, np.arange(len(script), dtype=float)[:, None], omegas)
+    assert sorted(solver.asked) == sorted(set(solver.asked))  # no point computed twice
+    return [k for k, lam in enumerate(out) if lam is None]
+
+
+def test_the_skipping_rule():
+    """The rule of :func:`stability._skipping` on scripted leading exponents (real part over omega): far inside
+    everywhere, SKIP_RUN points of each SKIP_RUN + 1 after the first are skipped, never the last; a leading exponent
+    that approaches the boundary (the line through the last two computed points reaches -FAR) stops the skipping;
+    a run whose right neighbour is near the boundary, unstable or unresolved is computed after all; near a turn of
+    the curve nothing is skipped."""
+    far, F = -10 * stability.FAR, stability.FAR
+    assert stability.SKIP_RUN == 3 and stability.TURN_WINDOW == 2  # the patterns below are written for these
+    assert skipped([far] * 8) == [1, 2, 3, 5, 6]
+    # approaching: the line through points 0 and 4 (-10 F, -4 F) is at -2.5 F at point 5 (skipped) and at -F at
+    # point 6: computed from there on, each next line reaching -F
+    assert skipped([far, far, far, far, -4 * F, -3 * F, -2 * F, -1.5 * F, -0.5 * F, far, far]) == [1, 2, 3, 5]
+    # an unstable point right of a skipped run: the run is computed after all, the verdict changes between
+    # computed points
+    assert skipped([far, far, far, far, 0.01, far, far, far, far, far]) == [6, 7, 8]
+    # nothing known of point 4 (no exponent resolved): the run before it computed, and no trend through it
+    assert skipped([far, far, far, far, None, far, far, far, far, far]) == [7, 8]
+    # the curve turns back at point 4: points 2..6 are computed
+    assert skipped([far] * 10, [1, 2, 3, 4, 5, 4.5, 4, 3.5, 3, 2.5]) == [1, 7, 8]

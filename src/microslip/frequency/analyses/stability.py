@@ -89,6 +89,24 @@ bifurcation (the exponents its position is interpolated from), the disc is
 formed problem, to the Arnoldi tolerance (``method="full"`` forms and factorises
 it at every point, the reference the tests compare with).
 
+Along a curve the structured solver skips points far inside the stable region
+(:func:`assess`, ``every_point=False``): a point is skipped when the last point
+computed has its leading exponent below ``-FAR omega`` (:data:`FAR`: a decay of
+more than ``2 pi FAR`` per period, four orders of magnitude inside
+:data:`TOLERANCE`), the straight line through the leading real parts of the last
+two points computed stays below that at it, at most :data:`SKIP_RUN` points in a
+row are skipped, and the curve does not turn back in frequency within
+:data:`TURN_WINDOW` points (where folds are). A run of skipped points whose two
+computed neighbours are not both far inside is computed after all. So every
+change of verdict lies between two computed points: the bifurcations are found
+and located from the same exponents as with every point computed, and a skipped
+point is stable (its leading exponent NaN). What this does not see: an
+instability that starts and ends within the (at most :data:`SKIP_RUN`) points
+skipped between two computed points far inside the stable region, away from a
+turn of the curve (a Neimark--Sacker or period-doubling bubble, or a pair of
+branch points, narrower than ``SKIP_RUN + 1`` steps); ``every_point=True``
+computes every point.
+
 Limit: where a contact element just reaches its slip limit somewhere on the orbit
 (the onset of microslip, a contact dissipating almost nothing), the friction force
 has a kink on the orbit and its linearisation depends on which side of it the AFT
@@ -148,6 +166,13 @@ METHODS = {"structured": "the linear part per harmonic and the contacts' low ran
            "full": "the formed problem, factorised at every point"}
 #: an exponent with ``|Im| >= (1 - PD_BAND) omega / 2`` gives negative multipliers (period doubling)
 PD_BAND = 1e-6
+#: the structured solver's skipping (:func:`assess`): a point is far inside the stable region when its leading
+#: exponent's real part is below ``-FAR omega`` (a decay of more than ``2 pi FAR`` per period); at most ``SKIP_RUN``
+#: points in a row are skipped between two computed ones, and none within ``TURN_WINDOW`` points of a point where
+#: the curve turns back in frequency (where folds are)
+FAR = 1e-3
+SKIP_RUN = 3
+TURN_WINDOW = 2
 
 
 @dataclass(frozen=True)
@@ -572,6 +597,9 @@ class _Builder:
         if not self.assessed:
             return
         sparse = self.sparse = n > DENSE_LIMIT
+        if self.kind == "modal" and sparse and method == "structured":  # never formed: no Kronecker products
+            self.parts = _ModalParts(linear, hb.H, self.D)
+            return
         if not sparse:
             M, C = _dense(M), _dense(C)
         I = np.eye(nb)
@@ -580,9 +608,6 @@ class _Builder:
         if not sparse:
             Minv = np.linalg.inv(_dense(M))  # D2^-1 = I (x) M^-1, applied block by block
             self.solve_D2 = lambda B: np.einsum("ij,hjk->hik", Minv, B.reshape(nb, m, -1)).reshape(B.shape)
-        if self.kind == "modal" and sparse and method == "structured":
-            self.parts = _ModalParts(linear, hb.H, self.D)
-            return
         if self.kind == "modal":
             self.Phi = np.kron(I, linear.phi_r)  # (nb m_r, nb modes)
             self.R = np.kron(I, linear.residual)
@@ -703,7 +728,64 @@ def _unstable(exponents, omegas) -> tuple[list, list]:
     return unstable, kinds
 
 
-def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured"
+def _far(lam: np.ndarray, omega: float) -> bool:
+    """True when the exponents ``lam`` (by decreasing real part) of a point put it far inside the stable region
+    (:data:`FAR`); a point with no exponent resolved is not (nothing is known of it)."""
+    return bool(lam.size) and lam[0].real < -FAR * omega
+
+
+def _turning(omegas: np.ndarray) -> np.ndarray:
+    """Per point: True within :data:`TURN_WINDOW` points of a point where the curve turns back in frequency."""
+    steps = np.diff(omegas)
+    turns = np.flatnonzero(steps[:-1] * steps[1:] < 0) + 1
+    near = np.zeros(omegas.size, dtype=bool)
+    for k in turns:
+        near[max(k - TURN_WINDOW, 0):k + TURN_WINDOW + 1] = True
+    return near
+
+
+def _skipping(builder: _Builder, xs: np.ndarray, omegas: np.ndarray) -> list:
+    """The exponents of each point (None where skipped) by the structured solver, which skips the points far inside
+    the stable region.
+
+    A point is skipped when the last point computed is far inside (:func:`_far`), the straight line through the
+    leading real parts (over ``omega``) of the last two points computed stays below ``-FAR`` at it, at most
+    :data:`SKIP_RUN` points before it were skipped, it is not the first or last point, and the curve does not turn
+    back in frequency near it (:func:`_turning`). Then every run of skipped points whose two computed neighbours are
+    not both far inside is computed after all: a change of verdict (a bifurcation) always lies between two
+    computed points, so the bifurcations are located from the same exponents as when every point is computed.
+    """
+    count = len(omegas)
+    exponents = [None] * count
+    turning = _turning(omegas)
+    computed, run = [], 0
+
+    def far_ahead(k: int) -> bool:  # the last point computed far inside, and the trend of the last two stays so at k
+        if not computed or not _far(exponents[computed[-1]], omegas[computed[-1]]):
+            return False
+        if len(computed) == 1:
+            return True
+        a, b = computed[-2], computed[-1]
+        if not exponents[a].size:  # nothing known of the trend
+            return False
+        ra, rb = exponents[a][0].real / omegas[a], exponents[b][0].real / omegas[b]
+        return rb + (rb - ra) / (b - a) * (k - b) < -FAR
+
+    for k in range(count):
+        if 0 < k < count - 1 and run < SKIP_RUN and not turning[k] and far_ahead(k):
+            run += 1
+            continue
+        exponents[k] = builder.exponents(xs[k], float(omegas[k]))
+        computed.append(k)
+        run = 0
+    for a, b in zip(computed[:-1], computed[1:]):
+        if b - a > 1 and not (_far(exponents[a], omegas[a]) and _far(exponents[b], omegas[b])):
+            for k in range(a + 1, b):
+                exponents[k] = builder.exponents(xs[k], float(omegas[k]))
+    return exponents
+
+
+def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured", every_point: bool = False
            ) -> tuple[np.ndarray | None, np.ndarray | None, list[Bifurcation]]:
     """Stability of every point of a curve and the bifurcations between them.
 
@@ -719,6 +801,14 @@ def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured"
         How the Hill problem of a modal model is solved: ``"structured"`` never
         forms it (:data:`METHODS`); ``"full"`` forms and factorises it at every
         point. Both find the same eigenvalues by the same iteration.
+    every_point : bool, default False
+        Compute the structured solver's exponents at every point. By default it
+        skips points far inside the stable region (:func:`_skipping`: a leading
+        exponent below ``-FAR omega`` at the computed points around, at most
+        :data:`SKIP_RUN` in a row, none near a turn of the curve); a skipped
+        point is stable and its leading exponent NaN. The formed problem
+        (``method="full"``) and the other forms of the equations compute every
+        point.
 
     Returns
     -------
@@ -726,7 +816,7 @@ def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured"
         None when stability is not computed for these equations (see :func:`hill_problem`).
     leading : ndarray of complex, shape (points,), or None
         The Floquet exponent with the largest real part at each point (1/s;
-        NaN where no exponent is resolved).
+        NaN where no exponent is resolved or the point was skipped).
     bifurcations : list of Bifurcation
         Where the number of unstable exponents changes: a real one (fold or
         branch point), a complex pair (Neimark--Sacker) or a pair at
@@ -734,13 +824,19 @@ def assess(hb: HarmonicBalance, xs, omegas, method: str = "structured"
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
+    if not isinstance(every_point, (bool, np.bool_)):
+        raise TypeError(f"every_point must be True or False, got {every_point!r}")
     xs = np.asarray(xs, dtype=float)
     omegas = np.asarray(omegas, dtype=float)
     builder = _Builder(hb, method)
     if not builder.assessed:
         return None, None, []
     with one_blas_thread():
-        exponents = [builder.exponents(x, float(w)) for x, w in zip(xs, omegas)]
+        if hasattr(builder, "parts") and not every_point:
+            exponents = _skipping(builder, xs, omegas)
+        else:
+            exponents = [builder.exponents(x, float(w)) for x, w in zip(xs, omegas)]
+        exponents = [np.empty(0, dtype=complex) if lam is None else lam for lam in exponents]  # skipped: stable
         unstable, kinds = _unstable(exponents, omegas)
         if hasattr(builder, "parts"):  # the structured solver's smaller disc: each side of a bifurcation on the
             # formed problem's disc, so that the exponents it is interpolated from are those the formed rule finds
