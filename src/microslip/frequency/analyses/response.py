@@ -98,7 +98,9 @@ class FrequencyResponse:
     stable : ndarray of bool, shape (points,), or None
         Hill stability of each point (:mod:`~microslip.frequency.analyses.stability`); None when not computed.
     leading_exponent : ndarray of complex, shape (points,), or None
-        The Floquet exponent with the largest real part (1/s); NaN where the harmonics resolve none.
+        The Floquet exponent with the largest real part (1/s); NaN where the harmonics resolve none, or where
+        the point was not computed because its neighbours lie far inside the stable region (stable; see the
+        stability module's rule for skipping points).
     bifurcations : list of Bifurcation
         Folds, branch points, Neimark--Sacker and period-doubling points between the points
         (:class:`~microslip.frequency.analyses.stability.Bifurcation`).
