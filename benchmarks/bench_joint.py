@@ -123,6 +123,18 @@ def export_structure(structure, path: Path) -> None:
              n=np.array([c.normal for c in structure.contacts]), contacts=np.array(json.dumps(contacts)))
 
 
+#: the baseline's rebuild of the structure that export_structure saved (``data``: the loaded ``.npz``), public API
+#: only, so any version of microslip runs it
+REBUILD_STRUCTURE = r"""
+def structure():
+    s = Structure(data["M"], data["C"], data["K"])
+    for k, c in enumerate(json.loads(str(data["contacts"]))):
+        s.add_contact(MicroslipModel(c["kt"], c["kn"], c["gaps"], c["mu"]), tangential=[data["t1"][k], data["t2"][k]],
+                      normal=data["n"][k], name=c["name"])
+    s.add_static_force(data["static"])
+    return s
+"""
+
 BASELINE_SCRIPT = r"""
 import json, sys, time, warnings
 import numpy as np
@@ -133,14 +145,7 @@ data = np.load(sys.argv[1])
 points = int(sys.argv[2])
 lo, hi, H, samples = float(sys.argv[3]), float(sys.argv[4]), int(sys.argv[5]), int(sys.argv[6])
 
-def structure():
-    s = Structure(data["M"], data["C"], data["K"])
-    for k, c in enumerate(json.loads(str(data["contacts"]))):
-        s.add_contact(MicroslipModel(c["kt"], c["kn"], c["gaps"], c["mu"]), tangential=[data["t1"][k], data["t2"][k]],
-                      normal=data["n"][k], name=c["name"])
-    s.add_static_force(data["static"])
-    return s
-
+""" + REBUILD_STRUCTURE + r"""
 ctl = None if points == 0 else StepControl(ds_initial=1 / (points - 1), ds_max=1 / (points - 1), max_points=4 * points)
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")

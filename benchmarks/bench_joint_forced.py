@@ -38,7 +38,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import baseline_source, peak, save_results  # noqa: E402
-from bench_joint import BASELINE, HARMONICS, SAMPLES, TARGET_SPEEDUP, build, export_structure  # noqa: E402
+from bench_joint import (BASELINE, HARMONICS, REBUILD_STRUCTURE, SAMPLES, TARGET_SPEEDUP, build,  # noqa: E402
+                         export_structure)
 
 BAND = (1.005, 0.985)  # times the stuck joint's first bending frequency: from above, downwards
 
@@ -50,14 +51,7 @@ from microslip import MicroslipModel, Structure, frequency_response
 data = np.load(sys.argv[1])
 H, samples = int(sys.argv[2]), int(sys.argv[3])
 
-def structure():
-    s = Structure(data["M"], data["C"], data["K"])
-    for k, c in enumerate(json.loads(str(data["contacts"]))):
-        s.add_contact(MicroslipModel(c["kt"], c["kn"], c["gaps"], c["mu"]), tangential=[data["t1"][k], data["t2"][k]],
-                      normal=data["n"][k], name=c["name"])
-    s.add_static_force(data["static"])
-    return s
-
+""" + REBUILD_STRUCTURE + r"""
 s = structure()
 band, forces, dof = tuple(data["band"]), data["forces"], int(data["dof"])
 with warnings.catch_warnings():
