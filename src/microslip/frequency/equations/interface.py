@@ -52,14 +52,14 @@ class HarmonicOperator:
         unknowns are coupled by the linear structure alone, harmonic by harmonic (:meth:`groups`).
     """
 
-    def __init__(self, static, A, B, contacts, factor: float = 1.0, interior=None):
+    def __init__(self, static, A, B, contacts, factor: float = 1.0, interior=None, parts=None):
         self.static, self._A, self._B, self.contacts, self.factor = static, A, B, contacts, factor
+        self.parts = parts  # (K, M, C, xi, W) of :meth:`of_structure`, else None
         self.ndof = static.shape[0]
-        self.H = A.shape[0]
+        self.H = A.shape[0] if A is not None else parts[-1].size
         self.n = (2 * self.H + 1) * self.ndof
         self.shape = (self.n, self.n)
         self.interior = np.zeros(0, dtype=int) if interior is None else np.asarray(interior, dtype=int)
-        self.parts = None
 
     @classmethod
     def of_structure(cls, K, M, C, omega: float, harmonics: int, contacts, factor: float = 1.0,
@@ -73,10 +73,7 @@ class HarmonicOperator:
         only when asked for (a dense block or the whole matrix).
         """
         W = omega * np.arange(1, harmonics + 1, dtype=float)
-        op = cls(K, np.empty((harmonics, 0, 0)), None, contacts, factor, interior)
-        op._A = op._B = None
-        op.parts = (K, M, C, float(xi), W)
-        return op
+        return cls(K, None, None, contacts, factor, interior, parts=(K, M, C, float(xi), W))
 
     @property
     def A(self) -> np.ndarray:
@@ -96,10 +93,8 @@ class HarmonicOperator:
 
     def scaled(self, factor: float) -> "HarmonicOperator":
         """This operator times ``factor`` (the arrays shared)."""
-        out = HarmonicOperator(self.static, np.empty((self.H, 0, 0)), None, self.contacts, self.factor * factor,
-                               self.interior)
-        out._A, out._B, out.parts = self._A, self._B, self.parts
-        return out
+        return HarmonicOperator(self.static, self._A, self._B, self.contacts, self.factor * factor, self.interior,
+                                self.parts)
 
     def groups(self) -> list | None:
         """The interior DOFs' unknowns, harmonic by harmonic, and the unknowns each group is coupled to.
