@@ -168,7 +168,7 @@ def _documents(folder):
                         .replace("[excitation]", "[cyclic]\nsectors = 12\nleft = [2]\nright = [5]\nengine_order = 2\n"
                                                  "frame = \"cylindrical\"\naxis = [0, 0, 1]\npoint = [0, 0, 0]\n\n"
                                                  "[excitation]")
-                        + "\n[modes]\nnodal_diameter = 2\n")
+                        + "\n[modes]\nnodal_diameter = 2\nfolds = \"follow\"\n")
     docs.append((pair, True))
     # 5. the damper's load from its speed and radius, an interface tuned when the file is read, the engine order
     #    in [sweep]
@@ -176,7 +176,7 @@ def _documents(folder):
     five.write_text(pair.read_text().replace('centrifugal_load = "50N"', 'speed = "1000rad/s"\nradius = "0.25m"')
                     .replace('model = "curved.json"', 'reference = {kind = "sphere"}\nload = "37.5N"\nelements = 3')
                     .replace("engine_order = 2\n", "").replace("harmonics = 3", "harmonics = 3\nengine_order = 2")
-                    .replace("[modes]\nnodal_diameter = 2\n", ""))
+                    .replace("[modes]\nnodal_diameter = 2\nfolds = \"follow\"\n", ""))
     docs.append((five, False))
     # 6. the pair as a sector in the global Cartesian frame: its boundary nodes' coordinates, no other node
     (folder / "six").mkdir()

@@ -62,6 +62,7 @@ def test_modes_stopped_early_writes_what_it_has_and_fails(config_dir, capsys):
     ("dof = \"x\"", "mode = 3", "[modes] mode must be at most the number of DOFs (2), got 3"),
     ("dof = \"x\"", "mode = 0", "[modes] mode must be an integer >= 1, got 0"),
     ("dof = \"x\"", "compare = \"yes\"", "[modes] compare must be True or False"),
+    ("dof = \"x\"", "folds = \"skip\"", "[modes] folds must be one of 'stop', 'follow', got 'skip'"),
 ])
 def test_modes_configuration_errors_name_the_key(config_dir, old, new, words):
     cfg = config_dir / "block.toml"
@@ -70,6 +71,28 @@ def test_modes_configuration_errors_name_the_key(config_dir, old, new, words):
         load_config(cfg, nonlinear=True)
     assert words in str(info.value)
     assert main(["modes", str(cfg), "--out", str(config_dir / "out")]) == 2
+
+
+def test_modes_folds_key_reaches_the_solver(config_dir, monkeypatch):
+    """``[modes] folds`` is what ``nonlinear_modes`` is called with (default "stop")."""
+    import microslip.frequency
+
+    class Called(Exception):
+        pass
+
+    cfg = config_dir / "block.toml"
+    assert load_config(cfg, nonlinear=True).nonlinear_mode.folds == "stop"
+    _edit(cfg, "dof = \"x\"", "dof = \"x\"\nfolds = \"follow\"")
+    seen = {}
+
+    def spy(*args, **kwargs):
+        seen.update(kwargs)
+        raise Called  # enough: the call's arguments are what is checked
+
+    monkeypatch.setattr(microslip.frequency, "nonlinear_modes", spy)
+    with pytest.raises(Called):
+        main(["modes", str(cfg), "--out", str(config_dir / "out"), "--quiet"])
+    assert seen["folds"] == "follow"
 
 
 def test_modes_needs_a_modes_table_and_frf_ignores_it(config_dir, capsys):

@@ -118,3 +118,35 @@ def test_a_line_of_solutions_that_ends_is_crossed_in_few_points():
     np.testing.assert_allclose(omegas, [0.5 + min(x, 0.0) + max(x - end, 0.0) for x in xs[:, 0]], rtol=0, atol=1e-12)
     on_line = np.count_nonzero((xs[:, 0] > 1e-9) & (xs[:, 0] < end - 1e-9))
     assert 0 < on_line < 12  # doubling steps from ds_max: about log2(40) + the steps shortened near its end
+
+
+class Parabola(Zigzag):
+    """``R(x, omega) = omega - x (2 - x)``: a smooth fold at ``(x, omega) = (1, 1)``, back to ``omega = 0`` at 2."""
+
+    def _evaluate(self, x, omega, jacobian=True):
+        u = float(x[0])
+        R = np.array([omega - u * (2.0 - u)])
+        return R if not jacobian else (R, np.array([[-(2.0 - 2.0 * u)]]), np.array([1.0]))
+
+
+def test_a_fold_in_the_parameter_ends_the_curve_when_asked_and_is_followed_otherwise():
+    folds = []
+    xs, omegas, _, complete = continuation(Parabola(), np.array([0.0]), 0.0, 1.5, x_scale=1.0, r_scale=1.0,
+                                           folds=folds)
+    # it ends at its farthest point, before the turn: within one step (ds_max 0.05 of the range, whose scaled
+    # length is 1.5) of the fold, with every point on the curve and rising
+    assert not complete and folds == [omegas[-1]] and np.all(np.diff(omegas) > 0)
+    assert 1.0 - 0.05 * 1.5 < omegas[-1] <= 1.0 and abs(xs[-1, 0] - 1.0) < 0.05 * 1.5
+    np.testing.assert_allclose(omegas, xs[:, 0] * (2 - xs[:, 0]), rtol=0, atol=1e-12)
+    # followed (the default), the same points up to there, then back down until it leaves the range at its start
+    xs2, omegas2, _, complete2 = continuation(Parabola(), np.array([0.0]), 0.0, 1.5, x_scale=1.0, r_scale=1.0)
+    assert complete2 and omegas2[-1] < 0.05 * 1.5 and xs2[-1, 0] > 1.9  # its last point before leaving
+    np.testing.assert_array_equal(omegas2[:omegas.size], omegas)
+
+
+def test_a_line_at_one_parameter_value_is_no_fold():
+    """Along a line of solutions the parameter moves by rounding, either way: not a turn back."""
+    folds = []
+    _, omegas, _, complete = continuation(Plateau(2.0), np.array([-0.5]), 0.0, 1.0, x_scale=1.0, r_scale=1.0,
+                                          folds=folds)
+    assert complete and omegas[-1] == 1.0 and folds == []

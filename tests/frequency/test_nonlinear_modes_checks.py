@@ -126,18 +126,30 @@ def test_the_continuation_stopped_early_is_a_warning(mode):
     assert not short.complete and short.points == 5
 
 
-def test_a_mode_that_folds_back_in_amplitude_is_a_warning():
+def test_a_mode_that_folds_back_in_amplitude_ends_at_the_fold_or_is_followed_with_a_warning():
     """A 10-mass chain whose first mode's third harmonic meets its fourth mode as the contacts slip (3 x 945 and
-    2840 rad/s): the curve turns back in amplitude and leaves the range at its start."""
+    2840 rad/s): the curve turns back in amplitude. By default the mode ends at the fold; followed, it leaves the
+    range at its start."""
     n = 10
     Kc = np.diag(np.full(n, 2e6)) - np.diag(np.full(n - 1, 1e6), 1) - np.diag(np.full(n - 1, 1e6), -1)
     Mc = np.diag(np.linspace(0.1, 0.2, n))
     s = Structure(Mc, 2e-6 * Kc + 2.0 * Mc, Kc)
     for dof in (2, 7):
         s.add_contact(MicroslipModel([2e5, 1e5], [1e9, 1e9], [0.0, 0.0], 0.5), tangential=dof, approach=1e-8)
+    control = StepControl(ds_initial=0.2, ds_max=0.2)
+    with pytest.warns(IncompleteCurveWarning, match="the mode turns back in amplitude at modal amplitude .* folds='follow'"):
+        stopped = nonlinear_modes(s, 1, (1e-5, 1e-2), harmonics=3, control=control)
     with pytest.warns(IncompleteCurveWarning, match="the mode turned back at modal amplitude"):
-        folded = nonlinear_modes(s, 1, (1e-5, 1e-2), harmonics=3, control=StepControl(ds_initial=0.2, ds_max=0.2))
+        folded = nonlinear_modes(s, 1, (1e-5, 1e-2), harmonics=3, control=control, folds="follow")
     assert folded.complete and folded.modal_amplitude.max() < 1e-4
+    # stopped at the largest amplitude the followed curve reaches before it turns, on the same points up to there
+    k = stopped.points
+    assert not stopped.complete and np.all(np.diff(stopped.modal_amplitude) > 0)
+    assert stopped.modal_amplitude[-1] == pytest.approx(folded.modal_amplitude[k - 1], rel=1e-12)
+    assert folded.modal_amplitude[k] < folded.modal_amplitude[k - 1]
+    np.testing.assert_allclose(stopped.omega, folded.omega[:k], rtol=1e-12)
+    with pytest.raises(ValueError, match="folds must be one of 'stop', 'follow', got 'go on'"):
+        nonlinear_modes(s, 1, (1e-5, 1e-2), harmonics=3, control=control, folds="go on")
 
 
 def test_the_mode_and_its_synthesis_draw_and_write(mode, tmp_path):

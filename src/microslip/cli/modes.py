@@ -167,7 +167,8 @@ def run(args) -> int:
             mode = nonlinear_modes(structure, table.mode, table.amplitude, harmonics=cfg.harmonics,
                                    samples=cfg.samples, reduction=cfg.reduction, modes=cfg.modes,
                                    control=None if cfg.control == StepControl() else cfg.control,
-                                   progress=not args.quiet, nodal_diameter=table.nodal_diameter, prestress=state)
+                                   progress=not args.quiet, nodal_diameter=table.nodal_diameter, prestress=state,
+                                   folds=table.folds)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip modes: error: {exc}", file=sys.stderr)
         return 1

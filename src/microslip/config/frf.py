@@ -23,6 +23,7 @@ from ..model import MicroslipModel
 from ..common.units import parse_quantity
 from ..common.errors import ConfigError
 from ..frequency.aft import check_harmonics, check_samples
+from ..frequency.analyses.nonlinear_modes import FOLDS
 from ..frequency.numerics.continuation import StepControl
 from ..frequency.structures.structure import Structure
 from .schema import KEYS, REFERENCE, REQUIRED, check_types
@@ -218,6 +219,7 @@ class ModesTable:
     dof: int = 0
     compare: bool = True
     nodal_diameter: int | None = None
+    folds: str = "stop"
 
 
 def refuse_unknown(table: dict, where: str, path, keys: dict = KEYS) -> None:
@@ -845,7 +847,7 @@ def _campbell_table(table, speed: SpeedTable | None, bare: Structure, path) -> C
 
 
 def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> ModesTable:
-    """``[modes]`` checked: the mode, its amplitude range, the DOF shown, whether to compare."""
+    """``[modes]`` checked: the mode, its amplitude range, the DOF shown, whether to compare, what a fold does."""
     out = ModesTable(dof=plot_dofs[0] if plot_dofs else 0)
     if "mode" in table:
         out.mode = checked(path, "", _checks.positive_int, "[modes] mode", table["mode"])
@@ -869,6 +871,11 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
     if "nodal_diameter" in table:
         out.nodal_diameter = checked(path, "", _checks.positive_int, "[modes] nodal_diameter",
                                       table["nodal_diameter"], minimum=0)
+    if "folds" in table:
+        if table["folds"] not in FOLDS:
+            raise ConfigError(f"{path}: [modes] folds must be one of {', '.join(map(repr, FOLDS))}, got "
+                              f"{table['folds']!r}")
+        out.folds = table["folds"]
     return out
 
 

@@ -363,6 +363,8 @@ MODES = Table("[modes]", "The nonlinear mode of `microslip modes` (extended peri
     _k("compare", "boolean", "", True, "Also solve `[excitation]`'s forced response over `[sweep]` by harmonic "
        "balance and compare it with the one synthesised from the mode.", "true"),
     _k("nodal_diameter", "integer", "", "the engine order", "With `[cyclic]`: the mode's nodal diameter.", "3"),
+    _k("folds", "string", "", '"stop"', "Where the mode turns back in amplitude: `\"stop\"` ends it there (with a "
+       "warning), `\"follow\"` follows the curve beyond the fold.", '"follow"'),
 ), "[modes]")
 
 DESIGN = Table("[design]", "The damper's design curve of `microslip design`: the peak response against the "

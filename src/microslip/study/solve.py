@@ -150,7 +150,7 @@ def _modes(study: Study, cfg):
     state = apply_prestress(cfg, cfg.force)[0]  # a [prestress]: the mode vibrates about its state
     mode = nonlinear_modes(cfg.structure, t.mode, t.amplitude, harmonics=cfg.harmonics, samples=cfg.samples,
                            reduction=cfg.reduction, modes=cfg.modes, control=cfg.control,
-                           nodal_diameter=t.nodal_diameter, prestress=state)
+                           nodal_diameter=t.nodal_diameter, prestress=state, folds=t.folds)
     amplitude = np.column_stack([mode.amplitude(d, 1) for d in cfg.plot_dofs])
     k = int(np.argmax(mode.damping_ratio))
     row = {"linear frequency (Hz)": float(mode.linear_frequency / (2 * np.pi)),

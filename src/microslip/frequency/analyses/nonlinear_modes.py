@@ -244,6 +244,9 @@ def _check_diameter(structure: Structure, nodal_diameter):
     return nd
 
 
+#: what :func:`nonlinear_modes` does where the mode turns back in amplitude
+FOLDS = ("stop", "follow")
+
 #: points per decade of amplitude at least, with the default step control
 POINTS_PER_DECADE = 20
 
@@ -258,7 +261,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
                     samples: int | None = None, reduction: str = "auto", modes: int | None = None,
                     control: StepControl | None = None, progress: bool = False,
                     max_periods: int = MAX_PERIODS, nodal_diameter: int | None = None,
-                    prestress=None) -> NonlinearModes:
+                    prestress=None, folds: str = "stop") -> NonlinearModes:
     """A damped nonlinear mode over a range of amplitudes (extended periodic motion concept).
 
     The unforced structure with the extra damping ``-xi M q'`` is solved for its
@@ -318,6 +321,16 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         structure is solved (the result's ``structure``), and the linear mode
         the nonlinear one starts from is :meth:`Prestress.modes
         <microslip.frequency.Prestress.modes>`'s.
+    folds : {"stop", "follow"}, default "stop"
+        What the mode does where it turns back in amplitude (a fold: beyond it
+        there is no longer one periodic motion per amplitude). ``"stop"``: it
+        ends at its last point before the turn, with an
+        :class:`~microslip.common.errors.IncompleteCurveWarning` that says
+        where. ``"follow"``: the curve is followed on, through an internal
+        resonance's loop or, on a damper whose contacts slide or open over
+        most of the period, along the periodic motions that differ by the
+        damper's mean position (such a curve may wander at nearly constant
+        amplitude for thousands of points).
 
     Returns
     -------
@@ -338,7 +351,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
     -----
     IncompleteCurveWarning
         When the continuation stops at ``control.max_points`` before ``amplitude[1]``,
-        or where the mode runs onto a line of periodic motions at one amplitude
+        where the mode turns back in amplitude (``folds="stop"``), or where the mode runs onto a line of periodic motions at one amplitude
         that does not end (only the mean position of a body changes along it:
         an under-platform damper whose contacts all slide or stay open over the
         period); the mode then ends where the line starts.
@@ -358,6 +371,8 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
     ctl = control or default_control(lo, hi)
     progress = _checks.flag("progress", progress)
+    if folds not in FOLDS:
+        raise ValueError(f"folds must be one of {', '.join(map(repr, FOLDS))}, got {folds!r}")
     preload = structure.preload_force()[None]
     every_dof = (not isinstance(structure, CyclicStructure) and reduction in ("auto", "none") and modes is None
                  and interface_dominated(structure, H, retained_dofs(structure, preload).size))
@@ -383,9 +398,10 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):  # a diverging iterate fails by name
             y, _ = newton(eq, y, s0, r_scale=1.0, x_scale=1.0, tolerance=ctl.tolerance)
         report = Progress(10, enabled=progress)
-        branches, lines = [], []
+        branches, lines, turns = [], [], ([] if folds == "stop" else None)
         ys, ss, iters, complete, stopped = follow(
             eq, y, s0, s1, x_scale=1.0, r_scale=1.0, control=ctl, report=report, branch_points=branches, lines=lines,
+            folds=turns,
             describe=lambda s, count: f"modal amplitude {np.exp(s):.3g} kg^1/2 m, {count} points")
         if diameter is not None:  # the mode on every DOF of the sector, the right boundary from the left one
             phi = np.asarray(structure.constraint(structure.phase(1, diameter)) @ phi)
@@ -402,6 +418,14 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
                       f"or stay open over the period, so that nothing holds its mean position; the curve ends there, "
                       f"below the range's end ({hi:.6g}). A retention (UnderPlatformDamper(retention=...), N/m) "
                       f"holds the damper's mean position", IncompleteCurveWarning, stacklevel=2)
+    elif turns:
+        warnings.warn(f"the mode turns back in amplitude at modal amplitude {result.modal_amplitude[-1]:.6g} kg^1/2 m "
+                      f"({result.omega[-1]:.6g} rad/s), below the range's end ({hi:.6g}): beyond that fold there is no "
+                      f"longer one periodic motion per amplitude -- usually an internal resonance (a harmonic of the "
+                      f"mode meets another mode), or a body held only by contacts that slide or open over most of the "
+                      f"period (an under-platform damper), whose mean position then changes along the curve. The mode "
+                      f"ends at the fold; folds='follow' follows the curve beyond it", IncompleteCurveWarning,
+                      stacklevel=2)
     elif not complete:
         warnings.warn(f"the continuation stopped at max_points = {ctl.max_points} points at modal amplitude "
                       f"{result.modal_amplitude[-1]:.6g} kg^1/2 m, before the end of the range ({hi:.6g}); raise "

@@ -719,7 +719,7 @@ class _Accepted:
 
 def follow(problem, x0, start: float, end: float, *, x_scale: float, r_scale: float, control=None,
            report: Progress | None = None, describe=None, branch_points: list | None = None,
-           lines: list | None = None):
+           lines: list | None = None, folds: list | None = None):
     """:func:`~microslip.frequency.numerics.continuation.continuation`, keeping what it has when interrupted.
 
     ``(xs, params, iterations, complete, interrupted)``: on Ctrl-C the points
@@ -746,7 +746,7 @@ def follow(problem, x0, start: float, end: float, *, x_scale: float, r_scale: fl
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
             xs, params, iters, complete = continuation(followed, x0, start, end, x_scale=x_scale, r_scale=r_scale,
                                                        control=control, callback=followed.accepted,
-                                                       branch_points=branch_points, lines=lines)
+                                                       branch_points=branch_points, lines=lines, folds=folds)
     except KeyboardInterrupt:
         xs = np.array([np.asarray(x0, dtype=float)] + followed.xs)
         params = np.array([start] + followed.params)

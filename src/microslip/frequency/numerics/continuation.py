@@ -372,7 +372,7 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
 
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
                  control: StepControl | None = None, callback=None, branch_points: list | None = None,
-                 lines: list | None = None):
+                 lines: list | None = None, folds: list | None = None):
     """Follow the solution curve of ``R(x, omega) = 0`` from ``omega_start`` to ``omega_end``.
 
     Parameters
@@ -424,14 +424,14 @@ def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: 
     solver = _solver_for(problem)  # one factorisation reused over many steps when the Jacobian is an operator
     if solver is None:
         return _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points,
-                             solver, lines)
+                             solver, lines, folds)
     with solver_threads():  # small products; the rare factorisations take the threads they need
         return _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points,
-                             solver, lines)
+                             solver, lines, folds)
 
 
 def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, callback, branch_points, solver,
-                  lines=None):
+                  lines=None, folds=None):
     n = x0.size
     scale = np.empty(n + 1)
     scale[:-1] = x_scale
@@ -497,6 +497,10 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         # parameter value (a body held by contacts that all slide or stay open, its mean position free)
         on_line = (not kink and angle <= LINE_ANGLE * ctl.max_angle
                    and abs(yc[-1] - y[-1]) <= LINE_PARAMETER * np.linalg.norm((yc - y) / scale) * scale[-1])
+        if folds is not None and (yc[-1] - y[-1]) * direction < -LINE_PARAMETER * np.linalg.norm((yc - y) / scale) * \
+                scale[-1]:
+            folds.append(float(y[-1]))  # the curve turns back: it ends at its point before the turn
+            break
         y, tau = yc, secant
         if not lo <= y[-1] <= hi:
             # left the range: end exactly on its edge (or stop if it turned back out)
