@@ -58,13 +58,14 @@ def test_a_slow_mode_says_where_it_has_got_to_between_tenths(monkeypatch, capsys
 
 @pytest.fixture(scope="module")
 def damper_mode():
-    """The blade pair's first mode with its damper at 50 N up to where it folds in amplitude (a harmonic of the
-    mode meets another): the corrector tries points where the equations are not finite, and refuses them."""
+    """The blade pair's first mode with its damper at 50 N, followed through its fold in amplitude (a harmonic of
+    the mode meets another): the corrector tries points where the equations are not finite, and refuses them."""
     control = default_control(1e-7, 1e-3)
     control.max_points = 1100
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        mode = nonlinear_modes(damper(load=50.0).attach(blade_pair()), 1, (1e-7, 1e-3), harmonics=3, control=control)
+        mode = nonlinear_modes(damper(load=50.0).attach(blade_pair()), 1, (1e-7, 1e-3), harmonics=3, control=control,
+                               folds="follow")
     return mode, caught
 
 
