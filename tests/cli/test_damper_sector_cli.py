@@ -7,6 +7,7 @@ here through the API from the raw TOML values (not through the configuration rea
 
 import sys
 import tomllib
+import warnings
 
 import numpy as np
 import pytest
@@ -17,14 +18,14 @@ from microslip import MicroslipModel, nonlinear_modes
 from microslip.cli import main
 from microslip.common._table import read_table
 from microslip.fe import DofMap
-from microslip.frequency import CyclicStructure, UnderPlatformDamper
+from microslip.frequency import CyclicStructure, UnderPlatformDamper, UnderResolvedWarning
 
 sys.path.insert(0, str(EXAMPLES))
 import damper_sector  # noqa: E402
 
-# harmonics 0-1 from stuck into the damper's slip (its damping ratio rises from the viscous part's 0.1 %):
-# a few seconds; the example's own range and H = 3 take minutes
-AMPLITUDE = (1e-7, 3e-6)  # kg^1/2 m
+# harmonics 0-1 where the damper's contacts start to slide (its damping ratio rises from 0.3 % to 1.6 %): about
+# 20 points, seconds; the example's own range (1e-9 to 1e-4) and H = 3 take minutes
+AMPLITUDE = (1e-6, 3e-6)  # kg^1/2 m
 
 
 def api_sector(folder):
@@ -52,29 +53,53 @@ def api_sector(folder):
 
 @pytest.fixture(scope="module")
 def sector(tmp_path_factory):
+    """The example's files (H = 1, AMPLITUDE) and the mode the API computes from them."""
     folder = tmp_path_factory.mktemp("sector")
     damper_sector.write_files(folder, harmonics=1, amplitude=AMPLITUDE)
-    return folder
+    structure, toml = api_sector(folder)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnderResolvedWarning)  # the command warns the same (32 samples per period)
+        mode = nonlinear_modes(structure, 1, AMPLITUDE, harmonics=1, nodal_diameter=3)
+    return folder, toml, mode
+
+
+def same_curve(csv, mode, points: int) -> None:
+    """The command's ``modes.csv`` is the API's mode at its first ``points`` points: the same equations from the
+    same numbers solved by the same steps, equal to the rounding of the two assemblies (measured: bit for bit),
+    far below the continuation's 1e-9 tolerance."""
+    columns, _ = read_table(csv)
+    assert columns["modal amplitude"].size == points
+    for column, api in (("modal amplitude", mode.modal_amplitude), ("omega", mode.omega),
+                        ("damping ratio", mode.damping_ratio)):
+        np.testing.assert_allclose(columns[column], api[:points], rtol=1e-9, atol=0, err_msg=column)
 
 
 def test_the_command_computes_the_api_mode_from_the_files(sector, capsys):
-    out = sector / "mode"
-    assert main(["modes", str(sector / "config.toml"), "--out", str(out), "--quiet"]) == 0
+    folder, toml, mode = sector
+    out = folder / "mode"
+    assert main(["modes", str(folder / "config.toml"), "--out", str(out), "--quiet"]) == 0
     for name in ("modes.csv", "modes.png", "report.html", "report.md"):
         assert (out / name).stat().st_size > 0
     printed = capsys.readouterr().out
-    assert "Mode 1:" in printed and "contacts stuck" in printed
-    structure, toml = api_sector(sector)
-    mode = nonlinear_modes(structure, 1, AMPLITUDE, harmonics=1, nodal_diameter=3)
-    columns, _ = read_table(out / "modes.csv")
-    # the same equations from the same numbers solved by the same steps: equal to the rounding of the two
-    # assemblies (measured below 1e-13), far below the continuation's 1e-9 tolerance
-    assert columns["modal amplitude"].size == mode.points
-    np.testing.assert_allclose(columns["modal amplitude"], mode.modal_amplitude, rtol=1e-9, atol=0)
-    np.testing.assert_allclose(columns["omega"], mode.omega, rtol=1e-9, atol=0)
-    np.testing.assert_allclose(columns["damping ratio"], mode.damping_ratio, rtol=1e-9, atol=0)
-    # the damper slides within the range: its damping is well above the blade's own (C = 2e-7 K)
-    assert mode.damping_ratio.max() > 2 * mode.damping_ratio[0]
+    assert "Mode 1:" in printed and "with the contacts stuck" in printed and "Contact curved2:" in printed
+    assert mode.complete
+    same_curve(out / "modes.csv", mode, mode.points)
+    # the damper slides within the range: the contacts' damping well above the blade's own (C = 2e-7 K)
+    assert mode.damping_ratio[-1] > 3 * mode.damping_ratio[0]
     report = (out / "report.md").read_text()
-    assert "| nodal diameter | 3 |" in report and "3 contacts" in report
-    assert toml["modes"]["dof"] in report
+    assert "| nodal diameter | 3 |" in report and "| contacts | 3 |" in report and "| harmonics H | 1 |" in report
+    assert f"{toml['modes']['dof']} harmonic 1" in report
+
+
+def test_a_continuation_table_caps_the_mode_the_api_computes(sector, capsys):
+    """``[continuation] max_points`` alone keeps the mode's own steps (1/20 decade): the first points are the API's."""
+    folder, _, mode = sector
+    config = folder / "capped.toml"
+    config.write_text((folder / "config.toml").read_text().replace("[output]", "[continuation]\nmax_points = 8\n\n"
+                                                                               "[output]"))
+    out = folder / "capped"
+    assert main(["modes", str(config), "--out", str(out), "--quiet"]) == 1  # stopped before the end of the range
+    assert "stopped at max_points = 8 points" in capsys.readouterr().err
+    assert mode.points > 8
+    same_curve(out / "modes.csv", mode, 8)
+    assert "**Incomplete mode**" in (out / "report.md").read_text()
