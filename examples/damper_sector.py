@@ -24,17 +24,23 @@ The files, written into ``--out DIR``:
 
 Then::
 
-    python examples/damper_sector.py --out sector     # writes the files above
+    python examples/damper_sector.py --out sector     # writes the files above (a few seconds)
     microslip modes sector/config.toml --out sector/mode
 
-``microslip modes`` prints the linear mode (contacts stuck), the frequency and damping ratio at the
-largest amplitude and where the damping peaks, and the state of every contact at the static state;
-it writes ``modes.csv`` (frequency, damping ratio and the harmonics of the DOFs of ``[output] plot``
-and ``[modes] dof`` at every amplitude), ``modes.png`` and ``report.html``/``report.md``. Along the mode
-the damper's contacts go from stuck to sliding; near 2e-5 kg^1/2 m (H = 3) the mode turns back in
-amplitude (a fold), where the mode ends with a warning naming it, and the command exits with status 1
-(the results up to there are written). ``--run`` runs the command from this script; ``--dofs`` and
-``--harmonics`` make a smaller case (the gallery: ``--dofs 150 --harmonics 1 --run``).
+``microslip modes`` prints the linear mode (2176.69 Hz, contacts stuck), the frequency and damping ratio at
+the last amplitude and where the damping peaks (about 2.6 % near 4.8e-6 kg^1/2 m), and each contact's static
+state; it writes ``modes.csv`` (frequency, damping ratio and the harmonics of the DOFs of ``[output] plot``
+and ``[modes] dof`` at every amplitude, SI units), ``modes.png`` and ``report.html``/``report.md``. With
+harmonics 0-3 the damper's contacts go from stuck to sliding and lifting off, and near 2.1e-5 kg^1/2 m
+(about 320 points, under a minute on two cores) the mode turns back in amplitude: a fold, where
+``nonlinear_modes`` ends the mode with an ``IncompleteCurveWarning`` naming it; the command then exits with
+status 1, the results up to there written. With ``harmonics = 1`` the mode goes on to 6.5e-5 kg^1/2 m, where
+the damper comes loose (see the nonlinear modes guide). The mode is the one ``nonlinear_modes`` computes
+from the same numbers, point for point (``tests/cli/test_damper_sector_cli.py``). ``[continuation]
+max_points = 250`` caps it (its other keys keep the mode's own steps, at most 1/20 decade of amplitude).
+
+``--run`` runs the command from this script; ``--quick`` makes a smaller case, harmonics 0-1 over 1e-7 to
+5e-6 kg^1/2 m (about 120 points, seconds; the gallery runs ``--quick --run``).
 """
 
 from __future__ import annotations
@@ -52,6 +58,7 @@ from microslip.reference.profiles import RoundedPunch
 
 SECTORS, NODAL_DIAMETER = 12, 3
 AMPLITUDE = (1e-9, 1e-4)  # kg^1/2 m
+QUICK = (1e-7, 5e-6)  # kg^1/2 m: from stuck to the damper sliding, with harmonics 0-1 (the gallery)
 PAIR = dict(E=200e9, nu=0.3, E2=225e9, nu2=0.29, mu=0.5)  # blade (nickel alloy) on damper (cobalt alloy)
 TUNING_LOAD = 1000.0  # N
 ANGLE = 40.0  # degrees: the faces' normals from the radial direction
@@ -153,16 +160,20 @@ def main(argv=None) -> int:
     parser.add_argument("--out", default="damper_sector", help="folder of the files (default: damper_sector)")
     parser.add_argument("--dofs", type=int, default=300, help="the blade's target size (default 300: 408 DOFs)")
     parser.add_argument("--harmonics", type=int, default=3, help="[sweep] harmonics (default 3)")
+    parser.add_argument("--quick", action="store_true", help=f"harmonics 1 over {QUICK[0]:g} to {QUICK[1]:g} kg^1/2 m")
     parser.add_argument("--run", action="store_true", help="then run: microslip modes OUT/config.toml --out OUT/mode")
     args = parser.parse_args(argv)
-    config = write_files(args.out, args.dofs, args.harmonics)
-    print(f"wrote {config} and the files it names; run: microslip modes {config} --out {Path(args.out) / 'mode'}")
+    config = write_files(args.out, args.dofs, 1 if args.quick else args.harmonics, QUICK if args.quick else AMPLITUDE)
+    mode = Path(args.out) / "mode"
+    print(f"wrote {config} and the files it names; run: microslip modes {config} --out {mode}")
     if not args.run:
         return 0
     from microslip.cli import main as microslip
 
-    return microslip(["modes", str(config), "--out", str(Path(args.out) / "mode")])
+    return microslip(["modes", str(config), "--out", str(mode)])
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    status = main()
+    if status:  # the command's exit status (1: the mode stopped early, its results written)
+        sys.exit(status)
