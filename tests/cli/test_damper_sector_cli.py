@@ -99,7 +99,9 @@ def test_a_continuation_table_caps_the_mode_the_api_computes(sector, capsys):
                                                                                "[output]"))
     out = folder / "capped"
     assert main(["modes", str(config), "--out", str(out), "--quiet"]) == 1  # stopped before the end of the range
-    assert "stopped at max_points = 8 points" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "stopped at max_points = 8 points" in err and "raise [continuation] max_points" in err  # its words
+    assert "StepControl" not in err
     assert mode.points > 8
     same_curve(out / "modes.csv", mode, 8)
     assert "**Incomplete mode**" in (out / "report.md").read_text()

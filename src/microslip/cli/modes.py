@@ -187,7 +187,9 @@ def run(args) -> int:
         return 1
     except CurveInterrupted as exc:  # Ctrl-C: the mode up to there is written, marked
         mode, interrupted = exc.partial, exc
-    incomplete = [str(w.message) for w in caught if issubclass(w.category, IncompleteCurveWarning)]
+    # the API's advice in the configuration's words
+    incomplete = [str(w.message).replace("StepControl.max_points (or ds_max)", "[continuation] max_points")
+                  for w in caught if issubclass(w.category, IncompleteCurveWarning)]
     for w in caught:
         if not issubclass(w.category, IncompleteCurveWarning):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
