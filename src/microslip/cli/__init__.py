@@ -68,11 +68,22 @@ def main(argv=None) -> int:
         return 130
 
 
+#: the commands that read an frf configuration: their warnings name its keys, not the API's arguments
+_CONFIGURED = ("frf", "modes", "design", "campbell")
+#: an API argument in a warning -> the configuration's key (the under-resolved AFT's advice, ``samples=128``)
+_CONFIG_WORDS = ((re.compile(r"\bsamples=(\d+)"), r"[sweep] samples = \1"),)
+
+
 def _show_warning(command: str):
-    """Warnings as a command's messages, ``microslip CMD: warning: ...``, without the source line."""
+    """Warnings as a command's messages, ``microslip CMD: warning: ...``, without the source line; a command that
+    reads a configuration names its keys (``[sweep] samples = 128``) where the message names the API's argument."""
 
     def show(message, category, filename, lineno, file=None, line=None):
-        print(f"microslip {command}: warning: {message}", file=sys.stderr)
+        text = str(message)
+        if command in _CONFIGURED:
+            for pattern, words in _CONFIG_WORDS:
+                text = pattern.sub(words, text)
+        print(f"microslip {command}: warning: {text}", file=sys.stderr)
 
     return show
 
