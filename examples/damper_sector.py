@@ -156,7 +156,7 @@ def write_files(folder, dofs: int = 300, harmonics: int = 3, amplitude=AMPLITUDE
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description="Write a blade sector's files for microslip modes (and run it).")
     parser.add_argument("--out", default="damper_sector", help="folder of the files (default: damper_sector)")
     parser.add_argument("--dofs", type=int, default=300, help="the blade's target size (default 300: 408 DOFs)")
     parser.add_argument("--harmonics", type=int, default=3, help="[sweep] harmonics (default 3)")
