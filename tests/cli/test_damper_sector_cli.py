@@ -9,6 +9,7 @@ import sys
 import tomllib
 import warnings
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 import scipy.io
@@ -77,7 +78,9 @@ def same_curve(csv, mode, points: int) -> None:
 def test_the_command_computes_the_api_mode_from_the_files(sector, capsys):
     folder, toml, mode = sector
     out = folder / "mode"
+    open_figures = plt.get_fignums()
     assert main(["modes", str(folder / "config.toml"), "--out", str(out), "--quiet"]) == 0
+    assert plt.get_fignums() == open_figures  # its figure saved and closed (the gallery showed it twice)
     for name in ("modes.csv", "modes.png", "report.html", "report.md"):
         assert (out / name).stat().st_size > 0
     printed = capsys.readouterr()

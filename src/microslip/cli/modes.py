@@ -129,6 +129,7 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
     ax.set_title(f"{cfg.title}: {name}")
     report.figure(fig, "synthesis", "Forced response near the mode, synthesised from the mode"
                   + (" and by harmonic balance" if compare else "") + "; the mode's backbone dotted.", out)
+    plt.close(fig)  # saved: a command run within Python (a script, the docs' gallery) leaves no figure open
     report.text(text)
     lines.append(text)
 
@@ -236,8 +237,12 @@ def run(args) -> int:
     for c in range(len(structure.contacts)):
         report.text(_static_text(mode, c))
         print(_static_text(mode, c))
-    report.figure(_plots(mode, cfg, dof), "modes", "Natural frequency and damping ratio (total; dashed: the "
-                  "contacts' share) against the modal amplitude and against the chosen DOF's first harmonic.", out)
+    fig = _plots(mode, cfg, dof)
+    report.figure(fig, "modes", "Natural frequency and damping ratio (total; dashed: the contacts' share) against "
+                  "the modal amplitude and against the chosen DOF's first harmonic.", out)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)  # saved: a command run within Python (a script, the docs' gallery) leaves no figure open
     lines = []
     if 1 in force and np.any(force[1]) and interrupted is None:
         try:
