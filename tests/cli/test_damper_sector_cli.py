@@ -111,3 +111,17 @@ def test_a_continuation_table_caps_the_mode_the_api_computes(sector, capsys):
     assert mode.points > 8
     same_curve(out / "modes.csv", mode, 8)
     assert "**Incomplete mode**" in (out / "report.md").read_text()
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ('dof_map = "dofs.csv"', 'dof_map = "dof.csv"', "dof.csv: no such file"),  # was "[Errno 2] No such file ..."
+    ('M = "M.mtx"', 'M = "m.mtx"', "m.mtx: no such file"),
+    ('"next:3:x"', '"next:3:z"', "'3:z'"),
+])
+def test_a_missing_file_or_dof_is_one_line_naming_it(sector, capsys, old, new, message):
+    folder = sector[0]
+    config = folder / "edited.toml"
+    config.write_text((folder / "config.toml").read_text().replace(old, new))
+    assert main(["modes", str(config), "--out", str(folder / "edited"), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("microslip modes: error: ") and message in err and "Errno" not in err, err
