@@ -125,3 +125,18 @@ def test_a_missing_file_or_dof_is_one_line_naming_it(sector, capsys, old, new, m
     assert main(["modes", str(config), "--out", str(folder / "edited"), "--quiet"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("microslip modes: error: ") and message in err and "Errno" not in err, err
+
+
+@pytest.mark.parametrize("api, config", [
+    ("samples=1024 resolves it to 0.001", "[sweep] samples = 1024 resolves it to 0.001"),
+    ("raise StepControl.max_points (or ds_max) to follow the whole mode",
+     "raise [continuation] max_points to follow the whole mode"),
+    # nonlinear_modes' message where a mode ends at a fold (its folds= argument, the [modes] folds key)
+    ("The mode ends at the fold; folds='follow' follows the curve beyond it",
+     'The mode ends at the fold; [modes] folds = "follow" follows the curve beyond it'),
+    ("a tangential force T0 = 3 N, 8 samples per period", "a tangential force T0 = 3 N, 8 samples per period"),
+])
+def test_the_commands_advice_names_the_configuration_keys(api, config):
+    from microslip.cli._words import in_config_words
+
+    assert in_config_words(api) == config

@@ -70,8 +70,6 @@ def main(argv=None) -> int:
 
 #: the commands that read an frf configuration: their warnings name its keys, not the API's arguments
 _CONFIGURED = ("frf", "modes", "design", "campbell")
-#: an API argument in a warning -> the configuration's key (the under-resolved AFT's advice, ``samples=128``)
-_CONFIG_WORDS = ((re.compile(r"\bsamples=(\d+)"), r"[sweep] samples = \1"),)
 
 
 def _show_warning(command: str):
@@ -79,10 +77,9 @@ def _show_warning(command: str):
     reads a configuration names its keys (``[sweep] samples = 128``) where the message names the API's argument."""
 
     def show(message, category, filename, lineno, file=None, line=None):
-        text = str(message)
-        if command in _CONFIGURED:
-            for pattern, words in _CONFIG_WORDS:
-                text = pattern.sub(words, text)
+        from ._words import in_config_words
+
+        text = in_config_words(str(message)) if command in _CONFIGURED else str(message)
         print(f"microslip {command}: warning: {text}", file=sys.stderr)
 
     return show

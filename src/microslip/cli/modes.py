@@ -8,6 +8,7 @@ import numpy as np
 
 from ._args import add_output_folder, percent
 from ._prestress import add_prestress_option, report_prestress
+from ._words import in_config_words
 
 #: rows of the report's table: one per this fraction of a decade of amplitude
 _ROWS_PER_DECADE = 2
@@ -188,9 +189,7 @@ def run(args) -> int:
         return 1
     except CurveInterrupted as exc:  # Ctrl-C: the mode up to there is written, marked
         mode, interrupted = exc.partial, exc
-    # the API's advice in the configuration's words
-    incomplete = [str(w.message).replace("StepControl.max_points (or ds_max)", "[continuation] max_points")
-                  for w in caught if issubclass(w.category, IncompleteCurveWarning)]
+    incomplete = [in_config_words(str(w.message)) for w in caught if issubclass(w.category, IncompleteCurveWarning)]
     for w in caught:
         if not issubclass(w.category, IncompleteCurveWarning):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
