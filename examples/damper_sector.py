@@ -31,11 +31,12 @@ Then::
 the last amplitude and where the damping peaks (about 2.6 % near 4.8e-6 kg^1/2 m), and each contact's static
 state; it writes ``modes.csv`` (frequency, damping ratio and the harmonics of the DOFs of ``[output] plot``
 and ``[modes] dof`` at every amplitude, SI units), ``modes.png`` and ``report.html``/``report.md``. With
-harmonics 0-3 the damper's contacts go from stuck to sliding and lifting off, and near 2.1e-5 kg^1/2 m
-(about 320 points, under a minute on two cores) the mode turns back in amplitude: a fold, where
-``nonlinear_modes`` ends the mode with an ``IncompleteCurveWarning`` naming it; the command then exits with
-status 1, the results up to there written. With ``harmonics = 1`` the mode goes on to 6.5e-5 kg^1/2 m, where
-the damper comes loose (see the nonlinear modes guide). The mode is the one ``nonlinear_modes`` computes
+harmonics 0-3 the damper's contacts go from stuck to sliding and lifting off, and at 2.14e-5 kg^1/2 m the
+mode turns back in amplitude: a fold, where ``nonlinear_modes`` ends it with an ``IncompleteCurveWarning``
+naming it (298 points, the whole command about 45 s on two shared cores); the command then exits with status
+1, the results up to there written (``[modes] folds = "follow"`` follows the curve beyond the fold, where
+the damper's mean position drifts). With ``harmonics = 1`` the mode goes on to its fold near 6.6e-5 kg^1/2 m,
+where the damper comes loose (see the nonlinear modes guide). The mode is the one ``nonlinear_modes`` computes
 from the same numbers, point for point (``tests/cli/test_damper_sector_cli.py``). ``[continuation]
 max_points = 250`` caps it (its other keys keep the mode's own steps, at most 1/20 decade of amplitude).
 
