@@ -5,6 +5,7 @@ configuration; the command's mode must be the one ``nonlinear_modes`` computes f
 here through the API from the raw TOML values (not through the configuration reader).
 """
 
+import re
 import sys
 import tomllib
 import warnings
@@ -88,6 +89,9 @@ def test_the_command_computes_the_api_mode_from_the_files(sector, capsys):
     # 32 samples per period do not resolve the flat face's opening: the advice names the configuration's key
     assert "microslip modes: warning: contact 'flat0' opens and closes" in printed.err
     assert "[sweep] samples = " in printed.err and "samples=" not in printed.err
+    # each contact's static state: the tangential force's share of the slip force as a percentage (was "0.104 of")
+    assert re.search(r"Contact flat1: .*tangential force T0 = \S+ N \(\d+(\.\d+)? % of the slip force mu N0\)",
+                     printed.out), printed.out
     assert mode.complete
     same_curve(out / "modes.csv", mode, mode.points)
     # the damper slides within the range: the contacts' damping well above the blade's own (C = 2e-7 K)
