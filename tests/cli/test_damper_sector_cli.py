@@ -5,6 +5,7 @@ configuration; the command's mode must be the one ``nonlinear_modes`` computes f
 here through the API from the raw TOML values (not through the configuration reader).
 """
 
+import dataclasses
 import re
 import sys
 import tomllib
@@ -144,3 +145,25 @@ def test_the_commands_advice_names_the_configuration_keys(api, config):
     from microslip.cli._words import in_config_words
 
     assert in_config_words(api) == config
+
+
+def test_the_modes_step_control_is_its_own_with_the_keys_given(sector):
+    from microslip.config import load_config
+    from microslip.config.modes_control import mode_control
+    from microslip.frequency import StepControl
+    from microslip.frequency.analyses.nonlinear_modes import default_control
+
+    folder = sector[0]
+    config = folder / "steps.toml"
+    config.write_text((folder / "config.toml").read_text().replace("[output]", "[continuation]\nmax_points = 250\n"
+                                                                               "ds_min = 1e-6\n\n[output]"))
+    cfg = load_config(config, nonlinear=True)
+    own = default_control(*AMPLITUDE)  # steps of at most 1/20 decade of amplitude over the range
+    assert own.ds_max != StepControl().ds_max  # not the forced response's steps, which cfg.control holds
+    assert mode_control(cfg, []) == own
+    assert mode_control(cfg, ["max_points", "ds_min"]) == StepControl(ds_initial=own.ds_initial, ds_max=own.ds_max,
+                                                                      max_points=250, ds_min=1e-6)
+    with pytest.raises(ValueError, match=r"given names 'max_point', not a \[continuation\] key"):
+        mode_control(cfg, ["max_point"])
+    with pytest.raises(ValueError, match=r"cfg must be a configuration with a \[modes\] table"):
+        mode_control(dataclasses.replace(cfg, nonlinear_mode=None), [])

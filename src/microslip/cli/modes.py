@@ -135,20 +135,6 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
     lines.append(text)
 
 
-def _control(cfg, path):
-    """The mode's step control: ``nonlinear_modes``' own for its amplitude range (steps of at most 1/20 decade),
-    with the keys ``[continuation]`` sets taken from it. A ``[continuation]`` with only ``max_points`` caps the
-    mode the API computes; it does not replace its step sizes with the forced response's."""
-    import dataclasses
-
-    from ..config import read_toml
-    from ..frequency.analyses.nonlinear_modes import default_control
-
-    given = read_toml(path).get("continuation", {})
-    return dataclasses.replace(default_control(*cfg.nonlinear_mode.amplitude),
-                               **{key: getattr(cfg.control, key) for key in given})
-
-
 def _force(cfg) -> dict:
     """The configuration's excitation, ``{harmonic: amplitudes}`` (N), on the structure's DOFs."""
     return {h: np.asarray(v) for h, v in cfg.force.items()}
@@ -160,7 +146,8 @@ def run(args) -> int:
     from ..common.report import Report, plural
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, nonlinear_modes
     from ..frequency.analyses.response import CurveInterrupted
-    from ..config import apply_prestress, load_config
+    from ..config import apply_prestress, load_config, read_toml
+    from ..config.modes_control import mode_control
     from .frf import _static_text
 
     cfg = load_config(args.config, nonlinear=True)
@@ -182,7 +169,7 @@ def run(args) -> int:
                 state, prestress, force = apply_prestress(cfg, force, getattr(args, "prestress", None))
             mode = nonlinear_modes(structure, table.mode, table.amplitude, harmonics=cfg.harmonics,
                                    samples=cfg.samples, reduction=cfg.reduction, modes=cfg.modes,
-                                   control=_control(cfg, args.config),
+                                   control=mode_control(cfg, read_toml(args.config).get("continuation", {})),
                                    progress=not args.quiet, nodal_diameter=table.nodal_diameter, prestress=state)
     except (ConvergenceError, NotPeriodicError) as exc:
         print(f"microslip modes: error: {exc}", file=sys.stderr)
