@@ -31,7 +31,7 @@ GALLERY_OUTPUT = DOCS / "_build" / "gallery-output"
 #: the options each example takes in the gallery beyond ``--out DIR``: a small size (MICROSLIP_GALLERY=full
 #: runs every example at its own defaults)
 QUICK_OPTIONS = {"bladed_disk": ["--quick"], "fe_blade": ["--dofs", "300"], "blade_sector_3d": ["--quick"],
-                 "bolted_lap_joint": ["--quick"]}
+                 "bolted_lap_joint": ["--quick"], "damper_sector": ["--quick", "--run"]}
 
 
 # --------------------------------------------------------------------------------------------- API reference

@@ -193,6 +193,7 @@ def test_mat73_text_and_groups_are_refused(tmp_path):
      r"m.txt: unknown matrix file suffix '.txt'; expected one of .mtx \(Matrix Market\), .mm \(Matrix Market\), "
      r".mat \(MATLAB\), .npz \(NumPy .npz\), .op4 \(Nastran OP4\)"),
     (lambda p: read_matrices(p / "none.mat"), FileNotFoundError, r"none.mat: no such file"),
+    (lambda p: DofMap.from_csv(p / "none.csv"), FileNotFoundError, r"none.csv: no such file$"),
     (lambda p: read_matrices(p / "m.npz", M=p / "m.npz"), ValueError,
      r"give either one file \(path\) or one file per matrix \(M=, K=, C=\), not both"),
     (lambda p: read_matrices(M=p / "m.npz"), ValueError, r"give the matrices' file: one file holding M and K"),

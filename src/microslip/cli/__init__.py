@@ -68,11 +68,19 @@ def main(argv=None) -> int:
         return 130
 
 
+#: the commands that read an frf configuration: their warnings name its keys, not the API's arguments
+_CONFIGURED = ("frf", "modes", "design", "campbell")
+
+
 def _show_warning(command: str):
-    """Warnings as a command's messages, ``microslip CMD: warning: ...``, without the source line."""
+    """Warnings as a command's messages, ``microslip CMD: warning: ...``, without the source line; a command that
+    reads a configuration names its keys (``[sweep] samples = 128``) where the message names the API's argument."""
 
     def show(message, category, filename, lineno, file=None, line=None):
-        print(f"microslip {command}: warning: {message}", file=sys.stderr)
+        from ._words import in_config_words
+
+        text = in_config_words(str(message)) if command in _CONFIGURED else str(message)
+        print(f"microslip {command}: warning: {text}", file=sys.stderr)
 
     return show
 

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..common.units import display_unit
-from ._args import add_output_folder
+from ._args import add_output_folder, percent
 from ._contacts import static_tangential
 from ._prestress import add_prestress_option, report_prestress
 
@@ -234,7 +234,7 @@ def _static_text(result, c: int) -> str:
     contact = result.structure.contacts[c]
     N0, T0 = result.static_normal_force[c], static_tangential(result, c)
     limit = contact.model.mu * N0
-    share = f"{abs(T0) / limit:.3g} of the slip force mu N0" if limit > 0 else "open"
+    share = f"{percent(abs(T0) / limit)} % of the slip force mu N0" if limit > 0 else "open"
     preload = f" (preload {contact.preload:.6g} N on the structure)" if contact.preload else ""
     return (f"Contact {contact.name}: {contact.model!r}; static state: normal force N0 = {N0:.6g} N{preload}, "
             f"tangential force T0 = {T0:.6g} N ({share}), {result.static_closed_elements[c]} of "

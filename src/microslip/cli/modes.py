@@ -8,6 +8,7 @@ import numpy as np
 
 from ._args import add_output_folder, percent
 from ._prestress import add_prestress_option, report_prestress
+from ._words import in_config_words
 
 #: rows of the report's table: one per this fraction of a decade of amplitude
 _ROWS_PER_DECADE = 2
@@ -129,6 +130,7 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
     ax.set_title(f"{cfg.title}: {name}")
     report.figure(fig, "synthesis", "Forced response near the mode, synthesised from the mode"
                   + (" and by harmonic balance" if compare else "") + "; the mode's backbone dotted.", out)
+    plt.close(fig)  # saved: a command run within Python (a script, the docs' gallery) leaves no figure open
     report.text(text)
     lines.append(text)
 
@@ -142,9 +144,10 @@ def run(args) -> int:
     import sys
 
     from ..common.report import Report, plural
-    from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, StepControl, nonlinear_modes
+    from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, nonlinear_modes
     from ..frequency.analyses.response import CurveInterrupted
-    from ..config import apply_prestress, load_config
+    from ..config import apply_prestress, load_config, read_toml
+    from ..config.modes_control import mode_control
     from .frf import _static_text
 
     cfg = load_config(args.config, nonlinear=True)
@@ -166,7 +169,7 @@ def run(args) -> int:
                 state, prestress, force = apply_prestress(cfg, force, getattr(args, "prestress", None))
             mode = nonlinear_modes(structure, table.mode, table.amplitude, harmonics=cfg.harmonics,
                                    samples=cfg.samples, reduction=cfg.reduction, modes=cfg.modes,
-                                   control=None if cfg.control == StepControl() else cfg.control,
+                                   control=mode_control(cfg, read_toml(args.config).get("continuation", {})),
                                    progress=not args.quiet, nodal_diameter=table.nodal_diameter, prestress=state,
                                    folds=table.folds)
     except (ConvergenceError, NotPeriodicError) as exc:
@@ -174,7 +177,7 @@ def run(args) -> int:
         return 1
     except CurveInterrupted as exc:  # Ctrl-C: the mode up to there is written, marked
         mode, interrupted = exc.partial, exc
-    incomplete = [str(w.message) for w in caught if issubclass(w.category, IncompleteCurveWarning)]
+    incomplete = [in_config_words(str(w.message)) for w in caught if issubclass(w.category, IncompleteCurveWarning)]
     for w in caught:
         if not issubclass(w.category, IncompleteCurveWarning):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
@@ -221,8 +224,12 @@ def run(args) -> int:
     for c in range(len(structure.contacts)):
         report.text(_static_text(mode, c))
         print(_static_text(mode, c))
-    report.figure(_plots(mode, cfg, dof), "modes", "Natural frequency and damping ratio (total; dashed: the "
-                  "contacts' share) against the modal amplitude and against the chosen DOF's first harmonic.", out)
+    fig = _plots(mode, cfg, dof)
+    report.figure(fig, "modes", "Natural frequency and damping ratio (total; dashed: the contacts' share) against "
+                  "the modal amplitude and against the chosen DOF's first harmonic.", out)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)  # saved: a command run within Python (a script, the docs' gallery) leaves no figure open
     lines = []
     if 1 in force and np.any(force[1]) and interrupted is None:
         try:

@@ -164,6 +164,8 @@ class DofMap:
         except UnicodeDecodeError as err:
             raise FileFormatError(path, f"not a UTF-8 text file ({err.reason} at byte {err.start}); save the DOF "
                                         f"map as UTF-8 CSV") from None
+        except FileNotFoundError:  # named as the matrix files are, not by the operating system's errno
+            raise FileNotFoundError(f"{path}: no such file") from None
         if not lines:
             raise FileFormatError(path, "no header; the first line must name the columns 'node,component'")
         if not every[-1][1].endswith(("\n", "\r")):  # a cut inside the last row could leave a shorter node id
