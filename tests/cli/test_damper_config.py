@@ -75,3 +75,25 @@ def test_a_sector_whose_damper_names_no_next_sector_dof_is_warned(config):
     with pytest.warns(UserWarning, match=r"every face of the damper \('flat', 'curved'\) touches this sector's "
                                          r"platform"):
         load_config(config)
+
+
+def test_mass_inertia_and_damping_may_carry_their_units(config):
+    """``mass = "20g"``, ``inertia = "1g*cm^2"`` (1e-7 kg m^2 each g cm^2) and ``damping = "200 1/s"`` are the
+    numbers 0.02, 1e-6 and 200.0 of the file (SI); a unit of another kind is refused by name."""
+    reference = load_config(config).dampers[0]
+    text = config.read_text()
+    config.write_text(text.replace("mass = 0.02", 'mass = "20g"').replace("inertia = 1e-6", 'inertia = "10g*cm^2"')
+                      .replace("damping = 200.0", 'damping = "200 1/s"'))
+    damper = load_config(config).dampers[0]
+    assert (damper.mass, damper.damping) == (reference.mass, reference.damping)
+    assert damper.inertia == pytest.approx(reference.inertia, rel=1e-15)  # 10 x 1e-7 in floating point
+    config.write_text(text.replace("mass = 0.02", 'mass = "20N"'))
+    with pytest.raises(ConfigError, match=r"\[\[damper\]\] 1 mass"):
+        load_config(config)
+
+
+def test_a_sector_without_its_boundary_keys_is_told_to_write_an_empty_list(config):
+    config.write_text(config.read_text().replace("[excitation]", CYCLIC.replace("left = [2]\n", "")))
+    with pytest.raises(ConfigError, match=re.escape("[cyclic] needs the key 'left': the DOFs this sector shares "
+                                                    "with the previous one, left = [] when it shares none")):
+        load_config(config)

@@ -27,8 +27,9 @@ def test_unit_factor_errors():
     with pytest.raises(ValueError, match=r"unknown unit 'parsec'; expected one of: m, mm, .*GPa"):
         unit_factor("parsec")
     with pytest.raises(ValueError, match=re.escape("kind must be one of ['angular frequency', 'dimensionless', "
-                                                   "'energy', 'force', 'frequency', 'length', 'pressure', "
-                                                   "'stiffness', 'time'], got 'colour'")):
+                                                   "'energy', 'force', 'frequency', 'length', 'mass', "
+                                                   "'moment of inertia', 'pressure', 'rate', 'stiffness', 'time'], "
+                                                   "got 'colour'")):
         unit_factor("m", "colour")
 
 

@@ -21,6 +21,9 @@ _UNITS = {
     "frequency": {"Hz": 1.0, "kHz": 1e3},  # cycles per second; times 2 pi for rad/s
     "angular frequency": {"rad/s": 1.0, "rpm": 2.0 * 3.141592653589793 / 60.0},  # rpm: revolutions per minute
     "energy": {"J": 1.0, "mJ": 1e-3, "uJ": 1e-6, "µJ": 1e-6},
+    "mass": {"kg": 1.0, "g": 1e-3},
+    "moment of inertia": {"kg*m^2": 1.0, "kg*mm^2": 1e-6, "g*mm^2": 1e-9, "g*cm^2": 1e-7},
+    "rate": {"1/s": 1.0},
     "dimensionless": {"-": 1.0, "": 1.0, "1": 1.0},
 }
 

@@ -308,6 +308,15 @@ def _get(table: dict, key: str, where: str, path):
     return table[key]
 
 
+def _boundary(table: dict, key: str, path):
+    """``[cyclic] left`` or ``right``: required, empty when the sectors share no DOF (blades joined only by dampers)."""
+    if key not in table:
+        raise ConfigError(f"{path}: [cyclic] needs the key {key!r}: the DOFs this sector shares with the "
+                          f"{'previous' if key == 'left' else 'next'} one, {key} = [] when it shares none (blades "
+                          f"joined only through dampers or a rigid disk)")
+    return table[key]
+
+
 def _quantity(value, kind: str, what: str, path) -> float:
     try:
         return parse_quantity(value, kind, name=what)
@@ -913,8 +922,8 @@ def _cyclic(table: dict, structure: Structure, names: list[str], path, files: Co
         engine_order = checked(path, "", _checks.positive_int, "[cyclic] engine_order", table["engine_order"],
                                 minimum=0)
     disk = checked(path, "[cyclic] ", CyclicStructure, structure.M, structure.C, structure.K, sectors=sectors,
-                    left=dofs("left", _get(table, "left", "[cyclic]", path)),
-                    right=dofs("right", _get(table, "right", "[cyclic]", path)), dof_map=structure.dof_map, **frame)
+                    left=dofs("left", _boundary(table, "left", path)),
+                    right=dofs("right", _boundary(table, "right", path)), dof_map=structure.dof_map, **frame)
     return disk, engine_order
 
 
@@ -1006,11 +1015,11 @@ def _damper(table: dict, k: int, structure: Structure, *, base_dir: Path, path, 
     if "radius" in table:
         kwargs["radius"] = number("radius", "length")
     if "damping" in table:
-        kwargs["damping"] = number("damping", "dimensionless")
+        kwargs["damping"] = number("damping", "rate")
     if "retention" in table:
         kwargs["retention"] = number("retention", "stiffness")
-    mass = _quantity(_get(table, "mass", where, path), "dimensionless", f"{where} mass", path)
-    inertia = _quantity(_get(table, "inertia", where, path), "dimensionless", f"{where} inertia", path)
+    mass = _quantity(_get(table, "mass", where, path), "mass", f"{where} mass", path)
+    inertia = _quantity(_get(table, "inertia", where, path), "moment of inertia", f"{where} inertia", path)
     d = checked(path, f"{where}: ", UnderPlatformDamper, mass, inertia, **kwargs)
     for i, face in enumerate(_get(table, "interface", where, path)):
         here = f"{where} interface {i + 1}"
