@@ -77,6 +77,18 @@ class StepControl:
         incomplete (see :func:`continuation`).
     tolerance : float
         Convergence: scaled Newton step and relative residual below this, in ``(0, 1)``.
+    chord_error : float or None
+        Interpolation error the step length aims at (scaled arclength units, positive, or None):
+        the largest distance between the curve and the straight line joining two consecutive
+        points, estimated for a step of length ``ds`` as ``kappa ds^2 / 8`` from the curvature
+        ``kappa`` of the last step (its turn over the mean of the last two lengths). Steps then
+        lengthen where the curve is straight (up to ``ds_max``) and shorten where it bends, so
+        every step has about the same error; a step whose estimate exceeds
+        :data:`CHORD_REFUSE` times this is refused and halved (unless a kink). None (the
+        default): steps are set by ``max_angle``, the corrector's iterations and ``ds_max``
+        alone, which puts the largest error where the curve is nearly straight (a step's turn
+        is held below ``max_angle``, so its error ``ds * turn / 8`` is largest at ``ds_max``).
+        ``max_angle`` refusals, corners, kinks, branch points and lines behave alike with either.
 
     Raises
     ------
@@ -92,6 +104,7 @@ class StepControl:
     max_iterations: int = 12
     max_points: int = 5000
     tolerance: float = 1e-9
+    chord_error: float | None = None
 
     def __post_init__(self):
         for name in ("ds_initial", "ds_min", "ds_max", "max_angle", "tolerance"):
@@ -106,6 +119,8 @@ class StepControl:
             raise ValueError(f"max_angle must be below pi (rad), got {self.max_angle!r}")
         if self.tolerance >= 1:
             raise ValueError(f"tolerance must be below 1 (a relative residual), got {self.tolerance!r}")
+        if self.chord_error is not None:
+            self.chord_error = _checks.positive_scalar("chord_error", self.chord_error)
 
 
 def _solver_for(problem):
@@ -237,6 +252,10 @@ LINE_ANGLE = 1e-3
 #: still straight at a step this many times ``ds_max``, it does not end and the continuation stops there
 LINE_REACH = 1e6
 
+#: a step whose estimated chord error exceeds this many times ``StepControl.chord_error`` is refused (halved):
+#: the step length aims at the error, so a step that would have had to be this much shorter is redone
+CHORD_REFUSE = 2.0
+
 #: smallest dense bordered system whose LU factors are kept for the point's orientation: below it, a solve
 #: and a determinant of their own cost less than the factors' calls (the crossover was measured on small
 #: bordered systems; the figures belong to a benchmark, not here)
@@ -318,6 +337,30 @@ def _orientation(problem, Jx, R_omega, row, scale, solver=None) -> float:
     return float(sign)
 
 
+#: points in a row that the corrector reaches only after failing at a longer step before :func:`_leap` is tried
+WALL_POINTS = 3
+
+
+def _leap(problem, y, tau, step, scale, r_scale, ctl, last, solver, here):
+    """A point beyond a wall the steps creep towards: ``(y, iterations, step)`` or None.
+
+    Where the contact forces are not smooth (an element's state changes within the period), Newton's
+    method may fail from a predictor just across the change while it converges from one further on:
+    halved steps then converge short of the change and approach it without passing. This corrects
+    from ``step`` (the one that failed first), twice and four times as far, and takes the first point
+    ahead of ``y`` on the same side of the curve (orientation ``here``).
+    """
+    for factor in (1.0, 2.0, 4.0):
+        ds = factor * step
+        yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last, solver)
+        if yc is None:
+            continue
+        secant = (yc - y) / scale
+        if secant @ tau > 0 and _sign(problem, last, secant / np.linalg.norm(secant), scale) == here:
+            return yc, it, ds
+    return None
+
+
 def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
     """A point about ``ds`` past a corner just ahead of ``y``: ``(y, iterations, direction)`` or ``(None, k, None)``.
 
@@ -368,6 +411,47 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
     if not np.all(np.isfinite(ahead)) or (ahead @ tau > behind and secant @ tau < -behind * length):
         return None, it, None  # back on the branch already followed, behind y
     return yc, it, ahead
+
+
+#: the fractions of a step at which :func:`_chord_error` looks for the largest distance (its cubic's
+#: distance from the chord is smooth and vanishes at both ends: a few fractions find its largest value to
+#: a small fraction of it)
+_CHORD_FRACTIONS = np.linspace(0.0, 1.0, 33)[1:-1]
+
+
+def _chord_error(start: np.ndarray, end: np.ndarray, secant: np.ndarray, length: float) -> float:
+    """Largest distance between a step's chord and the curve between its ends (scaled units).
+
+    ``start`` and ``end`` are the curve's unit tangents at the step's ends, ``secant`` the chord's unit
+    direction and ``length`` its length. The curve is taken as the cubic with those end points and
+    tangents (Hermite), whose distance from the chord at the fraction ``t`` of the step is
+    ``length t (1 - t) |(1 - t) (start - secant) - t (end - secant)|``: exact to third order in
+    ``length`` on a smooth curve (``kappa length^2 / 8`` on a circle of curvature ``kappa``), and on a
+    corner within the step the corner's own distance to first order.
+    """
+    u, v = start - secant, end - secant
+    uu, uv, vv = float(u @ u), float(u @ v), float(v @ v)
+    t = _CHORD_FRACTIONS
+    squared = (t * (1 - t)) ** 2 * ((1 - t) ** 2 * uu - 2 * t * (1 - t) * uv + t ** 2 * vv)
+    return length * float(np.sqrt(max(squared.max(), 0.0)))
+
+
+def _tangent_at(problem, last, row, scale, solver) -> np.ndarray:
+    """Unit tangent (scaled) at the corrector's converged point (``last``, see :func:`_correct`), ``row . t > 0``.
+
+    From the factors of the corrector's last iteration when it kept them (a dense problem of at least
+    :data:`FACTORED_MIN` unknowns: its Jacobian one Newton step before the point, bordered by the
+    predictor's direction), else from a solve of its own.
+    """
+    Jx, Rw, factors = last
+    if isinstance(factors, _Factored):
+        e = np.zeros(scale.size)
+        e[-1] = 1.0
+        z = factors.solve(e)
+        t = z / np.linalg.norm(z)
+    if not isinstance(factors, _Factored) or not np.all(np.isfinite(t)):
+        t = _tangent(problem, Jx, Rw, row, scale, solver)
+    return -t if t @ row < 0 else t
 
 
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
@@ -453,10 +537,16 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
     complete = False
     line_start = None  # index of the point where a line at one parameter value starts
+    here = tau  # the curve's unit tangent at y (scaled), for the chord error of the step from y
+    walled = 0  # points in a row reached by a shorter step after the corrector failed at a longer one
+    wall_step = ds  # the step that failed at the first of them
     while len(omegas) < ctl.max_points:
         refused_angle = np.inf  # turn at the last step refused for turning too much
-        failed = False  # the corrector failed at this point already
-        while True:
+        failed = walled > 0  # the corrector failed at this point already, or just ahead of the last one
+        leap = None
+        if walled >= WALL_POINTS:  # creeping towards a wall: try to step over it
+            leap = _leap(problem, y, tau, wall_step, scale, r_scale, ctl, last, solver, orientation)
+        while leap is None:
             if ds < ctl.ds_min:
                 raise ConvergenceError(
                     f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
@@ -465,14 +555,17 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
             if yc is None and failed:  # failing again, nearer: look for a corner within the step
                 yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation, solver)
                 if yc is not None:  # its turn is the corner's: no reason to shrink the next step
-                    secant, angle, kink = ahead, 0.0, True
+                    secant, angle, kink, there = ahead, 0.0, True, ahead  # ahead: the tangent at yc
                     break
             if yc is None:
+                if not failed and walled == 0:
+                    wall_step = ds
                 failed = True
                 ds *= 0.5
                 continue
             secant = (yc - y) / scale
-            secant /= np.linalg.norm(secant)
+            length = float(np.linalg.norm(secant))
+            secant /= length
             angle = float(np.arccos(np.clip(secant @ tau, -1.0, 1.0)))
             if _sign(problem, last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
                 if ds > BRANCH_STEP * ctl.ds_max or angle > 0.1 * ctl.max_angle:
@@ -492,7 +585,22 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
                 refused_angle = angle
                 ds *= 0.5
                 continue
+            if ctl.chord_error is not None:
+                there = _tangent_at(problem, last, secant, scale, solver)
+            if ctl.chord_error is not None and not kink:
+                chord = _chord_error(here, there, secant, length)
+                if chord > CHORD_REFUSE * ctl.chord_error and ds > 2 * ctl.ds_min:
+                    ds *= 0.5
+                    continue
             break
+        if leap is not None:  # over the wall: the turn is the wall's, no reason to shrink the next step
+            yc, it, ds = leap
+            secant = (yc - y) / scale
+            length = float(np.linalg.norm(secant))
+            secant /= length
+            angle, kink = 0.0, True
+            there = _tangent_at(problem, last, secant, scale, solver) if ctl.chord_error is not None else None
+        walled = walled + 1 if failed and not kink else 0
         # a straight step that leaves the parameter where it was (to rounding): the solutions form a line at one
         # parameter value (a body held by contacts that all slide or stay open, its mean position free)
         on_line = (not kink and angle <= LINE_ANGLE * ctl.max_angle
@@ -521,6 +629,10 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         # grow when the corrector was quick and the curve straight, shrink otherwise
         turn = 0.0 if kink else angle
         factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(turn, 1e-12))
+        longest = np.inf  # the step whose chord error is the one asked for (it grows as the step's square)
+        if ctl.chord_error is not None and not kink:
+            longest = max(ds * np.sqrt(ctl.chord_error / max(chord, 1e-300)), 0.25 * ds)
+        here = there if ctl.chord_error is not None else None
         if on_line:  # every point of a straight line at one parameter value is as good: cross it in doubling steps
             line_start = len(omegas) - 2 if line_start is None else line_start
             if ds >= LINE_REACH * ctl.ds_max:  # still straight after that: the line does not end
@@ -531,5 +643,5 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
             ds *= 2.0
             continue
         line_start = None
-        ds = float(np.clip(ds * max(factor, 0.5), ctl.ds_min, ctl.ds_max))
+        ds = float(np.clip(min(ds * max(factor, 0.5), longest), ctl.ds_min, ctl.ds_max))
     return np.array(xs), np.array(omegas), np.array(iters), complete
