@@ -74,6 +74,7 @@ engine_order = 3
 
 [continuation]
 ds_initial = 0.02
+chord_error = 1e-4
 ds_max = 0.05
 ds_min = 1e-7
 max_angle = 0.1

@@ -361,8 +361,10 @@ def _leap(problem, y, tau, step, scale, r_scale, ctl, last, solver, here):
     return None
 
 
-def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
+def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None, here_corner=None):
     """A point about ``ds`` past a corner just ahead of ``y``: ``(y, iterations, direction)`` or ``(None, k, None)``.
+
+    The corner itself (on the curve to the tolerance) is left in ``here_corner[0]`` when a list is given.
 
     Where an element starts to slip or to open, the Jacobian jumps. When the jump
     reverses the orientation of the curve (the sign of ``det [[Jx, R_omega], [tau]]``)
@@ -410,6 +412,8 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
     behind = np.cos(0.1 * ctl.max_angle)
     if not np.all(np.isfinite(ahead)) or (ahead @ tau > behind and secant @ tau < -behind * length):
         return None, it, None  # back on the branch already followed, behind y
+    if here_corner is not None:
+        here_corner[:] = [corner]
     return yc, it, ahead
 
 
@@ -544,6 +548,7 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         refused_angle = np.inf  # turn at the last step refused for turning too much
         failed = walled > 0  # the corrector failed at this point already, or just ahead of the last one
         leap = None
+        corner = []  # the corner the step passes, if _corner finds one
         if walled >= WALL_POINTS:  # creeping towards a wall: try to step over it
             leap = _leap(problem, y, tau, wall_step, scale, r_scale, ctl, last, solver, orientation)
         while leap is None:
@@ -553,7 +558,7 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
                     f"ds_min = {ctl.ds_min:g}")
             yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last, solver)
             if yc is None and failed:  # failing again, nearer: look for a corner within the step
-                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation, solver)
+                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation, solver, corner)
                 if yc is not None:  # its turn is the corner's: no reason to shrink the next step
                     secant, angle, kink, there = ahead, 0.0, True, ahead  # ahead: the tangent at yc
                     break
@@ -585,9 +590,8 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
                 refused_angle = angle
                 ds *= 0.5
                 continue
-            if ctl.chord_error is not None:
+            if ctl.chord_error is not None:  # across a kink too: a shorter step cuts less of its corner
                 there = _tangent_at(problem, last, secant, scale, solver)
-            if ctl.chord_error is not None and not kink:
                 chord = _chord_error(here, there, secant, length)
                 if chord > CHORD_REFUSE * ctl.chord_error and ds > 2 * ctl.ds_min:
                     ds *= 0.5
@@ -606,6 +610,10 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         on_line = (not kink and angle <= LINE_ANGLE * ctl.max_angle
                    and abs(yc[-1] - y[-1]) <= LINE_PARAMETER * np.linalg.norm((yc - y) / scale) * scale[-1])
         y, tau = yc, secant
+        if corner and ctl.chord_error is not None and lo <= corner[0][-1] <= hi:
+            xs.append(corner[0][:-1].copy())  # a point of the curve (to the tolerance): the chords then cut nothing
+            omegas.append(float(corner[0][-1]))
+            iters.append(0)
         if not lo <= y[-1] <= hi:
             # left the range: end exactly on its edge (or stop if it turned back out)
             edge = hi if y[-1] > hi else lo
