@@ -212,3 +212,32 @@ def test_a_chord_error_that_is_not_a_positive_number_is_refused_by_name(value, e
 
     with pytest.raises(error, match=message):
         StepControl(chord_error=value)
+
+
+class Walled(Graph):
+    """The straight line ``x = omega / 2`` whose residual is not finite for ``0.2 < omega < 0.35``: the corrector
+    fails from any predictor there, as Newton's method can just across a point where the contact forces are not
+    smooth; the band is longer than the longest step, so halved steps only creep towards it."""
+
+    def __init__(self):
+        super().__init__(lambda w: 0.5 * w, lambda w: 0.5)
+
+    def _evaluate(self, x, omega, jacobian=True):
+        if 0.2 < omega < 0.35:
+            R = np.array([np.nan])
+            return R if not jacobian else (R, np.array([[1.0]]), np.array([np.nan]))
+        return super()._evaluate(x, omega, jacobian)
+
+
+def test_steps_that_creep_towards_a_wall_leap_over_it(monkeypatch):
+    from microslip.common.errors import ConvergenceError
+    from microslip.frequency.numerics import continuation as module
+
+    xs, omegas, _, complete = continuation(Walled(), np.array([-0.5]), -1.0, 1.0, x_scale=1.0, r_scale=1.0)
+    assert complete and omegas[-1] == 1.0
+    np.testing.assert_allclose(xs[:, 0], 0.5 * omegas, rtol=0, atol=1e-12)
+    assert not np.any((omegas > 0.2) & (omegas < 0.35))
+    assert np.sum((omegas > 0.19) & (omegas <= 0.2)) <= module.WALL_POINTS  # it leapt soon after creeping began
+    monkeypatch.setattr(module, "WALL_POINTS", 10 ** 9)  # never leap: the steps creep to ds_min
+    with pytest.raises(ConvergenceError, match="stalled at omega = 0.2"):
+        continuation(Walled(), np.array([-0.5]), -1.0, 1.0, x_scale=1.0, r_scale=1.0)
