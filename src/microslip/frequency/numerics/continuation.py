@@ -19,7 +19,12 @@ the step grows when the corrector needs few iterations, shrinks when it
 needs many, and a step is refused (and halved) when the corrector fails or
 the secant turns by more than ``max_angle`` (which keeps points dense where
 the curve bends, at peaks and folds) -- unless halving does not reduce the
-turn, which marks a kink.
+turn, which marks a kink. With ``StepControl.chord_error`` the steps are also
+sized and refused by the distance between the curve and each step's chord.
+A point reached only by halving after the corrector failed, :data:`WALL_POINTS`
+times in a row, means the steps creep towards a wall (Newton's method failing
+just across a point where the forces are not smooth): longer steps are tried
+from there (:func:`_leap`).
 
 Corners. Where the Jacobian jumps and its determinant, bordered by the
 direction of travel, changes sign, the curve turns back by more than a right
@@ -78,17 +83,20 @@ class StepControl:
     tolerance : float
         Convergence: scaled Newton step and relative residual below this, in ``(0, 1)``.
     chord_error : float or None
-        Interpolation error the step length aims at (scaled arclength units, positive, or None):
-        the largest distance between the curve and the straight line joining two consecutive
-        points, estimated for a step of length ``ds`` as ``kappa ds^2 / 8`` from the curvature
-        ``kappa`` of the last step (its turn over the mean of the last two lengths). Steps then
-        lengthen where the curve is straight (up to ``ds_max``) and shorten where it bends, so
-        every step has about the same error; a step whose estimate exceeds
-        :data:`CHORD_REFUSE` times this is refused and halved (unless a kink). None (the
+        Interpolation error the steps aim at (scaled arclength units, positive, or None): the
+        largest distance between the curve and the straight line joining two consecutive points.
+        Each step's distance is estimated from the cubic through its ends with the curve's
+        tangents there (:func:`_chord_error`; one more solve per point, with the corrector's
+        last factors where it kept them); the next step is the one whose estimate would be
+        this (it grows as the square of the step), within ``[ds / 4, 2 ds]`` and ``ds_max``,
+        and a step whose estimate exceeds :data:`CHORD_REFUSE` times this is refused and
+        halved, across a kink too (a shorter step cuts less of its corner). A corner the
+        continuation had to search for (see the module docstring) becomes a point of the curve.
+        Steps then lengthen where the curve is straight and shorten where it bends. None (the
         default): steps are set by ``max_angle``, the corrector's iterations and ``ds_max``
         alone, which puts the largest error where the curve is nearly straight (a step's turn
         is held below ``max_angle``, so its error ``ds * turn / 8`` is largest at ``ds_max``).
-        ``max_angle`` refusals, corners, kinks, branch points and lines behave alike with either.
+        ``max_angle`` refusals, branch points and lines behave alike with either.
 
     Raises
     ------
