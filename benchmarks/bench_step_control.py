@@ -3,6 +3,7 @@
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_step_control.py            # the three cases, ~ minutes
       python benchmarks/bench_step_control.py --quick                           # smaller cases, under a minute
       python benchmarks/bench_step_control.py --chord 3e-4 --ds-max 0.25        # another chord rule for modes
+      python benchmarks/bench_step_control.py --cases b --joint-contacts 120    # the issue's 120-contact joint
 
 Each case's curve is followed three times in the same run: with the old step control (``chord_error=None``:
 steps set by the turn rule ``max_angle``, the corrector's iterations and ``ds_max``; for nonlinear modes
@@ -26,7 +27,8 @@ Cases:
 
 Reported per case: the points and wall times of the three runs, the ratio of points old / new, and the
 errors of old and new. Saved to ``benchmarks/results/bench_step_control.json``
-(``bench_step_control_quick.json`` for ``--quick``). The machine is shared: the times are indicative, the
+(``bench_step_control_quick.json`` for ``--quick``, ``..._joint120.json`` with ``--joint-contacts 120``).
+The machine is shared: the times are indicative, the
 points and errors are what the comparison rests on.
 """
 
@@ -149,6 +151,8 @@ def main(argv=None) -> int:
                         help="the forced response's chord_error (default: StepControl's)")
     parser.add_argument("--forced-ds-max", type=float, default=None,
                         help="the forced response's ds_max with the chord rule (default: StepControl's)")
+    parser.add_argument("--joint-contacts", type=int, default=30, choices=(30, 120, 480),
+                        help="the lap joint's contact elements in (b) (default 30)")
     parser.add_argument("--cases", default="abc", help="which cases to run (default abc)")
     args = parser.parse_args(argv)
 
@@ -168,25 +172,32 @@ def main(argv=None) -> int:
         figures["blade_mode"] = compare(
             f"(a) blade mode, {structure.ndof} DOFs, {contacts} contacts, {blade_amp[0]:.0e}-{blade_amp[1]:.0e}",
             ["frequency", "damping_ratio"], lambda c: run_mode(structure, blade_amp, c), old, new)
-        figures["blade_mode"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max}
+        figures["blade_mode"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max,
+                                             "max_angle": new.max_angle}
     if "b" in args.cases:
         from bench_joint import SAMPLES, build
 
-        _, joint = build(30)
+        _, joint = build(args.joint_contacts)
         old, new = mode_controls(*joint_amp, args)
         figures["joint_backbone"] = compare(
-            f"(b) lap joint backbone, 30 contacts, {joint.ndof} DOFs, {joint_amp[0]:.0e}-{joint_amp[1]:.0e}",
+            f"(b) lap joint backbone, {args.joint_contacts} contacts, {joint.ndof} DOFs, "
+            f"{joint_amp[0]:.0e}-{joint_amp[1]:.0e}",
             ["frequency", "damping_ratio"], lambda c: run_mode(joint, joint_amp, c, samples=SAMPLES), old, new)
-        figures["joint_backbone"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max}
+        figures["joint_backbone"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max,
+                                             "max_angle": new.max_angle}
     if "c" in args.cases:
         old, new = forced_controls(args)
         hz = 1 / (2 * np.pi)
         figures["blade_forced"] = compare(
             f"(c) blade forced response, {RANGE[0] * hz:.0f}-{RANGE[1] * hz:.0f} Hz",
             ["amplitude"], lambda c: run_forced(structure, force, tip, RANGE, c), old, new)
-        figures["blade_forced"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max}
+        figures["blade_forced"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max,
+                                             "max_angle": new.max_angle}
     print(f"load average {load:.2f} at the start (2 cores shared: times are indicative)")
-    save_results("bench_step_control_quick" if args.quick else "bench_step_control", figures)
+    figures["joint_contacts"] = args.joint_contacts
+    name = "bench_step_control" + ("_quick" if args.quick else "") + ("" if args.joint_contacts == 30 else
+                                                                       f"_joint{args.joint_contacts}")
+    save_results(name, figures)
     return 0
 
 

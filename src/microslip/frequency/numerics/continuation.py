@@ -260,8 +260,9 @@ LINE_ANGLE = 1e-3
 #: still straight at a step this many times ``ds_max``, it does not end and the continuation stops there
 LINE_REACH = 1e6
 
-#: a step whose estimated chord error exceeds this many times ``StepControl.chord_error`` is refused (halved):
-#: the step length aims at the error, so a step that would have had to be this much shorter is redone
+#: a step whose estimated chord error exceeds this many times ``StepControl.chord_error`` is refused (halved, which
+#: quarters the error of a smooth stretch): the steps aim at the target, so only a bend sharper than the last step
+#: foretold is redone, and no chord strays much beyond the target
 CHORD_REFUSE = 2.0
 
 #: smallest dense bordered system whose LU factors are kept for the point's orientation: below it, a solve
