@@ -346,6 +346,10 @@ def _orientation(problem, Jx, R_omega, row, scale, solver=None) -> float:
     return float(sign)
 
 
+#: relative residual of the tangent solved for a chord error by a problem whose Jacobian is an operator: the
+#: estimate takes differences of unit tangents about a step's turn apart, so their error must be a small part of it
+TANGENT_RTOL = 1e-6
+
 #: points in a row that the corrector reaches only after failing at a longer step before :func:`_leap` is tried
 WALL_POINTS = 3
 
@@ -454,15 +458,19 @@ def _tangent_at(problem, last, row, scale, solver) -> np.ndarray:
 
     From the factors of the corrector's last iteration when it kept them (a dense problem of at least
     :data:`FACTORED_MIN` unknowns: its Jacobian one Newton step before the point, bordered by the
-    predictor's direction), else from a solve of its own.
+    predictor's direction); by the problem's solver to :data:`TANGENT_RTOL` when its Jacobian is an
+    operator; else from a solve of its own.
     """
     Jx, Rw, factors = last
+    e = np.zeros(scale.size)
+    e[-1] = 1.0
+    z = np.full(scale.size, np.nan)
     if isinstance(factors, _Factored):
-        e = np.zeros(scale.size)
-        e[-1] = 1.0
         z = factors.solve(e)
-        t = z / np.linalg.norm(z)
-    if not isinstance(factors, _Factored) or not np.all(np.isfinite(t)):
+    elif isinstance(factors, ReusedFactorisation):
+        z = factors.solve(_scaled_system(problem, Jx, Rw, row, scale), e, TANGENT_RTOL)
+    t = z / np.linalg.norm(z)
+    if not np.all(np.isfinite(t)):
         t = _tangent(problem, Jx, Rw, row, scale, solver)
     return -t if t @ row < 0 else t
 
