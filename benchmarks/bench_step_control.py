@@ -195,6 +195,20 @@ def main(argv=None) -> int:
                                              "max_angle": new.max_angle}
     print(f"load average {load:.2f} at the start (2 cores shared: times are indicative)")
     figures["joint_contacts"] = args.joint_contacts
+    figures["description"] = ("Points and interpolation error of the continuation's old step control (the turn rule) "
+                              "and the new (the chord rule: the default for nonlinear modes, opt-in for forced "
+                              "responses), against a curve with 4x shorter steps: the largest difference of each "
+                              "quantity between the points, relative to its range.")
+    figures["command"] = " ".join(["OPENBLAS_NUM_THREADS=1 python benchmarks/bench_step_control.py",
+                                   *(argv if argv is not None else sys.argv[1:])])
+    figures["tables"] = [{"caption": "points and interpolation errors (old, new)",
+                          "columns": ["case", "reference points", "old points", "new points", "old / new points",
+                                      "old errors", "new errors"],
+                          "rows": [[case, figures[case]["reference"]["points"], figures[case]["old"]["points"],
+                                    figures[case]["new"]["points"], figures[case]["points_old_over_new"],
+                                    ", ".join(f"{q} {e:.2e}" for q, e in figures[case]["old"]["errors"].items()),
+                                    ", ".join(f"{q} {e:.2e}" for q, e in figures[case]["new"]["errors"].items())]
+                                   for case in ("blade_mode", "joint_backbone", "blade_forced") if case in figures]}]
     name = "bench_step_control" + ("_quick" if args.quick else "") + ("" if args.joint_contacts == 30 else
                                                                        f"_joint{args.joint_contacts}")
     save_results(name, figures)
