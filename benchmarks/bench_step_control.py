@@ -5,11 +5,11 @@ Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_step_control.py            
       python benchmarks/bench_step_control.py --chord 3e-4 --ds-max 0.25        # another chord rule for modes
       python benchmarks/bench_step_control.py --cases b --joint-contacts 120    # the 120-contact joint
 
-Each case's curve is followed three times in the same run: with the old step control (``chord_error=None``:
+Each case's curve is followed three times in the same run: with the default step control (``chord_error=None``:
 steps set by the turn rule ``max_angle``, the corrector's iterations and ``ds_max``; for nonlinear modes
-``ds_max`` is 1/20 decade of amplitude: ``default_control(lo, hi, chord_error=None)``), with the new one
-(``StepControl.chord_error`` sets the steps: for modes the default, ``default_control(lo, hi)``; for the
-forced response the opt-in ``FORCED_CHORD``), and a reference with the old
+``ds_max`` is 1/20 decade of amplitude: ``default_control(lo, hi)``), with the chord rule
+(``StepControl.chord_error`` sets the steps: for modes ``default_control(lo, hi, chord_error=CHORD_ERROR)``;
+for the forced response ``FORCED_CHORD``), and a reference with the old
 control at 4x shorter steps (``ds_max``, ``ds_initial`` and ``max_angle`` divided by 4). Each run's
 quantities are joined by straight lines and evaluated at the reference's points; the interpolation error is
 the largest difference from the reference there, relative to the quantity's range over the reference
@@ -120,10 +120,10 @@ def compare(name, quantities, run, old, new):
 
 
 def mode_controls(lo, hi, args):
-    from microslip.frequency.analyses.nonlinear_modes import default_control
+    from microslip.frequency.analyses.nonlinear_modes import CHORD_ERROR, default_control
 
     old = default_control(lo, hi, chord_error=None)
-    new = default_control(lo, hi)
+    new = default_control(lo, hi, chord_error=CHORD_ERROR)
     if args.chord is not None or args.ds_max is not None:
         new = replace(new, chord_error=args.chord if args.chord is not None else new.chord_error,
                       ds_max=args.ds_max if args.ds_max is not None else new.ds_max)
@@ -196,7 +196,7 @@ def main(argv=None) -> int:
     print(f"load average {load:.2f} at the start (2 cores shared: times are indicative)")
     figures["joint_contacts"] = args.joint_contacts
     figures["description"] = ("Points and interpolation error of the continuation's old step control (the turn rule) "
-                              "and the new (the chord rule: the default for nonlinear modes, opt-in for forced "
+                              "and the new (the chord rule, opt-in for nonlinear modes and forced "
                               "responses), against a curve with 4x shorter steps: the largest difference of each "
                               "quantity between the points, relative to its range.")
     figures["command"] = " ".join(["OPENBLAS_NUM_THREADS=1 python benchmarks/bench_step_control.py",

@@ -21,10 +21,12 @@ the secant turns by more than ``max_angle`` (which keeps points dense where
 the curve bends, at peaks and folds) -- unless halving does not reduce the
 turn, which marks a kink. With ``StepControl.chord_error`` the steps are also
 sized and refused by the distance between the curve and each step's chord.
-A point reached only by halving after the corrector failed, :data:`WALL_POINTS`
-times in a row, means the steps creep towards a wall (Newton's method failing
-just across a point where the forces are not smooth): longer steps are tried
-from there (:func:`_leap`).
+Where the steps creep towards a wall (Newton's method failing from every
+predictor just across a point where the forces are not smooth, converging
+further on) until they fall below ``ds_min``, longer steps are tried from
+there (:func:`_leap`) before the continuation gives up, and an
+:class:`~microslip.common.errors.IncompleteCurveWarning` says which stretch
+the curve stepped over.
 
 Corners. Where the Jacobian jumps and its determinant, bordered by the
 direction of travel, changes sign, the curve turns back by more than a right
@@ -56,7 +58,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ...common import _checks
-from ...common.errors import BranchPointWarning, ConvergenceError
+from ...common.errors import BranchPointWarning, ConvergenceError, IncompleteCurveWarning
 from .blas import solver_threads
 from .krylov import Bordered, ScaledColumns
 from .reuse import ReusedFactorisation, lu_sign, newton_rtol
@@ -350,10 +352,6 @@ def _orientation(problem, Jx, R_omega, row, scale, solver=None) -> float:
 #: estimate takes differences of unit tangents about a step's turn apart, so their error must be a small part of it
 TANGENT_RTOL = 1e-6
 
-#: points in a row that the corrector reaches only after failing at a longer step before :func:`_leap` is tried
-WALL_POINTS = 3
-
-
 def _leap(problem, y, tau, step, scale, r_scale, ctl, last, solver, here):
     """A point beyond a wall the steps creep towards: ``(y, iterations, step)`` or None.
 
@@ -566,13 +564,20 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         failed = walled > 0  # the corrector failed at this point already, or just ahead of the last one
         leap = None
         corner = []  # the corner the step passes, if _corner finds one
-        if walled >= WALL_POINTS:  # creeping towards a wall: try to step over it
-            leap = _leap(problem, y, tau, wall_step, scale, r_scale, ctl, last, solver, orientation)
         while leap is None:
-            if ds < ctl.ds_min:
-                raise ConvergenceError(
-                    f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
-                    f"ds_min = {ctl.ds_min:g}")
+            if ds < ctl.ds_min:  # crept towards a wall: step over it from the step that first failed, or give up
+                leap = _leap(problem, y, tau, wall_step, scale, r_scale, ctl, last, solver, orientation)
+                if leap is None:
+                    raise ConvergenceError(
+                        f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
+                        f"ds_min = {ctl.ds_min:g}")
+                warnings.warn(
+                    f"the continuation stepped over the stretch from {y[-1]:.6g} to {leap[0][-1]:.6g} (its parameter: "
+                    f"omega in rad/s, or the log of a nonlinear mode's amplitude), where Newton's method failed from "
+                    f"every shorter step (a point where the contact forces are not smooth): the curve is a straight "
+                    f"line there and may miss a detail of it; a smaller StepControl.ds_min or more samples may "
+                    f"resolve it", IncompleteCurveWarning, stacklevel=3)
+                break
             yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last, solver)
             if yc is None and failed:  # failing again, nearer: look for a corner within the step
                 yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation, solver, corner)
