@@ -14,7 +14,8 @@ nonlinear mode of its first bending mode by the extended periodic motion concept
 (``microslip.nonlinear_modes``), harmonics 0-3, 128 samples, modal amplitudes from the stuck joint
 (3e-7 kg^1/2 m) to gross slip of the contacts (1e-4; ``--quick``: 1e-6 to 1.2e-5), ``--points`` points at
 equal steps of log amplitude (at most 4 times as many where the curve bends; without ``--points``, the
-default step control's 20 points per decade at least).
+former default step control's 20 points per decade at least, the baseline's default:
+``default_control(lo, hi, chord_error=None)``).
 
 Reported: the backbone's time, its points and the time per point; the time of one dense LU
 factorisation of the full nonlinear system's size (``dofs x (2H + 1)`` unknowns) measured in the same run,
@@ -77,11 +78,12 @@ def build(contacts: int):
     return joint, prestressed(jointed_structure(joint))
 
 
-def control(points: int | None):
+def control(points: int | None, amplitude=AMPLITUDE):
     from microslip.frequency import StepControl
+    from microslip.frequency.analyses.nonlinear_modes import default_control
 
-    if points is None:
-        return None
+    if points is None:  # the baseline's default (the turn rule): the same steps, so the curves compare point by point
+        return default_control(*amplitude, chord_error=None)
     step = 1.0 / (points - 1)  # the whole range has arclength 1 in the scaled units of nonlinear_modes
     return StepControl(ds_initial=step, ds_max=step, max_points=4 * points)
 
@@ -93,7 +95,7 @@ def backbone(structure, points, amplitude=AMPLITUDE):
         warnings.simplefilter("ignore")  # an under-resolved contact energy is not what is measured here
         t0 = time.perf_counter()
         mode = nonlinear_modes(structure, 1, amplitude, harmonics=HARMONICS, samples=SAMPLES,
-                               control=control(points))
+                               control=control(points, amplitude))
         return time.perf_counter() - t0, mode
 
 

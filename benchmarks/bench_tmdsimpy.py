@@ -289,7 +289,7 @@ def compare_mode(peer, dofs: int, contacts: int, modes: int, repeat: int, ds_max
     # how well each curve's points resolve the mode: straight lines between them against a curve 4x finer
     from microslip.frequency.analyses.nonlinear_modes import default_control
 
-    fine = default_control(*AMPLITUDE).ds_max / 4
+    fine = default_control(*AMPLITUDE, chord_error=None).ds_max / 4  # the turn rule at 1/80 decade
     ref = nonlinear_modes(structure, 1, AMPLITUDE, harmonics=MODE_H, samples=MODE_SAMPLES,
                           control=StepControl(ds_initial=fine, ds_max=fine))
     la_ref = np.log10(ref.modal_amplitude * np.sqrt(ref.modal_mass))

@@ -74,6 +74,7 @@ engine_order = 3
 
 [continuation]
 ds_initial = 0.02
+chord_error = 1e-4
 ds_max = 0.05
 ds_min = 1e-7
 max_angle = 0.1
@@ -200,6 +201,12 @@ def test_files_using_every_documented_key_are_read(tmp_path):
 
 
 @pytest.mark.filterwarnings("ignore::microslip.OneSidedDamperWarning")  # document 4: keys, not physics
+def test_the_continuation_table_reaches_the_step_control(tmp_path):
+    # every key of [continuation] is StepControl's own: the values are passed on as written (the chord rule too)
+    cfg = load_config(_block(tmp_path, lambda t: t.replace("engine_order = 3\n", "")), nonlinear=True)
+    assert cfg.control.chord_error == 1e-4 and cfg.control.ds_max == 0.05 and cfg.control.max_points == 5000
+
+
 def test_a_file_with_an_undocumented_key_in_any_table_is_refused(tmp_path):
     for path, nonlinear in _documents(tmp_path):
         data = read_toml(path)

@@ -185,6 +185,8 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
      "\\[continuation\\] max_angle must be a real number, got 'big'"),
     ("harmonics = 7", "harmonics = 7\n[continuation]\nds_initial = -0.1",
      "\\[continuation\\] ds_initial must be positive, got -0.1"),
+    ("harmonics = 7", "harmonics = 7\n[continuation]\nchord_error = 0.0",
+     "\\[continuation\\] chord_error must be positive, got 0.0"),
 ])
 def test_config_errors_name_the_key(config_dir, old, new, message):
     cfg = config_dir / "block.toml"

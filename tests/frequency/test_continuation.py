@@ -150,3 +150,129 @@ def test_a_line_at_one_parameter_value_is_no_fold():
     _, omegas, _, complete = continuation(Plateau(2.0), np.array([-0.5]), 0.0, 1.0, x_scale=1.0, r_scale=1.0,
                                           folds=folds)
     assert complete and omegas[-1] == 1.0 and folds == []
+
+
+# -- the chord rule: steps sized by the distance between the curve and the chords ------------------------------------
+
+class Graph(Zigzag):
+    """``R(x, omega) = x - g(omega)``: the curve ``x = g(omega)`` in closed form, ``g`` and ``g'`` given."""
+
+    def __init__(self, g, dg):
+        super().__init__()
+        self.g, self.dg = g, dg
+
+    def _evaluate(self, x, omega, jacobian=True):
+        R = np.array([x[0] - self.g(omega)])
+        if not jacobian:
+            return R
+        return R, np.array([[1.0]]), np.array([-self.dg(omega)])
+
+
+#: closed-form curves over omega in [-1, 1]: an S bend (a straight line with a tanh step in it) and a circle's arc
+S_BEND = (lambda w: w + 0.2 * np.tanh(5 * w), lambda w: 1 + 1 / np.cosh(5 * w) ** 2)
+ARC = (lambda w: np.sqrt(1.2 - w ** 2), lambda w: -w / np.sqrt(1.2 - w ** 2))
+
+
+def _follow(curve, control):
+    g, dg = curve
+    xs, omegas, _, complete = continuation(Graph(g, dg), np.array([g(-1.0)]), -1.0, 1.0, x_scale=1.0, r_scale=1.0,
+                                           control=control)
+    assert complete
+    return xs[:, 0], omegas
+
+
+def chord_errors(curve, xs, omegas):
+    """Largest distance between the curve and each chord (scaled units: x / 1, omega / 2), from the closed form
+    sampled at 401 parameter values per step (the distance is smooth: sampling misses a fraction of 1e-5 of it)."""
+    g = curve[0]
+    out = []
+    for k in range(omegas.size - 1):
+        w = np.linspace(omegas[k], omegas[k + 1], 401)
+        points = np.stack([g(w), w / 2.0], axis=1)
+        a, b = np.array([xs[k], omegas[k] / 2.0]), np.array([xs[k + 1], omegas[k + 1] / 2.0])
+        normal = np.array([a[1] - b[1], b[0] - a[0]]) / np.linalg.norm(b - a)
+        out.append(np.max(np.abs((points - a) @ normal)))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("curve", [S_BEND, ARC], ids=["s-bend", "arc"])
+def test_the_chord_rule_keeps_every_chord_near_its_target(curve):
+    from microslip.frequency.numerics.continuation import CHORD_REFUSE, StepControl
+
+    target = 1e-4
+    xs, omegas = _follow(curve, StepControl(chord_error=target, ds_max=0.5))
+    np.testing.assert_allclose(xs, curve[0](omegas), rtol=0, atol=1e-8)  # every point on the curve
+    errors = chord_errors(curve, xs, omegas)
+    # a step is refused above CHORD_REFUSE times the estimate, which is exact to third order in the step (a
+    # cubic through both ends with the curve's tangents there): a quarter more covers its error on these curves
+    assert errors.max() <= 1.25 * CHORD_REFUSE * target
+    # and the steps aim at the target rather than far below it (the last step ends on the range's edge: shorter)
+    assert np.median(errors[:-1]) >= 0.4 * target
+
+
+def test_the_chord_rule_follows_a_curve_with_fewer_points_at_a_smaller_error_than_the_turn_rule():
+    from microslip.frequency.numerics.continuation import StepControl
+
+    xs, omegas = _follow(S_BEND, StepControl())  # the turn rule: max_angle, iterations, ds_max
+    xs_c, omegas_c = _follow(S_BEND, StepControl(chord_error=7e-5, ds_max=0.5))
+    # the turn rule spends its points on the straight ends (ds_max) and its largest error in the bend
+    assert omegas_c.size <= 0.9 * omegas.size
+    assert chord_errors(S_BEND, xs_c, omegas_c).max() <= chord_errors(S_BEND, xs, omegas).max()
+
+
+def test_the_chord_rule_keeps_a_corner_as_a_point_of_the_curve():
+    from microslip.frequency.numerics.continuation import StepControl
+
+    corner = (lambda w: np.abs(w - 0.1), lambda w: np.sign(w - 0.1))
+    xs, omegas = _follow(corner, StepControl(chord_error=1e-4, ds_max=0.5))
+    np.testing.assert_allclose(xs, corner[0](omegas), rtol=0, atol=1e-12)
+    # the corner found on the straight line from the last point (bisection to 1e-6 of the step) is a point: the
+    # chords on both sides lie on the curve's two straight pieces
+    assert np.min(np.abs(omegas - 0.1)) < 1e-6
+    assert chord_errors(corner, xs, omegas).max() < 1e-6
+    assert omegas.size <= 15  # the straight pieces in long steps, not halved towards the corner
+
+
+@pytest.mark.parametrize("value, error, message", [
+    (0.0, ValueError, "chord_error must be positive, got 0.0"),
+    (-1e-4, ValueError, "chord_error must be positive, got -0.0001"),
+    ("small", TypeError, "chord_error must be a real number, got 'small'"),
+    (float("nan"), ValueError, "chord_error must be finite"),
+])
+def test_a_chord_error_that_is_not_a_positive_number_is_refused_by_name(value, error, message):
+    from microslip.frequency.numerics.continuation import StepControl
+
+    with pytest.raises(error, match=message):
+        StepControl(chord_error=value)
+
+
+class Walled(Graph):
+    """The straight line ``x = omega / 2`` whose residual is not finite for ``0.2 < omega < 0.35``: the corrector
+    fails from any predictor there, as Newton's method can just across a point where the contact forces are not
+    smooth; the band is longer than the longest step, so halved steps only creep towards it."""
+
+    def __init__(self):
+        super().__init__(lambda w: 0.5 * w, lambda w: 0.5)
+
+    def _evaluate(self, x, omega, jacobian=True):
+        if 0.2 < omega < 0.35:
+            R = np.array([np.nan])
+            return R if not jacobian else (R, np.array([[1.0]]), np.array([np.nan]))
+        return super()._evaluate(x, omega, jacobian)
+
+
+def test_steps_that_creep_to_a_wall_leap_over_it_with_a_warning_or_stall_beyond_reach():
+    from microslip.common.errors import ConvergenceError, IncompleteCurveWarning
+
+    with pytest.warns(IncompleteCurveWarning, match=r"stepped over the stretch from 0\.2\d* to 0\.(3[5-9]|[4-9])"):
+        xs, omegas, _, complete = continuation(Walled(), np.array([-0.5]), -1.0, 1.0, x_scale=1.0, r_scale=1.0)
+    assert complete and omegas[-1] == 1.0
+    np.testing.assert_allclose(xs[:, 0], 0.5 * omegas, rtol=0, atol=1e-12)
+    assert not np.any((omegas > 0.2) & (omegas < 0.35))
+    # a band wider than four times the step that first failed (at most ds_max = 0.05 of the scaled length 2):
+    # no leap reaches beyond it, and the continuation stops by name
+    wide = Walled()
+    wide._evaluate = lambda x, omega, jacobian=True: (Walled._evaluate(wide, x, 0.3, jacobian) if 0.2 < omega < 0.9
+                                                      else Walled._evaluate(wide, x, omega, jacobian))
+    with pytest.raises(ConvergenceError, match="stalled at omega = 0.2"):
+        continuation(wide, np.array([-0.5]), -1.0, 1.0, x_scale=1.0, r_scale=1.0)

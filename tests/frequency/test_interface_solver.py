@@ -305,8 +305,13 @@ def test_choice_keeps_every_dof_when_the_contacts_use_most_of_them(interface_pat
 
 
 def test_nonlinear_mode_with_reused_factors_equals_a_factorisation_per_iteration(interface_path):
+    from microslip.frequency.analyses.nonlinear_modes import default_control
+
     s = joint()
-    kw = dict(harmonics=3, samples=32)
+    # the turn rule: its steps follow from the corrector's iterations and turns, the same on both paths; the chord
+    # rule's also from the tangents, which each path solves its own way (to the solver's tolerance), moving every
+    # point along the curve by more than the 1e-6 compared point by point below
+    kw = dict(harmonics=3, samples=32, control=default_control(1e-7, 1e-5, chord_error=None))
     new = nonlinear_modes(s, 1, (1e-7, 1e-5), **kw)
     interface_path.setattr(InterfaceBalance, "operator_jacobian", False)  # a dense LU at every Newton iteration
     dense = nonlinear_modes(s, 1, (1e-7, 1e-5), **kw)

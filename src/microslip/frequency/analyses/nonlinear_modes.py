@@ -247,14 +247,38 @@ def _check_diameter(structure: Structure, nodal_diameter):
 #: what :func:`nonlinear_modes` does where the mode turns back in amplitude
 FOLDS = ("stop", "follow")
 
-#: points per decade of amplitude at least, with the default step control
+#: points per decade of amplitude at least with the turn rule (the default, ``default_control(lo, hi)``)
 POINTS_PER_DECADE = 20
 
+#: the chord error of ``default_control(lo, hi, chord_error=CHORD_ERROR)`` (scaled units: the mode's shape per
+#: unit modal amplitude over the largest entry of the linear mode, frequency and ``xi`` over the stuck frequency,
+#: the log amplitude over its range), measured by benchmarks/bench_step_control.py: fewer points than the turn
+#: rule at 1/20 decade on a blade and two lap joints, at a smaller interpolation error on the blade and the smaller
+#: joint; opt-in, because the larger joint's damping error was larger and a nearby target stalled on the smaller one
+CHORD_ERROR = 8e-5
 
-def default_control(lo: float, hi: float) -> StepControl:
-    """The step control of a mode from ``lo`` to ``hi`` (kg^1/2 m): steps of at most 1/20 decade of amplitude."""
-    step = np.log(10.0) / POINTS_PER_DECADE / np.log(hi / lo)
-    return StepControl(ds_initial=step, ds_max=step)
+#: the longest step (decades of modal amplitude) and largest turn (rad) of ``default_control`` with the chord rule:
+#: the chord error sets the steps, these only bound them
+LONGEST_STEP = 1.0
+CHORD_MAX_ANGLE = 0.3
+
+
+def default_control(lo: float, hi: float, chord_error: float | None = None) -> StepControl:
+    """The step control of a mode from ``lo`` to ``hi`` (kg^1/2 m, ``0 < lo < hi``).
+
+    ``chord_error=None`` (the default of :func:`nonlinear_modes`): the turn rule, steps of at most 1/20 decade
+    of amplitude (:data:`POINTS_PER_DECADE`) and turns of at most ``StepControl.max_angle`` (0.1 rad). With a
+    ``chord_error`` (see :class:`~microslip.frequency.StepControl`; :data:`CHORD_ERROR` is the measured
+    setting): steps sized so that the curve strays about that far from the straight line between two points,
+    of at most :data:`LONGEST_STEP` decades of amplitude and :data:`CHORD_MAX_ANGLE` of turn, the first 1/20
+    decade.
+    """
+    decade = np.log(10.0) / np.log(hi / lo)  # a decade of amplitude in the scaled arclength (the range is 1)
+    step = decade / POINTS_PER_DECADE
+    if chord_error is None:
+        return StepControl(ds_initial=step, ds_max=step)
+    return StepControl(ds_initial=step, ds_max=LONGEST_STEP * decade, max_angle=CHORD_MAX_ANGLE,
+                       chord_error=chord_error)
 
 
 def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4), *, harmonics: int = 3,
@@ -301,8 +325,12 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         Normal modes of a modal reduction (default 60).
     control : StepControl, optional
         Continuation settings (arclength in scaled units; the whole amplitude
-        range has length 1). Default: steps of at most 1/20 of a decade of
-        amplitude (:func:`default_control`), shorter where the curve bends.
+        range has length 1). Default (:func:`default_control`): steps of at most
+        1/20 of a decade of amplitude, shorter where the curve bends;
+        ``default_control(lo, hi, chord_error=CHORD_ERROR)`` sizes them by the
+        distance between the curve and the straight line joining two points
+        (``StepControl.chord_error``): long where the curve is straight, short
+        where it bends.
     progress : bool, default False
         Report progress on standard error.
     max_periods : int

@@ -19,7 +19,14 @@ the step grows when the corrector needs few iterations, shrinks when it
 needs many, and a step is refused (and halved) when the corrector fails or
 the secant turns by more than ``max_angle`` (which keeps points dense where
 the curve bends, at peaks and folds) -- unless halving does not reduce the
-turn, which marks a kink.
+turn, which marks a kink. With ``StepControl.chord_error`` the steps are also
+sized and refused by the distance between the curve and each step's chord.
+Where the steps creep towards a wall (Newton's method failing from every
+predictor just across a point where the forces are not smooth, converging
+further on) until they fall below ``ds_min``, longer steps are tried from
+there (:func:`_leap`) before the continuation gives up, and an
+:class:`~microslip.common.errors.IncompleteCurveWarning` says which stretch
+the curve stepped over.
 
 Corners. Where the Jacobian jumps and its determinant, bordered by the
 direction of travel, changes sign, the curve turns back by more than a right
@@ -51,7 +58,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ...common import _checks
-from ...common.errors import BranchPointWarning, ConvergenceError
+from ...common.errors import BranchPointWarning, ConvergenceError, IncompleteCurveWarning
 from .blas import solver_threads
 from .krylov import Bordered, ScaledColumns
 from .reuse import ReusedFactorisation, lu_sign, newton_rtol
@@ -77,6 +84,21 @@ class StepControl:
         incomplete (see :func:`continuation`).
     tolerance : float
         Convergence: scaled Newton step and relative residual below this, in ``(0, 1)``.
+    chord_error : float or None
+        Interpolation error the steps aim at (scaled arclength units, positive, or None): the
+        largest distance between the curve and the straight line joining two consecutive points.
+        Each step's distance is estimated from the cubic through its ends with the curve's
+        tangents there (:func:`_chord_error`; one more solve per point, with the corrector's
+        last factors where it kept them); the next step is the one whose estimate would be
+        this (it grows as the square of the step), within ``[ds / 4, 2 ds]`` and ``ds_max``,
+        and a step whose estimate exceeds :data:`CHORD_REFUSE` times this is refused and
+        halved, across a kink too (a shorter step cuts less of its corner). A corner the
+        continuation had to search for (see the module docstring) becomes a point of the curve.
+        Steps then lengthen where the curve is straight and shorten where it bends. None (the
+        default): steps are set by ``max_angle``, the corrector's iterations and ``ds_max``
+        alone, which puts the largest error where the curve is nearly straight (a step's turn
+        is held below ``max_angle``, so its error ``ds * turn / 8`` is largest at ``ds_max``).
+        ``max_angle`` refusals, branch points and lines behave alike with either.
 
     Raises
     ------
@@ -92,6 +114,7 @@ class StepControl:
     max_iterations: int = 12
     max_points: int = 5000
     tolerance: float = 1e-9
+    chord_error: float | None = None
 
     def __post_init__(self):
         for name in ("ds_initial", "ds_min", "ds_max", "max_angle", "tolerance"):
@@ -106,6 +129,8 @@ class StepControl:
             raise ValueError(f"max_angle must be below pi (rad), got {self.max_angle!r}")
         if self.tolerance >= 1:
             raise ValueError(f"tolerance must be below 1 (a relative residual), got {self.tolerance!r}")
+        if self.chord_error is not None:
+            self.chord_error = _checks.positive_scalar("chord_error", self.chord_error)
 
 
 def _solver_for(problem):
@@ -237,6 +262,11 @@ LINE_ANGLE = 1e-3
 #: still straight at a step this many times ``ds_max``, it does not end and the continuation stops there
 LINE_REACH = 1e6
 
+#: a step whose estimated chord error exceeds this many times ``StepControl.chord_error`` is refused (halved, which
+#: quarters the error of a smooth stretch): the steps aim at the target, so only a bend sharper than the last step
+#: foretold is redone, and no chord strays much beyond the target
+CHORD_REFUSE = 2.0
+
 #: smallest dense bordered system whose LU factors are kept for the point's orientation: below it, a solve
 #: and a determinant of their own cost less than the factors' calls (the crossover was measured on small
 #: bordered systems; the figures belong to a benchmark, not here)
@@ -318,8 +348,34 @@ def _orientation(problem, Jx, R_omega, row, scale, solver=None) -> float:
     return float(sign)
 
 
-def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
+#: relative residual of the tangent solved for a chord error by a problem whose Jacobian is an operator: the
+#: estimate takes differences of unit tangents about a step's turn apart, so their error must be a small part of it
+TANGENT_RTOL = 1e-6
+
+def _leap(problem, y, tau, step, scale, r_scale, ctl, last, solver, here):
+    """A point beyond a wall the steps creep towards: ``(y, iterations, step)`` or None.
+
+    Where the contact forces are not smooth (an element's state changes within the period), Newton's
+    method may fail from a predictor just across the change while it converges from one further on:
+    halved steps then converge short of the change and approach it without passing. This corrects
+    from ``step`` (the one that failed first), twice and four times as far, and takes the first point
+    ahead of ``y`` on the same side of the curve (orientation ``here``).
+    """
+    for factor in (1.0, 2.0, 4.0):
+        ds = factor * step
+        yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last, solver)
+        if yc is None:
+            continue
+        secant = (yc - y) / scale
+        if secant @ tau > 0 and _sign(problem, last, secant / np.linalg.norm(secant), scale) == here:
+            return yc, it, ds
+    return None
+
+
+def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None, here_corner=None):
     """A point about ``ds`` past a corner just ahead of ``y``: ``(y, iterations, direction)`` or ``(None, k, None)``.
+
+    The corner itself (on the curve to the tolerance) is left in ``here_corner[0]`` when a list is given.
 
     Where an element starts to slip or to open, the Jacobian jumps. When the jump
     reverses the orientation of the curve (the sign of ``det [[Jx, R_omega], [tau]]``)
@@ -367,7 +423,54 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None):
     behind = np.cos(0.1 * ctl.max_angle)
     if not np.all(np.isfinite(ahead)) or (ahead @ tau > behind and secant @ tau < -behind * length):
         return None, it, None  # back on the branch already followed, behind y
+    if here_corner is not None:
+        here_corner[:] = [corner]
     return yc, it, ahead
+
+
+#: the fractions of a step at which :func:`_chord_error` looks for the largest distance (its cubic's
+#: distance from the chord is smooth and vanishes at both ends: a few fractions find its largest value to
+#: a small fraction of it)
+_CHORD_FRACTIONS = np.linspace(0.0, 1.0, 33)[1:-1]
+
+
+def _chord_error(start: np.ndarray, end: np.ndarray, secant: np.ndarray, length: float) -> float:
+    """Largest distance between a step's chord and the curve between its ends (scaled units).
+
+    ``start`` and ``end`` are the curve's unit tangents at the step's ends, ``secant`` the chord's unit
+    direction and ``length`` its length. The curve is taken as the cubic with those end points and
+    tangents (Hermite), whose distance from the chord at the fraction ``t`` of the step is
+    ``length t (1 - t) |(1 - t) (start - secant) - t (end - secant)|``: exact to third order in
+    ``length`` on a smooth curve (``kappa length^2 / 8`` on a circle of curvature ``kappa``), and on a
+    corner within the step the corner's own distance to first order.
+    """
+    u, v = start - secant, end - secant
+    uu, uv, vv = float(u @ u), float(u @ v), float(v @ v)
+    t = _CHORD_FRACTIONS
+    squared = (t * (1 - t)) ** 2 * ((1 - t) ** 2 * uu - 2 * t * (1 - t) * uv + t ** 2 * vv)
+    return length * float(np.sqrt(max(squared.max(), 0.0)))
+
+
+def _tangent_at(problem, last, row, scale, solver) -> np.ndarray:
+    """Unit tangent (scaled) at the corrector's converged point (``last``, see :func:`_correct`), ``row . t > 0``.
+
+    From the factors of the corrector's last iteration when it kept them (a dense problem of at least
+    :data:`FACTORED_MIN` unknowns: its Jacobian one Newton step before the point, bordered by the
+    predictor's direction); by the problem's solver to :data:`TANGENT_RTOL` when its Jacobian is an
+    operator; else from a solve of its own.
+    """
+    Jx, Rw, factors = last
+    e = np.zeros(scale.size)
+    e[-1] = 1.0
+    z = np.full(scale.size, np.nan)
+    if isinstance(factors, _Factored):
+        z = factors.solve(e)
+    elif isinstance(factors, ReusedFactorisation):
+        z = factors.solve(_scaled_system(problem, Jx, Rw, row, scale), e, TANGENT_RTOL)
+    t = z / np.linalg.norm(z)
+    if not np.all(np.isfinite(t)):
+        t = _tangent(problem, Jx, Rw, row, scale, solver)
+    return -t if t @ row < 0 else t
 
 
 def continuation(problem, x0, omega_start: float, omega_end: float, *, x_scale: float, r_scale: float,
@@ -453,26 +556,43 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
     ds = min(max(ctl.ds_initial, ctl.ds_min), ctl.ds_max)
     complete = False
     line_start = None  # index of the point where a line at one parameter value starts
+    here = tau  # the curve's unit tangent at y (scaled), for the chord error of the step from y
+    walled = 0  # points in a row reached by a shorter step after the corrector failed at a longer one
+    wall_step = ds  # the step that failed at the first of them
     while len(omegas) < ctl.max_points:
         refused_angle = np.inf  # turn at the last step refused for turning too much
-        failed = False  # the corrector failed at this point already
-        while True:
-            if ds < ctl.ds_min:
-                raise ConvergenceError(
-                    f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
-                    f"ds_min = {ctl.ds_min:g}")
+        failed = walled > 0  # the corrector failed at this point already, or just ahead of the last one
+        leap = None
+        corner = []  # the corner the step passes, if _corner finds one
+        while leap is None:
+            if ds < ctl.ds_min:  # crept towards a wall: step over it from the step that first failed, or give up
+                leap = _leap(problem, y, tau, wall_step, scale, r_scale, ctl, last, solver, orientation)
+                if leap is None:
+                    raise ConvergenceError(
+                        f"the continuation stalled at omega = {y[-1]:g} rad/s: the step fell below "
+                        f"ds_min = {ctl.ds_min:g}")
+                warnings.warn(
+                    f"the continuation stepped over the stretch from {y[-1]:.6g} to {leap[0][-1]:.6g} (its parameter: "
+                    f"omega in rad/s, or the log of a nonlinear mode's amplitude), where Newton's method failed from "
+                    f"every shorter step (a point where the contact forces are not smooth): the curve is a straight "
+                    f"line there and may miss a detail of it; a smaller StepControl.ds_min or more samples may "
+                    f"resolve it", IncompleteCurveWarning, stacklevel=3)
+                break
             yc, it = _correct(problem, y + ds * tau * scale, tau, scale, r_scale, ctl, last, solver)
             if yc is None and failed:  # failing again, nearer: look for a corner within the step
-                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation, solver)
+                yc, it, ahead = _corner(problem, y, tau, ds, scale, r_scale, ctl, orientation, solver, corner)
                 if yc is not None:  # its turn is the corner's: no reason to shrink the next step
-                    secant, angle, kink = ahead, 0.0, True
+                    secant, angle, kink, there = ahead, 0.0, True, ahead  # ahead: the tangent at yc
                     break
             if yc is None:
+                if not failed and walled == 0:
+                    wall_step = ds
                 failed = True
                 ds *= 0.5
                 continue
             secant = (yc - y) / scale
-            secant /= np.linalg.norm(secant)
+            length = float(np.linalg.norm(secant))
+            secant /= length
             angle = float(np.arccos(np.clip(secant @ tau, -1.0, 1.0)))
             if _sign(problem, last, secant, scale) == -orientation and ds > 2 * ctl.ds_min:
                 if ds > BRANCH_STEP * ctl.ds_max or angle > 0.1 * ctl.max_angle:
@@ -492,7 +612,21 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
                 refused_angle = angle
                 ds *= 0.5
                 continue
+            if ctl.chord_error is not None:  # across a kink too: a shorter step cuts less of its corner
+                there = _tangent_at(problem, last, secant, scale, solver)
+                chord = _chord_error(here, there, secant, length)
+                if chord > CHORD_REFUSE * ctl.chord_error and ds > 2 * ctl.ds_min:
+                    ds *= 0.5
+                    continue
             break
+        if leap is not None:  # over the wall: the turn is the wall's, no reason to shrink the next step
+            yc, it, ds = leap
+            secant = (yc - y) / scale
+            length = float(np.linalg.norm(secant))
+            secant /= length
+            angle, kink = 0.0, True
+            there = _tangent_at(problem, last, secant, scale, solver) if ctl.chord_error is not None else None
+        walled = walled + 1 if failed and not kink else 0
         # a straight step that leaves the parameter where it was (to rounding): the solutions form a line at one
         # parameter value (a body held by contacts that all slide or stay open, its mean position free)
         on_line = (not kink and angle <= LINE_ANGLE * ctl.max_angle
@@ -502,6 +636,10 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
             folds.append(float(y[-1]))  # the curve turns back: it ends at its point before the turn
             break
         y, tau = yc, secant
+        if corner and ctl.chord_error is not None and lo <= corner[0][-1] <= hi:
+            xs.append(corner[0][:-1].copy())  # a point of the curve (to the tolerance): the chords then cut nothing
+            omegas.append(float(corner[0][-1]))
+            iters.append(0)
         if not lo <= y[-1] <= hi:
             # left the range: end exactly on its edge (or stop if it turned back out)
             edge = hi if y[-1] > hi else lo
@@ -525,6 +663,10 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         # grow when the corrector was quick and the curve straight, shrink otherwise
         turn = 0.0 if kink else angle
         factor = min(ctl.target_iterations / max(it, 1), 2.0, 0.9 * ctl.max_angle / max(turn, 1e-12))
+        longest = np.inf  # the step whose chord error is the one asked for (it grows as the step's square)
+        if ctl.chord_error is not None and not kink:
+            longest = max(ds * np.sqrt(ctl.chord_error / max(chord, 1e-300)), 0.25 * ds)
+        here = there if ctl.chord_error is not None else None
         if on_line:  # every point of a straight line at one parameter value is as good: cross it in doubling steps
             line_start = len(omegas) - 2 if line_start is None else line_start
             if ds >= LINE_REACH * ctl.ds_max:  # still straight after that: the line does not end
@@ -535,5 +677,5 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
             ds *= 2.0
             continue
         line_start = None
-        ds = float(np.clip(ds * max(factor, 0.5), ctl.ds_min, ctl.ds_max))
+        ds = float(np.clip(min(ds * max(factor, 0.5), longest), ctl.ds_min, ctl.ds_max))
     return np.array(xs), np.array(omegas), np.array(iters), complete
