@@ -146,7 +146,7 @@ def run(args) -> int:
     from ..common.report import Report, plural
     from ..frequency import ConvergenceError, IncompleteCurveWarning, NotPeriodicError, nonlinear_modes
     from ..frequency.analyses.response import CurveInterrupted
-    from ..config import apply_prestress, load_config, read_toml
+    from ..config import apply_prestress, load_config
     from ..config.modes_control import mode_control
     from .frf import _static_text
 
@@ -169,7 +169,7 @@ def run(args) -> int:
                 state, prestress, force = apply_prestress(cfg, force, getattr(args, "prestress", None))
             mode = nonlinear_modes(structure, table.mode, table.amplitude, harmonics=cfg.harmonics,
                                    samples=cfg.samples, reduction=cfg.reduction, modes=cfg.modes,
-                                   control=mode_control(cfg, read_toml(args.config).get("continuation", {})),
+                                   control=mode_control(cfg, cfg.continuation_keys),
                                    progress=not args.quiet, nodal_diameter=table.nodal_diameter, prestress=state,
                                    folds=table.folds)
     except (ConvergenceError, NotPeriodicError) as exc:

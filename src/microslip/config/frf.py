@@ -173,6 +173,8 @@ class FrfConfig:
     prestress: PrestressTable | None = None
     speed: SpeedTable | None = None
     campbell: CampbellTable | None = None
+    #: the ``[continuation]`` keys the file sets (a nonlinear mode keeps its own steps for the others)
+    continuation_keys: tuple = ()
 
 
 @dataclass
@@ -302,19 +304,16 @@ def checked(path, where: str, check, *args, **kwargs):
         raise ConfigError(f"{path}: {where}{exc}") from None
 
 
-def _get(table: dict, key: str, where: str, path):
+def _get(table: dict, key: str, where: str, path, hint: str = ""):
+    """``table[key]``; a missing key is a :class:`ConfigError` naming it (and ``hint``, what to write)."""
     if key not in table:
-        raise ConfigError(f"{path}: {where} needs the key {key!r}")
+        raise ConfigError(f"{path}: {where} needs the key {key!r}{': ' + hint if hint else ''}")
     return table[key]
 
 
-def _boundary(table: dict, key: str, path):
-    """``[cyclic] left`` or ``right``: required, empty when the sectors share no DOF (blades joined only by dampers)."""
-    if key not in table:
-        raise ConfigError(f"{path}: [cyclic] needs the key {key!r}: the DOFs this sector shares with the "
-                          f"{'previous' if key == 'left' else 'next'} one, {key} = [] when it shares none (blades "
-                          f"joined only through dampers or a rigid disk)")
-    return table[key]
+#: what ``[cyclic] left`` and ``right`` hold, when missing
+_SHARED = ("the DOFs this sector shares with the {} one, {} = [] when it shares none (blades joined only through "
+           "dampers or a rigid disk)")
 
 
 def _quantity(value, kind: str, what: str, path) -> float:
@@ -702,7 +701,7 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
                       else None)
     return FrfConfig(str(data.get("title", path.stem)), structure, force, omega, harmonics, samples, control,
                      plot_dofs, harmonic, names, reduction, modes, frequency_unit, engine_order, bare, dampers,
-                     design_loads, design_dof, mode_table, prestress, speed, campbell_table)
+                     design_loads, design_dof, mode_table, prestress, speed, campbell_table, tuple(cont))
 
 
 def apply_prestress(cfg: FrfConfig, force: dict, friction: str | None = None):
@@ -922,8 +921,9 @@ def _cyclic(table: dict, structure: Structure, names: list[str], path, files: Co
         engine_order = checked(path, "", _checks.positive_int, "[cyclic] engine_order", table["engine_order"],
                                 minimum=0)
     disk = checked(path, "[cyclic] ", CyclicStructure, structure.M, structure.C, structure.K, sectors=sectors,
-                    left=dofs("left", _boundary(table, "left", path)),
-                    right=dofs("right", _boundary(table, "right", path)), dof_map=structure.dof_map, **frame)
+                    left=dofs("left", _get(table, "left", "[cyclic]", path, _SHARED.format("previous", "left"))),
+                    right=dofs("right", _get(table, "right", "[cyclic]", path, _SHARED.format("next", "right"))),
+                    dof_map=structure.dof_map, **frame)
     return disk, engine_order
 
 

@@ -43,7 +43,7 @@ def solve_case(study: Study, case: Case) -> dict:
             warnings.simplefilter("always")
             cfg = study.configuration(case)
             if study.solve == "modes":
-                row, curves = _modes(study, cfg, case)
+                row, curves = _modes(study, cfg)
             elif case.mistuning_sample is not None:
                 row, curves = _mistuned(study, cfg, case.mistuning_sample)
             else:
@@ -142,18 +142,16 @@ def _frf_curves(result, amplitude) -> dict:
             "stable": stable}
 
 
-def _modes(study: Study, cfg, case: Case):
+def _modes(study: Study, cfg):
     from ..config import apply_prestress
     from ..config.modes_control import mode_control
     from ..frequency import nonlinear_modes
 
     t = cfg.nonlinear_mode
-    # the [continuation] keys the base file or the case sets; the others keep the mode's own steps
-    given = {*study.data.get("continuation", {}),
-             *(path.split(".", 1)[1] for path in case.values if path.startswith("continuation."))}
     state = apply_prestress(cfg, cfg.force)[0]  # a [prestress]: the mode vibrates about its state
     mode = nonlinear_modes(cfg.structure, t.mode, t.amplitude, harmonics=cfg.harmonics, samples=cfg.samples,
-                           reduction=cfg.reduction, modes=cfg.modes, control=mode_control(cfg, given),
+                           reduction=cfg.reduction, modes=cfg.modes,
+                           control=mode_control(cfg, cfg.continuation_keys),
                            nodal_diameter=t.nodal_diameter, prestress=state, folds=t.folds)
     amplitude = np.column_stack([mode.amplitude(d, 1) for d in cfg.plot_dofs])
     k = int(np.argmax(mode.damping_ratio))
