@@ -103,7 +103,7 @@ def test_the_command_computes_the_api_mode_from_the_files(sector, capsys):
 
 
 def test_a_continuation_table_caps_the_mode_the_api_computes(sector, capsys):
-    """``[continuation] max_points`` alone keeps the mode's own steps (1/20 decade): the first points are the API's."""
+    """``[continuation] max_points`` alone keeps the mode's own steps (the chord rule): the first points are the API's."""
     folder, _, mode = sector
     config = folder / "capped.toml"
     config.write_text((folder / "config.toml").read_text().replace("[output]", "[continuation]\nmax_points = 8\n\n"
@@ -158,11 +158,12 @@ def test_the_modes_step_control_is_its_own_with_the_keys_given(sector):
     config.write_text((folder / "config.toml").read_text().replace("[output]", "[continuation]\nmax_points = 250\n"
                                                                                "ds_min = 1e-6\n\n[output]"))
     cfg = load_config(config, nonlinear=True)
-    own = default_control(*AMPLITUDE)  # steps of at most 1/20 decade of amplitude over the range
+    own = default_control(*AMPLITUDE)  # the chord rule, steps of up to a decade of amplitude over the range
     assert own.ds_max != StepControl().ds_max  # not the forced response's steps, which cfg.control holds
     assert mode_control(cfg, []) == own
-    assert mode_control(cfg, ["max_points", "ds_min"]) == StepControl(ds_initial=own.ds_initial, ds_max=own.ds_max,
-                                                                      max_points=250, ds_min=1e-6)
+    assert mode_control(cfg, ["max_points", "ds_min"]) == StepControl(
+        ds_initial=own.ds_initial, ds_max=own.ds_max, max_angle=own.max_angle, chord_error=own.chord_error,
+        max_points=250, ds_min=1e-6)
     with pytest.raises(ValueError, match=r"given names 'max_point', not a \[continuation\] key"):
         mode_control(cfg, ["max_point"])
     with pytest.raises(ValueError, match=r"cfg must be a configuration with a \[modes\] table"):

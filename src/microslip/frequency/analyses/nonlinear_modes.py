@@ -247,15 +247,15 @@ def _check_diameter(structure: Structure, nodal_diameter):
 #: what :func:`nonlinear_modes` does where the mode turns back in amplitude
 FOLDS = ("stop", "follow")
 
-#: points per decade of amplitude at least with the turn rule (the default, ``default_control(lo, hi)``)
+#: points per decade of amplitude at least with the turn rule (``default_control(lo, hi, chord_error=None)``)
 POINTS_PER_DECADE = 20
 
-#: the chord error of ``default_control(lo, hi, chord_error=CHORD_ERROR)`` (scaled units: the mode's shape per
-#: unit modal amplitude over the largest entry of the linear mode, frequency and ``xi`` over the stuck frequency,
-#: the log amplitude over its range), measured by benchmarks/bench_step_control.py: fewer points than the turn
-#: rule at 1/20 decade on a blade and two lap joints, at a smaller interpolation error on the blade and the smaller
-#: joint; opt-in, because the larger joint's damping error was larger and a nearby target stalled on the smaller one
-CHORD_ERROR = 8e-5
+#: the default chord error of :func:`default_control`: the largest difference between the backbone and the
+#: straight lines joining its points that the steps aim at, in frequency and ``xi`` over the stuck frequency (about
+#: 1.5e-5 of the stuck frequency, 7.5e-6 in damping ratio) against the log amplitude over its range; chosen with
+#: benchmarks/bench_step_control.py, where it gives a smaller interpolation error than the turn rule at 1/20 decade
+#: on a blade and two lap joints, with fewer points in all (more on the blade, whose curve bends most)
+CHORD_ERROR = 1.5e-5
 
 #: the longest step (decades of modal amplitude) and largest turn (rad) of ``default_control`` with the chord rule:
 #: the chord error sets the steps, these only bound them
@@ -263,15 +263,15 @@ LONGEST_STEP = 1.0
 CHORD_MAX_ANGLE = 0.3
 
 
-def default_control(lo: float, hi: float, chord_error: float | None = None) -> StepControl:
+def default_control(lo: float, hi: float, chord_error: float | None = CHORD_ERROR) -> StepControl:
     """The step control of a mode from ``lo`` to ``hi`` (kg^1/2 m, ``0 < lo < hi``).
 
-    ``chord_error=None`` (the default of :func:`nonlinear_modes`): the turn rule, steps of at most 1/20 decade
-    of amplitude (:data:`POINTS_PER_DECADE`) and turns of at most ``StepControl.max_angle`` (0.1 rad). With a
-    ``chord_error`` (see :class:`~microslip.frequency.StepControl`; :data:`CHORD_ERROR` is the measured
-    setting): steps sized so that the curve strays about that far from the straight line between two points,
-    of at most :data:`LONGEST_STEP` decades of amplitude and :data:`CHORD_MAX_ANGLE` of turn, the first 1/20
-    decade.
+    With a ``chord_error`` (the default, :data:`CHORD_ERROR`; see :class:`~microslip.frequency.StepControl`):
+    steps sized so that the frequency and ``xi`` stray about that far (over the stuck frequency) from the
+    straight lines between two points against the log amplitude, of at most :data:`LONGEST_STEP` decades of
+    amplitude and :data:`CHORD_MAX_ANGLE` of turn, the first 1/20 decade. ``chord_error=None``: the turn rule,
+    steps of at most 1/20 decade of amplitude (:data:`POINTS_PER_DECADE`) and turns of at most
+    ``StepControl.max_angle`` (0.1 rad).
     """
     decade = np.log(10.0) / np.log(hi / lo)  # a decade of amplitude in the scaled arclength (the range is 1)
     step = decade / POINTS_PER_DECADE
@@ -325,12 +325,13 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         Normal modes of a modal reduction (default 60).
     control : StepControl, optional
         Continuation settings (arclength in scaled units; the whole amplitude
-        range has length 1). Default (:func:`default_control`): steps of at most
-        1/20 of a decade of amplitude, shorter where the curve bends;
-        ``default_control(lo, hi, chord_error=CHORD_ERROR)`` sizes them by the
-        distance between the curve and the straight line joining two points
-        (``StepControl.chord_error``): long where the curve is straight, short
-        where it bends.
+        range has length 1). Default (:func:`default_control`): steps sized so
+        that the frequency and damping between two points stray from the
+        straight line joining them by about :data:`CHORD_ERROR` of the stuck
+        frequency (``StepControl.chord_error``): long where the backbone is
+        straight, short where it bends; ``default_control(lo, hi,
+        chord_error=None)``: steps of at most 1/20 of a decade of amplitude,
+        shorter where the curve turns.
     progress : bool, default False
         Report progress on standard error.
     max_periods : int

@@ -245,6 +245,10 @@ class EpmcEquations:
         self.rho = force_scale
 
     # -- between the scaled unknowns and the physical ones ---------------------------------------------
+    #: the unknowns whose interpolation error against the log amplitude sets the chord rule's steps (see
+    #: ``StepControl.chord_error``): the frequency and ``xi``, what a backbone plots
+    watched = (-2, -1)
+
     def unpack(self, y, s: float) -> tuple[np.ndarray, float, float]:
         """``(x, omega, xi)``: the harmonic balance unknowns (m), the frequency (rad/s) and ``xi`` (1/s)."""
         a = np.exp(s)

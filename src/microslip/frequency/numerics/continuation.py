@@ -4,7 +4,10 @@ Works on any problem ``R(x, omega) = 0`` that provides
 ``_evaluate(x, omega, jacobian=True) -> (R, dR/dx, dR/domega)`` (``R`` alone
 without the Jacobian; unchecked: the solvers build ``x`` themselves),
 ``solve(A, b)`` and ``augmented(Jx, R_omega, row)`` (see
-:class:`~microslip.frequency.equations.hbm.HarmonicBalance`).
+:class:`~microslip.frequency.equations.hbm.HarmonicBalance`); optionally
+``watched``, the indices into ``x`` of the quantities whose interpolation
+error against the parameter sets the chord rule's steps (see
+``StepControl.chord_error``; a nonlinear mode's frequency and damping).
 All arclength geometry is done in scaled variables ``(x / x_scale, omega / omega_scale)``
 so that displacements (µm) and frequencies (rad/s) weigh alike.
 
@@ -87,17 +90,22 @@ class StepControl:
     chord_error : float or None
         Interpolation error the steps aim at (scaled arclength units, positive, or None): the
         largest distance between the curve and the straight line joining two consecutive points.
-        Each step's distance is estimated from the cubic through its ends with the curve's
-        tangents there (:func:`_chord_error`; one more solve per point, with the corrector's
-        last factors where it kept them); the next step is the one whose estimate would be
-        this (it grows as the square of the step), within ``[ds / 4, 2 ds]`` and ``ds_max``,
-        and a step whose estimate exceeds :data:`CHORD_REFUSE` times this is refused and
-        halved, across a kink too (a shorter step cuts less of its corner). A corner the
-        continuation had to search for (see the module docstring) becomes a point of the curve.
-        Steps then lengthen where the curve is straight and shorten where it bends. None (the
-        default): steps are set by ``max_angle``, the corrector's iterations and ``ds_max``
-        alone, which puts the largest error where the curve is nearly straight (a step's turn
-        is held below ``max_angle``, so its error ``ds * turn / 8`` is largest at ``ds_max``).
+        For a problem that names ``watched`` quantities (a nonlinear mode: its frequency and
+        ``xi``), it is their largest difference from the straight line at the same parameter value
+        instead (what a plot of each against the parameter shows between points), except on
+        steps steeper than :data:`WATCHED_SLOPE` (at a fold), measured as a whole. Each step's
+        error is estimated from the cubic through its ends with the curve's tangents there
+        (:func:`_chord_error`; one more solve per point, with the corrector's last factors where
+        it kept them); the next step is the one whose estimate would be this (it grows as the
+        square of the step), within ``[ds / 4, 2 ds]`` and ``ds_max``, and a step whose estimate
+        exceeds :data:`CHORD_REFUSE` times this is refused and halved, across a kink too (a
+        shorter step cuts less of its corner). A corner the continuation had to search for (see
+        the module docstring) becomes a point of the curve. Steps then lengthen where the curve
+        is straight and shorten where it bends. None (the default here; nonlinear modes take
+        the chord rule by default, see their ``default_control``): steps are set by
+        ``max_angle``, the corrector's iterations and ``ds_max`` alone, which puts the largest
+        error where the curve is nearly straight (a step's turn is held below ``max_angle``, so
+        its error ``ds * turn / 8`` is largest at ``ds_max``).
         ``max_angle`` refusals, branch points and lines behave alike with either.
 
     Raises
@@ -428,13 +436,17 @@ def _corner(problem, y, tau, ds, scale, r_scale, ctl, here, solver=None, here_co
     return yc, it, ahead
 
 
+#: a chord steeper than this (its parameter's share of its unit direction below it) is measured as a whole: near a
+#: fold the watched quantities are no function of the parameter
+WATCHED_SLOPE = 0.05
+
 #: the fractions of a step at which :func:`_chord_error` looks for the largest distance (its cubic's
 #: distance from the chord is smooth and vanishes at both ends: a few fractions find its largest value to
 #: a small fraction of it)
 _CHORD_FRACTIONS = np.linspace(0.0, 1.0, 33)[1:-1]
 
 
-def _chord_error(start: np.ndarray, end: np.ndarray, secant: np.ndarray, length: float) -> float:
+def _chord_error(start: np.ndarray, end: np.ndarray, secant: np.ndarray, length: float, watched=None) -> float:
     """Largest distance between a step's chord and the curve between its ends (scaled units).
 
     ``start`` and ``end`` are the curve's unit tangents at the step's ends, ``secant`` the chord's unit
@@ -442,11 +454,20 @@ def _chord_error(start: np.ndarray, end: np.ndarray, secant: np.ndarray, length:
     tangents (Hermite), whose distance from the chord at the fraction ``t`` of the step is
     ``length t (1 - t) |(1 - t) (start - secant) - t (end - secant)|``: exact to third order in
     ``length`` on a smooth curve (``kappa length^2 / 8`` on a circle of curvature ``kappa``), and on a
-    corner within the step the corner's own distance to first order.
+    corner within the step the corner's own distance to first order. With ``watched`` (indices into
+    the vectors; the parameter is their last entry): the largest difference of those entries from the
+    chord at the same parameter value, from the same cubic.
     """
     u, v = start - secant, end - secant
-    uu, uv, vv = float(u @ u), float(u @ v), float(v @ v)
     t = _CHORD_FRACTIONS
+    if watched is not None and abs(secant[-1]) > WATCHED_SLOPE:
+        # the cubic's offset from the chord at t, less what the parameter's own offset moves along the chord:
+        # the quantity's difference from the straight line at the same parameter value
+        slope = secant[watched] / secant[-1]
+        du, dv = u[watched] - slope * u[-1], v[watched] - slope * v[-1]
+        off = (t * (1 - t))[:, None] * ((1 - t)[:, None] * du - t[:, None] * dv)
+        return length * float(np.max(np.abs(off)))
+    uu, uv, vv = float(u @ u), float(u @ v), float(v @ v)
     squared = (t * (1 - t)) ** 2 * ((1 - t) ** 2 * uu - 2 * t * (1 - t) * uv + t ** 2 * vv)
     return length * float(np.sqrt(max(squared.max(), 0.0)))
 
@@ -557,6 +578,8 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
     complete = False
     line_start = None  # index of the point where a line at one parameter value starts
     here = tau  # the curve's unit tangent at y (scaled), for the chord error of the step from y
+    watched = getattr(problem, "watched", None)
+    watched = None if watched is None or ctl.chord_error is None else np.arange(n)[list(watched)]
     walled = 0  # points in a row reached by a shorter step after the corrector failed at a longer one
     wall_step = ds  # the step that failed at the first of them
     while len(omegas) < ctl.max_points:
@@ -614,7 +637,7 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
                 continue
             if ctl.chord_error is not None:  # across a kink too: a shorter step cuts less of its corner
                 there = _tangent_at(problem, last, secant, scale, solver)
-                chord = _chord_error(here, there, secant, length)
+                chord = _chord_error(here, there, secant, length, watched)
                 if chord > CHORD_REFUSE * ctl.chord_error and ds > 2 * ctl.ds_min:
                     ds *= 0.5
                     continue
