@@ -5,12 +5,15 @@ Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_step_control.py            
       python benchmarks/bench_step_control.py --chord 3e-4 --ds-max 0.25        # another chord rule for modes
       python benchmarks/bench_step_control.py --cases b --joint-contacts 120    # the issue's 120-contact joint
 
-Each case's curve is followed three times in the same run: with the default step control (``chord_error=None``:
-steps set by the turn rule ``max_angle``, the corrector's iterations and ``ds_max``; for nonlinear modes
-``ds_max`` is 1/20 decade of amplitude: ``default_control(lo, hi)``), with the chord rule
-(``StepControl.chord_error`` sets the steps: for modes ``default_control(lo, hi, chord_error=CHORD_ERROR)``;
-for the forced response ``FORCED_CHORD``), and a reference with the old
-control at 4x shorter steps (``ds_max``, ``ds_initial`` and ``max_angle`` divided by 4). Each run's
+Each case's curve is followed three times in the same run: with the turn rule (``chord_error=None``: steps set
+by ``max_angle``, the corrector's iterations and ``ds_max``; for nonlinear modes ``ds_max`` is 1/20 decade of
+amplitude, ``default_control(lo, hi, chord_error=None)``, their default until the chord rule replaced it), with
+the chord rule (``StepControl.chord_error`` sets the steps: for modes their default, ``default_control(lo, hi)``,
+which measures the frequency's and damping's difference from the straight lines; for the forced response
+``FORCED_CHORD``, opt-in there), and a reference with the turn rule at 4x shorter steps (``ds_max``,
+``ds_initial`` and ``max_angle`` divided by 4). For the modes the turn rule is also run at 10, 28 and 40 points
+per decade (``TURN_DENSITIES``): the fewest points with which it is as close as the chord rule in both quantities
+("turn rule points for the chord rule's error") is what "fewer points for the same error" rests on. Each run's
 quantities are joined by straight lines and evaluated at the reference's points; the interpolation error is
 the largest difference from the reference there, relative to the quantity's range over the reference
 (what a plot of the curve shows between its points).
@@ -25,8 +28,8 @@ Cases:
     harmonics 0-3, ``stability=False``: the first harmonic's amplitude at the tip against frequency.
 ``--quick``: (a) 20 contacts over two decades, (b) 1e-6 to 1.2e-5, (c) the blade of (a).
 
-Reported per case: the points and wall times of the three runs, the ratio of points old / new, and the
-errors of old and new. Saved to ``benchmarks/results/bench_step_control.json``
+Reported per case: the points and wall times of the runs, the ratio of points old / new, the errors of old
+and new, and for the modes the turn rule's points for the chord rule's error. Saved to ``benchmarks/results/bench_step_control.json``
 (``bench_step_control_quick.json`` for ``--quick``, ``..._joint120.json`` with ``--joint-contacts 120``).
 The machine is shared: the times are indicative, the
 points and errors are what the comparison rests on.
@@ -49,6 +52,9 @@ from _common import save_results  # noqa: E402
 from bench_fe_scale import RANGE, blade_case  # noqa: E402  (the blade, its contacts and excitation)
 
 REFINE = 4  # the reference's steps are this many times shorter
+
+#: points per decade of amplitude of the turn rule's further runs on the modes (20 is the old run)
+TURN_DENSITIES = (10, 28, 40)
 
 #: the chord rule measured on the forced response (opt-in there: StepControl's default is the turn rule)
 FORCED_CHORD = {"chord_error": 1e-3, "ds_max": 0.2, "max_angle": 0.6}
@@ -99,8 +105,8 @@ def run_forced(structure, force, tip, band, control):
             "complete": bool(r.complete)}
 
 
-def compare(name, quantities, run, old, new):
-    """Run old, new and the reference; print and return the figures."""
+def compare(name, quantities, run, old, new, denser=()):
+    """Run old, new, the reference and the old rule at each ``denser`` control; print and return the figures."""
     ref = run(reference_of(old))
     rows = {"old": run(old), "new": run(new)}
     figures = {"quantities": quantities, "reference": {"points": ref["points"], "seconds": ref["seconds"]}}
@@ -116,6 +122,23 @@ def compare(name, quantities, run, old, new):
     figures["points_old_over_new"] = ratio
     figures["error_new_over_old"] = worse
     print(f"  points old / new = {ratio:.2f}; error new / old at most {worse:.2f}")
+    if denser:
+        turn = [{"points": figures["old"]["points"], "seconds": figures["old"]["seconds"],
+                 "errors": figures["old"]["errors"], "label": "old"}]
+        for label, control in denser:
+            r = run(control)
+            err = dict(zip(quantities, interpolation_error(r["x"], r["ys"], ref["x"], ref["ys"])))
+            turn.append({"points": r["points"], "seconds": r["seconds"], "errors": err, "label": label})
+            print(f"  turn rule at {label}: {r['points']:4d} points, {r['seconds']:6.1f} s, error "
+                  + ", ".join(f"{q} {e:.2e}" for q, e in err.items()))
+        figures["turn_rule"] = turn
+        # the fewest points with which the turn rule is at least as close as the chord rule in every quantity
+        close = [t["points"] for t in turn if all(t["errors"][q] <= figures["new"]["errors"][q] for q in quantities)]
+        figures["turn_points_for_new_error"] = min(close) if close else None
+        most = max(t["points"] for t in turn)
+        print("  turn rule points for the chord rule's error: "
+              + (f"{min(close)}" if close else f"more than {most} (none of its runs is as close)")
+              + f"; the chord rule: {figures['new']['points']}")
     return figures
 
 
@@ -123,12 +146,27 @@ def mode_controls(lo, hi, args):
     from microslip.frequency.analyses.nonlinear_modes import CHORD_ERROR, default_control
 
     old = default_control(lo, hi, chord_error=None)
-    new = default_control(lo, hi, chord_error=CHORD_ERROR)
+    new = default_control(lo, hi)
+    assert new.chord_error == CHORD_ERROR  # the default
     if args.chord is not None or args.ds_max is not None:
         new = replace(new, chord_error=args.chord if args.chord is not None else new.chord_error,
                       ds_max=args.ds_max if args.ds_max is not None else new.ds_max)
         new = replace(new, ds_initial=min(new.ds_initial, new.ds_max))
     return old, new
+
+
+def _turn_points(case: dict) -> str:
+    """The turn rule's points for the chord rule's error, as the table shows them."""
+    if "turn_rule" not in case:
+        return "-"
+    found = case["turn_points_for_new_error"]
+    return str(found) if found is not None else f"> {max(t['points'] for t in case['turn_rule'])}"
+
+
+def denser_turns(old):
+    """The turn rule ``old`` (1/20 decade) at :data:`TURN_DENSITIES` points per decade: ``(label, control)``."""
+    return [(f"{n} per decade", replace(old, ds_initial=old.ds_max * 20 / n, ds_max=old.ds_max * 20 / n))
+            for n in TURN_DENSITIES]
 
 
 def forced_controls(args):
@@ -171,7 +209,7 @@ def main(argv=None) -> int:
         old, new = mode_controls(*blade_amp, args)
         figures["blade_mode"] = compare(
             f"(a) blade mode, {structure.ndof} DOFs, {contacts} contacts, {blade_amp[0]:.0e}-{blade_amp[1]:.0e}",
-            ["frequency", "damping_ratio"], lambda c: run_mode(structure, blade_amp, c), old, new)
+            ["frequency", "damping_ratio"], lambda c: run_mode(structure, blade_amp, c), old, new, denser_turns(old))
         figures["blade_mode"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max,
                                              "max_angle": new.max_angle}
     if "b" in args.cases:
@@ -182,7 +220,8 @@ def main(argv=None) -> int:
         figures["joint_backbone"] = compare(
             f"(b) lap joint backbone, {args.joint_contacts} contacts, {joint.ndof} DOFs, "
             f"{joint_amp[0]:.0e}-{joint_amp[1]:.0e}",
-            ["frequency", "damping_ratio"], lambda c: run_mode(joint, joint_amp, c, samples=SAMPLES), old, new)
+            ["frequency", "damping_ratio"], lambda c: run_mode(joint, joint_amp, c, samples=SAMPLES), old, new,
+            denser_turns(old))
         figures["joint_backbone"]["new_control"] = {"chord_error": new.chord_error, "ds_max": new.ds_max,
                                              "max_angle": new.max_angle}
     if "c" in args.cases:
@@ -196,16 +235,19 @@ def main(argv=None) -> int:
     print(f"load average {load:.2f} at the start (2 cores shared: times are indicative)")
     figures["joint_contacts"] = args.joint_contacts
     figures["description"] = ("Points and interpolation error of the continuation's old step control (the turn rule) "
-                              "and the new (the chord rule, opt-in for nonlinear modes and forced "
+                              "and the new (the chord rule: the default of nonlinear modes, opt-in for forced "
                               "responses), against a curve with 4x shorter steps: the largest difference of each "
-                              "quantity between the points, relative to its range.")
+                              "quantity between the points, relative to its range; for the modes, the fewest "
+                              "points with which the turn rule (at 10, 20, 28 and 40 points per decade) is as "
+                              "close as the chord rule.")
     figures["command"] = " ".join(["OPENBLAS_NUM_THREADS=1 python benchmarks/bench_step_control.py",
                                    *(argv if argv is not None else sys.argv[1:])])
     figures["tables"] = [{"caption": "points and interpolation errors (old, new)",
                           "columns": ["case", "reference points", "old points", "new points", "old / new points",
-                                      "old errors", "new errors"],
+                                      "turn rule points for the new error", "old errors", "new errors"],
                           "rows": [[case, figures[case]["reference"]["points"], figures[case]["old"]["points"],
                                     figures[case]["new"]["points"], figures[case]["points_old_over_new"],
+                                    _turn_points(figures[case]),
                                     ", ".join(f"{q} {e:.2e}" for q, e in figures[case]["old"]["errors"].items()),
                                     ", ".join(f"{q} {e:.2e}" for q, e in figures[case]["new"]["errors"].items())]
                                    for case in ("blade_mode", "joint_backbone", "blade_forced") if case in figures]}]

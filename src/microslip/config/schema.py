@@ -332,8 +332,10 @@ CONTINUATION = Table("[continuation]", "The pseudo-arclength continuation's step
        "ds_max]`).", "0.02"),
     _k("chord_error", "number", "", _STEP_CONTROL["chord_error"], "The distance between the curve and the straight "
        "line joining two consecutive points that the steps aim at (scaled units, positive): longer steps where the "
-       "curve is straight, shorter where it bends. None: steps set by `max_angle`, the corrector's iterations and "
-       "`ds_max` alone (nonlinear modes choose their own default, see the nonlinear-modes guide).", "1e-4"),
+       "curve is straight, shorter where it bends. For `microslip modes`: the frequency's and damping's difference "
+       "from those lines against the log amplitude, over the stuck frequency (the mode's default 1.5e-5 with steps "
+       "of up to a decade and turns of up to 0.3 rad; see the nonlinear-modes guide). Unset: a forced response's "
+       "steps are set by `max_angle`, the corrector's iterations and `ds_max` alone.", "1e-4"),
     _k("ds_max", "number", "", _STEP_CONTROL["ds_max"], "The largest step.", "0.05"),
     _k("ds_min", "number", "", _STEP_CONTROL["ds_min"], "The smallest step.", "1e-7"),
     _k("max_angle", "number", "rad", _STEP_CONTROL["max_angle"], "The largest turn of the tangent per step, in "
