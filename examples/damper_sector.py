@@ -33,15 +33,15 @@ state; it writes ``modes.csv`` (frequency, damping ratio and the harmonics of th
 and ``[modes] dof`` at every amplitude, SI units), ``modes.png`` and ``report.html``/``report.md``. With
 harmonics 0-3 the damper's contacts go from stuck to sliding and lifting off, and at 2.14e-5 kg^1/2 m the
 mode turns back in amplitude: a fold, where ``nonlinear_modes`` ends it with an ``IncompleteCurveWarning``
-naming it (298 points, the whole command about 45 s on two shared cores); the command then exits with status
+naming it (214 points, the whole command about 40 s on two shared cores); the command then exits with status
 1, the results up to there written (``[modes] folds = "follow"`` follows the curve beyond the fold, where
 the damper's mean position drifts). With ``harmonics = 1`` the mode goes on to its fold near 6.6e-5 kg^1/2 m,
 where the damper comes loose (see the nonlinear modes guide). The mode is the one ``nonlinear_modes`` computes
 from the same numbers, point for point (``tests/cli/test_damper_sector_cli.py``). ``[continuation]
-max_points = 250`` caps it (its other keys keep the mode's own steps, at most 1/20 decade of amplitude).
+max_points = 250`` caps it (its other keys keep the mode's own steps, sized by the chord rule).
 
 ``--run`` runs the command from this script; ``--quick`` makes a smaller case, harmonics 0-1 over 1e-7 to
-5e-6 kg^1/2 m (about 120 points, seconds; the gallery runs ``--quick --run``).
+5e-6 kg^1/2 m (about 140 points, seconds; the gallery runs ``--quick --run``).
 """
 
 from __future__ import annotations

@@ -8,9 +8,9 @@ import dataclasses
 def mode_control(cfg, given):
     """The :class:`~microslip.frequency.StepControl` of ``cfg``'s ``[modes]`` mode.
 
-    ``nonlinear_modes`` steps at most 1/20 decade of amplitude by default
-    (:func:`~microslip.frequency.analyses.nonlinear_modes.default_control` of the
-    amplitude range); a ``[continuation]`` table changes only the keys it names,
+    ``nonlinear_modes`` sizes its steps by the chord rule on frequency and damping
+    by default (:func:`~microslip.frequency.analyses.nonlinear_modes.default_control`
+    of the amplitude range); a ``[continuation]`` table changes only the keys it names,
     so ``max_points = 250`` alone caps the mode the API computes rather than
     replacing its steps with the forced response's defaults (``cfg.control``
     holds those for every key the file leaves out).
