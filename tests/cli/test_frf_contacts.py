@@ -24,7 +24,12 @@ def run(config, tmp_path, capsys):  # noqa: F811
     text = config.read_text().replace('centrifugal_load = "50N"', f'centrifugal_load = "{LOAD:g}N"')
     config.write_text(text + "\n[output]\nplot = [2]\n")  # the peak of the tip
     out = tmp_path / "out"
+    import matplotlib.pyplot as plt
+
+    before = plt.get_fignums()
     assert main(["frf", str(config), "--out", str(out), "--quiet"]) == 0
+    # its figures (frf, contacts, the cycle at the peak) saved and closed: a run within Python leaves none open
+    assert plt.get_fignums() == before
     return out, (out / "report.md").read_text(), capsys.readouterr().out
 
 

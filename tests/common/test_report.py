@@ -101,3 +101,15 @@ def test_loop_report_has_one_energy_unit(loop_report):
     # the synthetic loops dissipate 7 to 12 µJ per cycle: µJ in both tables
     assert units == {"µJ"}
     assert not re.search(r"\b1 elements\b", md) and "issue" not in md.lower()
+
+
+def test_a_figure_is_saved_into_the_report_and_closed(tmp_path):
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots()
+    ax.plot([0.0, 1.0], [0.0, 1.0])
+    rep = Report("t")
+    path = rep.figure(fig, "line", "A line.", tmp_path)
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"  # a PNG file, the one the report embeds
+    assert fig.number not in plt.get_fignums()  # closed: the report holds its picture
+    assert "A line." in rep.to_markdown()

@@ -130,7 +130,6 @@ def _synthesis(report, mode, cfg, dof: int, force, structure, out: Path, quiet: 
     ax.set_title(f"{cfg.title}: {name}")
     report.figure(fig, "synthesis", "Forced response near the mode, synthesised from the mode"
                   + (" and by harmonic balance" if compare else "") + "; the mode's backbone dotted.", out)
-    plt.close(fig)  # saved: a command run within Python (a script, the docs' gallery) leaves no figure open
     report.text(text)
     lines.append(text)
 
@@ -227,9 +226,6 @@ def run(args) -> int:
     fig = _plots(mode, cfg, dof)
     report.figure(fig, "modes", "Natural frequency and damping ratio (total; dashed: the contacts' share) against "
                   "the modal amplitude and against the chosen DOF's first harmonic.", out)
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)  # saved: a command run within Python (a script, the docs' gallery) leaves no figure open
     lines = []
     if 1 in force and np.any(force[1]) and interrupted is None:
         try:

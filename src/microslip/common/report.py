@@ -19,6 +19,7 @@ import datetime
 import html
 import io
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -103,9 +104,17 @@ class Report:
         self._blocks.append(("table", list(headers), [list(r) for r in rows], caption))
 
     def figure(self, fig, name: str, caption: str, out_dir) -> Path:
-        """Save ``fig`` as ``out_dir/name.png`` (atomically) and add it to the report."""
+        """Save ``fig`` as ``out_dir/name.png`` (atomically), add it to the report and close it.
+
+        Closed because the report holds the picture: a command run within Python (a script, a notebook,
+        the docs' gallery) leaves no figure open to pile up or be shown again. A figure pyplot does not
+        manage (``matplotlib.figure.Figure``) holds no window and is left to the garbage collector.
+        """
         buf = io.BytesIO()
         fig.savefig(buf, format="png", dpi=DPI, bbox_inches="tight")
+        pyplot = sys.modules.get("matplotlib.pyplot")  # imported by whoever made a pyplot figure; not imported here
+        if pyplot is not None:
+            pyplot.close(fig)
         png = buf.getvalue()
         path = atomic_write(Path(out_dir) / f"{name}.png", png)
         self._blocks.append(("figure", name, caption, png))

@@ -31,8 +31,6 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
     Path
         The HTML report.
     """
-    import matplotlib.pyplot as plt
-
     from .sections import SECTIONS
 
     out_dir = Path(out_dir)
@@ -55,7 +53,6 @@ def reproduce(out_dir, *, case: PaperCase | None = None, progress: bool = True, 
         fig = section.plot(data)
         report.heading(section.CAPTION.split(":")[0])
         report.figure(fig, section.NAME, f"{section.CAPTION} (data: {section.NAME}.csv)", out_dir)
-        plt.close(fig)
         write_csv(out_dir / f"{section.NAME}.csv", section.columns(data))
         for caption, headers, rows in getattr(section, "tables", lambda _: [])(data):
             report.table(headers, rows, caption=caption)

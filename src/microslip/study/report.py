@@ -129,8 +129,8 @@ def write_report(result) -> None:
                   f"`summary.csv` (and `summary.parquet`); every curve: `curves.zarr` "
                   f"(`xarray.open_zarr`).")
     if len(failed) == len(result.cases):
-        report.text(f"**Every case failed**: there is no result to plot. Each case's error is in the table below "
-                    f"and in the column `error` of `summary.csv`.")
+        report.text("**Every case failed**: there is no result to plot. Each case's error is in the table below "
+                    "and in the column `error` of `summary.csv`.")
         report.table(["case", "values", "error"], [[c.key, c.label, e] for c, e in failed], caption="Failed cases")
         report.write(out)
         return
@@ -143,13 +143,11 @@ def write_report(result) -> None:
             report.figure(fig, _file_name(f"against {parameter} {dof}"), f"{what} {measure} against `{parameter}`"
                           f"{', one line per combination of the other parameters' if len(study.parameters) > 1 else ''}.",
                           out)
-            plt.close(fig)
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     plot_curves(result, ax=ax)
     shown = min(MAX_CURVES, len(result.cases) - len(failed))
     report.figure(fig, "curves", ("Response curves" if study.solve == "frf" else "Damping curves")
                   + f" of {shown} case{'s' if shown != 1 else ''}, overlaid.", out)
-    plt.close(fig)
     if study.mistuning is not None:
         af = result.amplification()
         finite = af[np.isfinite(af)]
@@ -158,7 +156,6 @@ def write_report(result) -> None:
             plot_amplification(result, ax=ax)
             report.figure(fig, "amplification", "Distribution of the amplification factor: the largest blade "
                           "amplitude of each mistuned disk over the tuned disk's peak.", out)
-            plt.close(fig)
             report.text(f"Amplification factor of {result.dof_names[0]} over {finite.size} mistuned disks: mean "
                         f"{finite.mean():.4g}, 95th percentile {np.percentile(finite, 95):.4g}, largest "
                         f"{finite.max():.4g}.")
