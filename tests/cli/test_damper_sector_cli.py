@@ -164,6 +164,12 @@ def test_the_modes_step_control_is_its_own_with_the_keys_given(sector):
     assert mode_control(cfg, ["max_points", "ds_min"]) == StepControl(
         ds_initial=own.ds_initial, ds_max=own.ds_max, max_angle=own.max_angle, chord_error=own.chord_error,
         max_points=250, ds_min=1e-6)
+    # chord_error = false: the mode's former steps (the turn rule), not the chord rule's longer bounds without it
+    config.write_text((folder / "config.toml").read_text().replace("[output]", "[continuation]\nchord_error = false\n"
+                                                                               "\n[output]"))
+    off = load_config(config, nonlinear=True)
+    assert off.control.chord_error is None
+    assert mode_control(off, off.continuation_keys) == default_control(*AMPLITUDE, chord_error=None)
     with pytest.raises(ValueError, match=r"given names 'max_point', not a \[continuation\] key"):
         mode_control(cfg, ["max_point"])
     with pytest.raises(ValueError, match=r"cfg must be a configuration with a \[modes\] table"):

@@ -187,6 +187,10 @@ def test_config_matrices_from_npz_and_frequency_in_hz(config_dir):
      "\\[continuation\\] ds_initial must be positive, got -0.1"),
     ("harmonics = 7", "harmonics = 7\n[continuation]\nchord_error = 0.0",
      "\\[continuation\\] chord_error must be positive, got 0.0"),
+    ("harmonics = 7", "harmonics = 7\n[continuation]\nchord_error = true",
+     "\\[continuation\\] chord_error must be a positive number \\(the target\\) or false \\(no chord rule\\), got true"),
+    ("harmonics = 7", 'harmonics = 7\n[continuation]\nchord_error = "fine"',
+     "\\[continuation\\] chord_error must be a real number or false, got 'fine'"),
 ])
 def test_config_errors_name_the_key(config_dir, old, new, message):
     cfg = config_dir / "block.toml"

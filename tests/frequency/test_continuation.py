@@ -258,6 +258,20 @@ def test_the_chord_rule_on_watched_quantities_holds_their_error_against_the_para
     assert runs[(0,)][1].size <= 0.6 * runs[None][1].size
 
 
+@pytest.mark.parametrize("watched, same_as", [(0, (0,)), (-2, (0,)), ((), None)], ids=["scalar", "negative", "empty"])
+def test_watched_takes_one_index_negative_indices_and_none(watched, same_as):
+    from microslip.frequency.numerics.continuation import StepControl
+
+    wave = (lambda w: 0.1 * np.sin(8 * w), lambda w: 0.8 * np.cos(8 * w))
+    x0 = np.array([S_BEND[0](-1.0), wave[0](-1.0)])
+    control = StepControl(chord_error=1e-4, ds_max=0.5, max_angle=0.3)
+    _, omegas, _, _ = continuation(Pair(S_BEND, wave, watched), x0, -1.0, 1.0, x_scale=1.0, r_scale=1.0,
+                                   control=control)
+    _, expected, _, _ = continuation(Pair(S_BEND, wave, same_as), x0, -1.0, 1.0, x_scale=1.0, r_scale=1.0,
+                                     control=control)
+    np.testing.assert_array_equal(omegas, expected)
+
+
 def test_the_chord_rule_keeps_a_corner_as_a_point_of_the_curve():
     from microslip.frequency.numerics.continuation import StepControl
 

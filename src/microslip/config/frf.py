@@ -652,7 +652,12 @@ def config_from_data(data: dict, path, *, nonlinear: bool = False, files: Config
         checked(path, "[sweep] ", choose_reduction, structure, harmonics, reduction, modes)
 
     # -- continuation and output -----------------------------------------------------------
-    cont = _table(data.get("continuation", {}), "[continuation]", path)
+    cont = dict(_table(data.get("continuation", {}), "[continuation]", path))
+    if cont.get("chord_error") is True:
+        raise ConfigError(f"{path}: [continuation] chord_error must be a positive number (the target) or false (no "
+                          f"chord rule), got true (e.g. chord_error = 1e-4)")
+    if cont.get("chord_error") is False:
+        cont["chord_error"] = None  # the turn rule
     control = checked(path, "[continuation] ", StepControl, **cont)
     out = _table(data.get("output", {}), "[output]", path)
     frequency_unit = out.get("frequency_unit", "Hz")

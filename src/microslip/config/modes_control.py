@@ -13,7 +13,8 @@ def mode_control(cfg, given):
     of the amplitude range); a ``[continuation]`` table changes only the keys it names,
     so ``max_points = 250`` alone caps the mode the API computes rather than
     replacing its steps with the forced response's defaults (``cfg.control``
-    holds those for every key the file leaves out).
+    holds those for every key the file leaves out); ``chord_error = false``
+    gives the turn rule's steps (``default_control(..., chord_error=None)``).
 
     Parameters
     ----------
@@ -42,5 +43,7 @@ def mode_control(cfg, given):
     if unknown:
         raise ValueError(f"given names {', '.join(map(repr, unknown))}, not a [continuation] key (the keys: "
                          f"{', '.join(sorted(fields))})")
-    return dataclasses.replace(default_control(*cfg.nonlinear_mode.amplitude),
-                               **{key: getattr(cfg.control, key) for key in keys})
+    # chord_error = false asks for the mode's former steps, the turn rule of default_control(..., chord_error=None)
+    turn = "chord_error" in keys and cfg.control.chord_error is None
+    own = default_control(*cfg.nonlinear_mode.amplitude, **({"chord_error": None} if turn else {}))
+    return dataclasses.replace(own, **{key: getattr(cfg.control, key) for key in keys})

@@ -27,6 +27,7 @@ REQUIRED = "required"
 #: the TOML types a key may have: the Python types they are read as, and how the reference and messages name them
 TYPES = {
     "number": ((int, float), "a real number"),
+    "number or false": ((int, float, bool), "a real number or false"),
     "quantity": ((int, float, str), "a number or a string with a unit"),
     "integer": ((int,), "an integer"),
     "boolean": ((bool,), "True or False"),
@@ -330,12 +331,13 @@ CONTINUATION = Table("[continuation]", "The pseudo-arclength continuation's step
                      "steps in scaled arclength units).", (
     _k("ds_initial", "number", "", _STEP_CONTROL["ds_initial"], "The first step (clipped into `[ds_min, "
        "ds_max]`).", "0.02"),
-    _k("chord_error", "number", "", _STEP_CONTROL["chord_error"], "The distance between the curve and the straight "
+    _k("chord_error", "number or false", "", _STEP_CONTROL["chord_error"], "The distance between the curve and the straight "
        "line joining two consecutive points that the steps aim at (scaled units, positive): longer steps where the "
        "curve is straight, shorter where it bends. For `microslip modes`: the frequency's and damping's difference "
        "from those lines against the log amplitude, over the stuck frequency (the mode's default 1.5e-5 with steps "
-       "of up to a decade and turns of up to 0.3 rad; see the nonlinear-modes guide). Unset: a forced response's "
-       "steps are set by `max_angle`, the corrector's iterations and `ds_max` alone.", "1e-4"),
+       "of up to a decade and turns of up to 0.3 rad; see the nonlinear-modes guide). Unset (a forced response) "
+       "or false (a mode: its former steps of at most 1/20 decade and 0.1 rad): steps set by `max_angle`, the "
+       "corrector's iterations and `ds_max` alone.", "1e-4"),
     _k("ds_max", "number", "", _STEP_CONTROL["ds_max"], "The largest step.", "0.05"),
     _k("ds_min", "number", "", _STEP_CONTROL["ds_min"], "The smallest step.", "1e-7"),
     _k("max_angle", "number", "rad", _STEP_CONTROL["max_angle"], "The largest turn of the tangent per step, in "

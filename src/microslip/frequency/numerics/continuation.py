@@ -93,7 +93,8 @@ class StepControl:
         For a problem that names ``watched`` quantities (a nonlinear mode: its frequency and
         ``xi``), it is their largest difference from the straight line at the same parameter value
         instead (what a plot of each against the parameter shows between points), except on
-        steps steeper than :data:`WATCHED_SLOPE` (at a fold), measured as a whole. Each step's
+        steps whose parameter's share of their unit direction (scaled) is at most
+        :data:`WATCHED_SLOPE` (near a fold), measured as a whole. Each step's
         error is estimated from the cubic through its ends with the curve's tangents there
         (:func:`_chord_error`; one more solve per point, with the corrector's last factors where
         it kept them); the next step is the one whose estimate would be this (it grows as the
@@ -579,7 +580,11 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
     line_start = None  # index of the point where a line at one parameter value starts
     here = tau  # the curve's unit tangent at y (scaled), for the chord error of the step from y
     watched = getattr(problem, "watched", None)
-    watched = None if watched is None or ctl.chord_error is None else np.arange(n)[list(watched)]
+    if watched is not None and ctl.chord_error is not None:
+        watched = np.atleast_1d(np.arange(n)[np.asarray(watched, dtype=int)])  # indices >= 0 into x (and y)
+        watched = watched if watched.size else None  # none named: the whole vector
+    else:
+        watched = None
     walled = 0  # points in a row reached by a shorter step after the corrector failed at a longer one
     wall_step = ds  # the step that failed at the first of them
     while len(omegas) < ctl.max_points:
