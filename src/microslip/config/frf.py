@@ -885,10 +885,7 @@ def _modes_table(table: dict, names: list[str], plot_dofs: list[int], path) -> M
         out.nodal_diameter = checked(path, "", _checks.positive_int, "[modes] nodal_diameter",
                                       table["nodal_diameter"], minimum=0)
     if "folds" in table:
-        if table["folds"] not in FOLDS:
-            raise ConfigError(f"{path}: [modes] folds must be one of {', '.join(map(repr, FOLDS))}, got "
-                              f"{table['folds']!r}")
-        out.folds = table["folds"]
+        out.folds = checked(path, "", _checks.one_of, "[modes] folds", table["folds"], FOLDS)
     return out
 
 

@@ -45,5 +45,6 @@ def mode_control(cfg, given):
                          f"{', '.join(sorted(fields))})")
     # chord_error = false asks for the mode's former steps, the turn rule of default_control(..., chord_error=None)
     turn = "chord_error" in keys and cfg.control.chord_error is None
-    own = default_control(*cfg.nonlinear_mode.amplitude, **({"chord_error": None} if turn else {}))
+    amplitude = cfg.nonlinear_mode.amplitude
+    own = default_control(*amplitude, chord_error=None) if turn else default_control(*amplitude)
     return dataclasses.replace(own, **{key: getattr(cfg.control, key) for key in keys})

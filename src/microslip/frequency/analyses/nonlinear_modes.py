@@ -400,8 +400,7 @@ def nonlinear_modes(structure: Structure, mode: int = 1, amplitude=(1e-8, 1e-4),
         raise TypeError(f"control must be a StepControl, got {type(control).__name__}")
     ctl = control or default_control(lo, hi)
     progress = _checks.flag("progress", progress)
-    if folds not in FOLDS:
-        raise ValueError(f"folds must be one of {', '.join(map(repr, FOLDS))}, got {folds!r}")
+    folds = _checks.one_of("folds", folds, FOLDS)
     preload = structure.preload_force()[None]
     every_dof = (not isinstance(structure, CyclicStructure) and reduction in ("auto", "none") and modes is None
                  and interface_dominated(structure, H, retained_dofs(structure, preload).size))

@@ -657,10 +657,9 @@ def _continuation(problem, x0, omega_start, omega_end, x_scale, r_scale, ctl, ca
         walled = walled + 1 if failed and not kink else 0
         # a straight step that leaves the parameter where it was (to rounding): the solutions form a line at one
         # parameter value (a body held by contacts that all slide or stay open, its mean position free)
-        on_line = (not kink and angle <= LINE_ANGLE * ctl.max_angle
-                   and abs(yc[-1] - y[-1]) <= LINE_PARAMETER * np.linalg.norm((yc - y) / scale) * scale[-1])
-        if folds is not None and (yc[-1] - y[-1]) * direction < -LINE_PARAMETER * np.linalg.norm((yc - y) / scale) * \
-                scale[-1]:
+        still = LINE_PARAMETER * np.linalg.norm((yc - y) / scale) * scale[-1]  # the parameter's rounding on this step
+        on_line = not kink and angle <= LINE_ANGLE * ctl.max_angle and abs(yc[-1] - y[-1]) <= still
+        if folds is not None and (yc[-1] - y[-1]) * direction < -still:
             folds.append(float(y[-1]))  # the curve turns back: it ends at its point before the turn
             break
         y, tau = yc, secant
